@@ -1,0 +1,1 @@
+"""Pure analysis layer (numpy/scipy only): sections, return-map fits, theory, checks."""

@@ -1,0 +1,85 @@
+"""Analytic vs simulated values turned into verdicts with stated tolerances (numpy only)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Check:
+    """One comparison. ``error`` is relative (``|sim - ref| / |ref|``) or absolute, as ``kind`` says.
+
+    ``passed`` is False when the simulated value is missing or not finite: a diverged run never
+    passes silently. ``why`` states where the tolerance comes from.
+    """
+
+    name: str
+    analytic: Any
+    simulated: Any
+    error: float
+    tolerance: float
+    kind: str
+    unit: str
+    why: str
+
+    @property
+    def passed(self) -> bool:
+        """Whether the error is finite and within the tolerance."""
+        return math.isfinite(self.error) and self.error <= self.tolerance
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict: complex numbers as ``[re, im]``, non-finite numbers as ``None``."""
+        return {
+            "name": self.name,
+            "analytic": jsonable(self.analytic),
+            "simulated": jsonable(self.simulated),
+            "error": jsonable(self.error),
+            "error_kind": self.kind,
+            "tolerance": self.tolerance,
+            "unit": self.unit,
+            "passed": self.passed,
+            "why": self.why,
+        }
+
+
+def jsonable(value: Any) -> Any:
+    """Numbers, arrays and complex values as JSON types (complex -> ``[re, im]``, NaN -> None)."""
+    if isinstance(value, np.ndarray):
+        return [jsonable(v) for v in value.tolist()]
+    if isinstance(value, list | tuple):
+        return [jsonable(v) for v in value]
+    if isinstance(value, dict):
+        return {str(k): jsonable(v) for k, v in value.items()}
+    if isinstance(value, complex | np.complexfloating):
+        return [jsonable(float(value.real)), jsonable(float(value.imag))]
+    if isinstance(value, bool | np.bool_):
+        return bool(value)
+    if isinstance(value, int | np.integer):
+        return int(value)
+    if isinstance(value, float | np.floating):
+        return float(value) if math.isfinite(value) else None
+    return value
+
+
+def relative(name: str, analytic: float, simulated: float, tolerance: float, unit: str, why: str) -> Check:
+    """A check on the relative error ``|simulated - analytic| / |analytic|``."""
+    error = abs(simulated - analytic) / abs(analytic) if math.isfinite(simulated) else math.nan
+    return Check(name, analytic, simulated, error, tolerance, "relative", unit, why)
+
+
+def absolute(name: str, analytic: complex | float, simulated: complex | float, tolerance: float,
+             unit: str, why: str) -> Check:
+    """A check on the absolute error ``|simulated - analytic|`` (complex values: modulus of the difference)."""
+    error = abs(simulated - analytic) if np.isfinite(simulated) else math.nan
+    return Check(name, analytic, simulated, float(error), tolerance, "absolute", unit, why)
+
+
+def fraction(name: str, agree: int, total: int, tolerance: float, why: str) -> Check:
+    """A check on the fraction of cases that disagree (analytic 0 disagreements)."""
+    error = (total - agree) / total if total else math.nan
+    return Check(name, 0.0, (total - agree) / total if total else math.nan, error, tolerance, "fraction",
+                 "", why)

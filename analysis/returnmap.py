@@ -1,0 +1,422 @@
+"""Empirical Poincaré return maps fitted from section samples.
+
+A batch of simulated trajectories gives, on a Poincaré section, consecutive samples
+``x_k -> x_{k+1}``.  This module fits a low-degree polynomial map ``x_next = F(x)`` to those
+pairs by least squares, locates its fixed point, linearises it there and estimates the
+uncertainty of all of it by a bootstrap over the pairs.  The resulting multipliers
+(eigenvalues of the Jacobian) are what the analytic results are compared against.
+
+Only numpy and scipy are used.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from itertools import combinations_with_replacement
+from typing import Any
+
+import numpy as np
+from scipy.optimize import linear_sum_assignment
+
+__all__ = ["ReturnMapFit", "convergence_ratio", "fit_return_map", "sample_pairs"]
+
+_SUPPORTED_DEGREES = (1, 2)
+_NEWTON_MAX_ITER = 60
+_NEWTON_STEP_TOL = 1e-12
+_TIE_RTOL = 1e-9
+_GRAM_RTOL = 1e-12  # bootstrap replicates with cond(regression matrix) > 1e6 are skipped
+
+
+@dataclass(frozen=True)
+class ReturnMapFit:
+    """Result of :func:`fit_return_map`.
+
+    Attributes:
+        fixed_point: ``(d,)`` fixed point ``x*`` of the fitted map.
+        jacobian: ``(d, d)`` derivative ``dF/dx`` of the fitted map at ``x*``.
+        eigenvalues: ``(d,)`` complex multipliers, sorted by modulus descending; ties in modulus
+            are ordered by angle descending (so a conjugate pair lists the member with positive
+            imaginary part first).
+        fixed_point_std: ``(d,)`` bootstrap standard deviation of ``fixed_point``.
+        eigenvalue_std: ``(d,)`` complex: ``std(real part) + 1j * std(imag part)`` over the
+            bootstrap, each replicate's eigenvalues matched to the point estimate by optimal
+            assignment.
+        jacobian_std: ``(d, d)`` bootstrap standard deviation of ``jacobian``.
+        residual_rms: ``(d,)`` root-mean-square one-step residual ``x_next - F(x)`` of the fit.
+        n_pairs: number of pairs used.
+        degree: total polynomial degree of the fit (1 affine, 2 quadratic).
+        condition: condition number of the centred and scaled regression matrix.
+
+    The standard deviations are NaN when fewer than two bootstrap replicates were available.
+    """
+
+    fixed_point: np.ndarray
+    jacobian: np.ndarray
+    eigenvalues: np.ndarray
+    fixed_point_std: np.ndarray
+    eigenvalue_std: np.ndarray
+    jacobian_std: np.ndarray
+    residual_rms: np.ndarray
+    n_pairs: int
+    degree: int
+    condition: float
+
+    def to_dict(self) -> dict[str, Any]:
+        """Return a JSON-ready dict: arrays as (nested) lists, complex numbers as ``[re, im]``.
+
+        Non-finite floats (e.g. NaN standard deviations) become ``None`` so that the output is
+        strict JSON.
+        """
+        return {
+            "fixed_point": _real_list(self.fixed_point),
+            "jacobian": _real_list(self.jacobian),
+            "eigenvalues": _complex_list(self.eigenvalues),
+            "fixed_point_std": _real_list(self.fixed_point_std),
+            "eigenvalue_std": _complex_list(self.eigenvalue_std),
+            "jacobian_std": _real_list(self.jacobian_std),
+            "residual_rms": _real_list(self.residual_rms),
+            "n_pairs": int(self.n_pairs),
+            "degree": int(self.degree),
+            "condition": _json_float(self.condition),
+        }
+
+
+def _json_float(value: float) -> float | None:
+    """Convert to a Python float, mapping non-finite values to ``None``."""
+    value = float(value)
+    return value if np.isfinite(value) else None
+
+
+def _real_list(array: np.ndarray) -> list[Any]:
+    """Convert a real array to nested lists of floats (non-finite -> ``None``)."""
+    array = np.asarray(array, dtype=float)
+    if array.ndim > 1:
+        return [_real_list(row) for row in array]
+    return [_json_float(value) for value in array]
+
+
+def _complex_list(array: np.ndarray) -> list[list[float | None]]:
+    """Convert a 1-D complex array to a list of ``[re, im]`` pairs."""
+    return [[_json_float(z.real), _json_float(z.imag)] for z in np.asarray(array, dtype=complex)]
+
+
+def sample_pairs(sequences: Sequence[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    """Build the pairs ``(x_k, x_{k+1})`` from sequences of consecutive section samples.
+
+    Args:
+        sequences: one array per trajectory, of shape ``(n_i, d)`` or ``(n_i,)`` (then ``d = 1``),
+            holding consecutive section crossings.  A row containing NaN marks a missing crossing:
+            no pair is formed with it, so pairs never span a gap.  Pairs never span two sequences.
+
+    Returns:
+        ``(x, x_next)``, each of shape ``(N, d)``.
+
+    Raises:
+        ValueError: if no sequence is given, a sequence has more than two dimensions, or the
+            sequences disagree on ``d``.
+    """
+    if len(sequences) == 0:
+        raise ValueError("sample_pairs needs at least one sequence")
+    dim: int | None = None
+    firsts: list[np.ndarray] = []
+    seconds: list[np.ndarray] = []
+    for index, sequence in enumerate(sequences):
+        samples = np.asarray(sequence, dtype=float)
+        if samples.ndim == 1:
+            samples = samples[:, None]
+        if samples.ndim != 2:
+            raise ValueError(f"sequence {index} must have shape (n,) or (n, d), got {samples.shape}")
+        if dim is None:
+            dim = samples.shape[1]
+        elif samples.shape[1] != dim:
+            raise ValueError(f"sequence {index} has dimension {samples.shape[1]}, expected {dim}")
+        present = ~np.isnan(samples).any(axis=1)
+        keep = present[:-1] & present[1:]
+        firsts.append(samples[:-1][keep])
+        seconds.append(samples[1:][keep])
+    return np.concatenate(firsts, axis=0), np.concatenate(seconds, axis=0)
+
+
+def _monomials(dim: int, degree: int) -> list[tuple[int, ...]]:
+    """Index tuples of all monomials of total degree ``<= degree`` (``()`` is the constant)."""
+    terms: list[tuple[int, ...]] = []
+    for order in range(degree + 1):
+        terms.extend(combinations_with_replacement(range(dim), order))
+    return terms
+
+
+def _features(z: np.ndarray, terms: list[tuple[int, ...]]) -> np.ndarray:
+    """Regression matrix ``(N, p)`` of the monomials evaluated at the rows of ``z`` ``(N, d)``."""
+    columns = [np.prod(z[:, list(term)], axis=1) for term in terms]
+    return np.stack(columns, axis=1)
+
+
+def _feature_gradient(z: np.ndarray, terms: list[tuple[int, ...]]) -> np.ndarray:
+    """Derivative ``(p, d)`` of the monomials with respect to ``z`` at the single point ``z``."""
+    grad = np.zeros((len(terms), z.size))
+    for row, term in enumerate(terms):
+        for position, var in enumerate(term):
+            rest = term[:position] + term[position + 1 :]
+            grad[row, var] += np.prod(z[list(rest)])
+    return grad
+
+
+@dataclass(frozen=True)
+class _Scaled:
+    """A fitted map in scaled coordinates ``z = (x - center) / scale``: ``z_next = phi(z) @ coef``."""
+
+    coef: np.ndarray
+    terms: list[tuple[int, ...]]
+
+    def value(self, z: np.ndarray) -> np.ndarray:
+        """Evaluate the map at a single point ``z`` ``(d,)``."""
+        return _features(z[None, :], self.terms)[0] @ self.coef
+
+    def jacobian(self, z: np.ndarray) -> np.ndarray:
+        """Derivative ``(d, d)`` of the map at ``z``, ``[i, j] = d z_next_i / d z_j``."""
+        return self.coef.T @ _feature_gradient(z, self.terms)
+
+
+def _least_squares(phi: np.ndarray, target: np.ndarray) -> tuple[np.ndarray, float]:
+    """Least-squares coefficients and condition number; raise if ``phi`` is rank-deficient."""
+    u, sing, vt = np.linalg.svd(phi, full_matrices=False)
+    tol = sing[0] * max(phi.shape) * np.finfo(float).eps
+    if sing[0] == 0.0 or sing[-1] <= tol:
+        raise ValueError(
+            "rank-deficient regression: samples do not span the section; "
+            "start the batch from more spread initial conditions"
+        )
+    coef = vt.T @ ((u.T @ target) / sing[:, None])
+    return coef, float(sing[0] / sing[-1])
+
+
+def _resampled_least_squares(phi: np.ndarray, target: np.ndarray, counts: np.ndarray) -> np.ndarray:
+    """Least squares on the rows of ``phi`` repeated ``counts`` times (a bootstrap replicate).
+
+    Solved by the weighted normal equations, which is much cheaper than an SVD of the resampled
+    matrix; raises ``ValueError`` when the replicate is (numerically) rank-deficient.
+    """
+    weighted = counts[:, None] * phi
+    gram = phi.T @ weighted
+    spectrum = np.linalg.eigvalsh(gram)
+    if spectrum[-1] <= 0.0 or spectrum[0] <= spectrum[-1] * _GRAM_RTOL:
+        raise ValueError("rank-deficient bootstrap replicate")
+    return np.linalg.solve(gram, weighted.T @ target)
+
+
+def _fixed_point(model: _Scaled, degree: int, start: np.ndarray | None) -> np.ndarray:
+    """Fixed point of the scaled map: a linear solve for degree 1, Newton otherwise.
+
+    ``start`` is the Newton initial guess (ignored for degree 1).
+    """
+    dim = model.coef.shape[1]
+    identity = np.eye(dim)
+    if degree == 1:
+        try:
+            return np.linalg.solve(identity - model.coef[1:].T, model.coef[0])
+        except np.linalg.LinAlgError:
+            raise ValueError("fitted affine map has a multiplier 1: no isolated fixed point") from None
+    z = np.array(start, dtype=float)
+    for _ in range(_NEWTON_MAX_ITER):
+        try:
+            step = np.linalg.solve(model.jacobian(z) - identity, z - model.value(z))
+        except np.linalg.LinAlgError:
+            raise ValueError("Newton for the fixed point hit a singular Jacobian (multiplier 1)") from None
+        z = z + step
+        if not np.all(np.isfinite(z)):
+            break
+        if np.linalg.norm(step) <= _NEWTON_STEP_TOL * (1.0 + np.linalg.norm(z)):
+            return z
+    raise ValueError(
+        "Newton for the fixed point of the quadratic map did not converge from the affine "
+        "estimate; the fitted map may have no fixed point near the samples (try degree=1)"
+    )
+
+
+def _sort_eigenvalues(values: np.ndarray) -> np.ndarray:
+    """Sort by modulus descending; equal moduli (relative ``_TIE_RTOL``) by angle descending."""
+    modulus = np.abs(values)
+    order = np.argsort(-modulus, kind="stable")
+    group_modulus = modulus[order].copy()
+    for k in range(1, group_modulus.size):
+        if np.isclose(group_modulus[k], group_modulus[k - 1], rtol=_TIE_RTOL, atol=0.0):
+            group_modulus[k] = group_modulus[k - 1]
+    resorted = np.lexsort((-np.angle(values[order]), -group_modulus))
+    return values[order][resorted]
+
+
+def _match(reference: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """Permute ``values`` to minimise the total distance to ``reference`` (optimal assignment)."""
+    cost = np.abs(reference[:, None] - values[None, :])
+    rows, cols = linear_sum_assignment(cost)
+    matched = np.empty_like(values)
+    matched[rows] = values[cols]
+    return matched
+
+
+def _as_2d(array: np.ndarray, name: str) -> np.ndarray:
+    """Return ``array`` as float ``(N, d)``, promoting ``(N,)`` to ``(N, 1)``."""
+    out = np.asarray(array, dtype=float)
+    if out.ndim == 1:
+        out = out[:, None]
+    if out.ndim != 2:
+        raise ValueError(f"{name} must have shape (N,) or (N, d), got {np.shape(array)}")
+    return out
+
+
+def fit_return_map(
+    x: np.ndarray,
+    x_next: np.ndarray,
+    *,
+    degree: int = 1,
+    bootstrap: int = 200,
+    seed: int = 0,
+    center: np.ndarray | None = None,
+) -> ReturnMapFit:
+    """Fit ``x_next = F(x)`` by a polynomial and linearise it at its fixed point.
+
+    The regression uses all monomials of total degree ``<= degree`` in the coordinates
+    ``z = (x - center) / scale`` (``scale`` = per-coordinate std of ``x``, 1 where that is zero),
+    with ``z_next`` scaled the same way.  The fixed point solves ``(I - A) x* = b`` for an affine
+    fit; for a quadratic fit it is found by Newton's method on ``F(x) - x`` started from the
+    affine fit's fixed point.  Uncertainties come from a bootstrap over pairs (rows resampled with
+    replacement, replicates whose regression is degenerate are skipped), fully determined by
+    ``seed``.
+
+    Args:
+        x: ``(N, d)`` or ``(N,)`` section states.
+        x_next: same shape, the next crossing of each state (e.g. from :func:`sample_pairs`).
+        degree: 1 (affine) or 2 (quadratic).
+        bootstrap: number of bootstrap replicates (0 disables; the stds are then NaN).
+        seed: seed of the bootstrap resampling.
+        center: centring point ``(d,)``; defaults to the mean of ``x``.
+
+    Returns:
+        The :class:`ReturnMapFit`.
+
+    Raises:
+        ValueError: on bad shapes or degree, non-finite inputs, fewer pairs than coefficients + 1,
+            a rank-deficient regression, or a fitted map without a computable fixed point.
+    """
+    xs = _as_2d(x, "x")
+    ys = _as_2d(x_next, "x_next")
+    if xs.shape != ys.shape:
+        raise ValueError(f"x and x_next must have the same shape, got {xs.shape} and {ys.shape}")
+    if degree not in _SUPPORTED_DEGREES:
+        raise ValueError(f"degree must be one of {_SUPPORTED_DEGREES}, got {degree}")
+    if bootstrap < 0:
+        raise ValueError(f"bootstrap must be >= 0, got {bootstrap}")
+    if not (np.all(np.isfinite(xs)) and np.all(np.isfinite(ys))):
+        raise ValueError("x and x_next must be finite (remove missing crossings with sample_pairs)")
+    n_pairs, dim = xs.shape
+    terms = _monomials(dim, degree)
+    if n_pairs <= len(terms):
+        raise ValueError(
+            f"too few pairs: {n_pairs} given, a degree-{degree} fit in {dim} dimensions has "
+            f"{len(terms)} coefficients per coordinate and needs at least {len(terms) + 1} pairs"
+        )
+
+    if center is None:
+        origin = xs.mean(axis=0)
+    else:
+        origin = np.broadcast_to(np.asarray(center, dtype=float), (dim,)).copy()
+        if not np.all(np.isfinite(origin)):
+            raise ValueError("center must be finite")
+    spread = xs.std(axis=0)
+    negligible = spread <= 1e-12 * np.maximum(1.0, np.abs(origin))
+    scale = np.where(negligible, 1.0, spread)
+    zs = (xs - origin) / scale
+    zs_next = (ys - origin) / scale
+
+    phi = _features(zs, terms)
+    coef, condition = _least_squares(phi, zs_next)
+    model = _Scaled(coef, terms)
+    start = None
+    if degree == 2:
+        affine = _Scaled(_least_squares(phi[:, : dim + 1], zs_next)[0], terms[: dim + 1])
+        start = _fixed_point(affine, 1, None)
+    z_star = _fixed_point(model, degree, start)
+
+    def to_x_jacobian(jac_z: np.ndarray) -> np.ndarray:
+        """Convert a Jacobian in scaled coordinates to original units."""
+        return jac_z * scale[:, None] / scale[None, :]
+
+    fixed_point = origin + scale * z_star
+    jacobian = to_x_jacobian(model.jacobian(z_star))
+    eigenvalues = _sort_eigenvalues(np.linalg.eigvals(jacobian).astype(complex))
+    residual_rms = np.sqrt(np.mean(((zs_next - phi @ coef) * scale) ** 2, axis=0))
+
+    rng = np.random.default_rng(seed)
+    boot_points: list[np.ndarray] = []
+    boot_jacobians: list[np.ndarray] = []
+    boot_eigenvalues: list[np.ndarray] = []
+    for _ in range(bootstrap):
+        counts = np.bincount(rng.integers(0, n_pairs, size=n_pairs), minlength=n_pairs)
+        try:
+            replicate = _Scaled(_resampled_least_squares(phi, zs_next, counts.astype(float)), terms)
+            z_rep = _fixed_point(replicate, degree, z_star)
+        except ValueError:
+            continue
+        jac_rep = to_x_jacobian(replicate.jacobian(z_rep))
+        boot_points.append(origin + scale * z_rep)
+        boot_jacobians.append(jac_rep)
+        boot_eigenvalues.append(_match(eigenvalues, np.linalg.eigvals(jac_rep).astype(complex)))
+
+    if len(boot_points) >= 2:
+        eig_samples = np.array(boot_eigenvalues)
+        fixed_point_std = np.std(boot_points, axis=0, ddof=1)
+        jacobian_std = np.std(boot_jacobians, axis=0, ddof=1)
+        eigenvalue_std = np.std(eig_samples.real, axis=0, ddof=1) + 1j * np.std(
+            eig_samples.imag, axis=0, ddof=1
+        )
+    else:
+        fixed_point_std = np.full(dim, np.nan)
+        jacobian_std = np.full((dim, dim), np.nan)
+        eigenvalue_std = np.full(dim, np.nan + 1j * np.nan)
+
+    return ReturnMapFit(
+        fixed_point=fixed_point,
+        jacobian=jacobian,
+        eigenvalues=eigenvalues,
+        fixed_point_std=fixed_point_std,
+        eigenvalue_std=eigenvalue_std,
+        jacobian_std=jacobian_std,
+        residual_rms=residual_rms,
+        n_pairs=n_pairs,
+        degree=degree,
+        condition=condition,
+    )
+
+
+def convergence_ratio(sequence: np.ndarray, fixed_point: float, noise_floor: float = 0.0) -> float:
+    """Fit-free multiplier estimate of a 1-D map: median of ``|x_{k+1} - x*| / |x_k - x*|``.
+
+    Valid for a positive real multiplier (for a negative one it returns its modulus).  Steps
+    where ``|x_k - x*| <= noise_floor`` (the ratio would be dominated by noise) or where either
+    sample is NaN are ignored.
+
+    Args:
+        sequence: ``(n,)`` (or ``(n, 1)``) consecutive section samples of one trajectory.
+        fixed_point: the fixed point ``x*``.
+        noise_floor: distance from ``x*`` below which a step is ignored (>= 0).
+
+    Returns:
+        The median ratio.
+
+    Raises:
+        ValueError: on a non-1-D sequence, a negative noise floor, or no usable step.
+    """
+    samples = np.asarray(sequence, dtype=float)
+    if samples.ndim == 2 and samples.shape[1] == 1:
+        samples = samples[:, 0]
+    if samples.ndim != 1:
+        raise ValueError(f"convergence_ratio needs a 1-D sequence, got shape {np.shape(sequence)}")
+    if noise_floor < 0:
+        raise ValueError(f"noise_floor must be >= 0, got {noise_floor}")
+    distance = np.abs(samples - float(fixed_point))
+    before, after = distance[:-1], distance[1:]
+    usable = np.isfinite(before) & np.isfinite(after) & (before > noise_floor)
+    if not np.any(usable):
+        raise ValueError("no step of the sequence is farther than noise_floor from the fixed point")
+    return float(np.median(after[usable] / before[usable]))

@@ -1,0 +1,1 @@
+"""mjpoincare: analytic Poincare-map results of impacting systems, checked in MuJoCo."""

@@ -1,0 +1,86 @@
+"""``mjpoincare list | validate | bench``: the command line."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from collections.abc import Sequence
+
+from mjpoincare import scenarios
+from mjpoincare.params import ParameterError, parse_assignments
+from mjpoincare.result import write_json
+
+EXIT_PASS, EXIT_FAIL, EXIT_BAD_INPUT = 0, 1, 2
+
+
+def _cmd_list(_: argparse.Namespace) -> int:
+    for scenario in scenarios.REGISTRY.values():
+        print(f"{scenario.name}: {scenario.summary}")
+        print(f"  source: {scenario.source}")
+        print(f"  presets: {', '.join(scenario.presets)} (default {scenario.default_preset})")
+        for p in scenario.params:
+            print(f"  {p.name} = {p.default}  ({p.doc}; {p.range_text()})")
+    return EXIT_PASS
+
+
+def _cmd_validate(args: argparse.Namespace) -> int:
+    from mjpoincare.validate import resolve_inputs, run_validation
+
+    names = args.scenario or list(scenarios.DEFAULT_SCENARIOS)
+    assignments = parse_assignments(args.set)
+    for name in names:  # refuse bad input before any simulation or file
+        resolve_inputs(name, assignments, args.preset)
+    results = [run_validation(name, assignments, args.preset, args.seed) for name in names]
+    if args.json != "-":
+        for result in results:
+            print(result.table())
+            print()
+    if args.json:
+        payload = results[0].to_dict() if len(results) == 1 else [r.to_dict() for r in results]
+        write_json(payload, args.json)
+    return EXIT_PASS if all(r.passed for r in results) else EXIT_FAIL
+
+
+def _cmd_bench(args: argparse.Namespace) -> int:
+    from mjpoincare.bench import run_bench
+
+    return run_bench(args.scenario, parse_assignments(args.set), args.output, args.json, quick=args.quick)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser (exposed for tests and docs)."""
+    parser = argparse.ArgumentParser(prog="mjpoincare", description=__doc__)
+    sub = parser.add_subparsers(dest="command", required=True)
+    sub.add_parser("list", help="list scenarios, their parameters and presets").set_defaults(func=_cmd_list)
+
+    val = sub.add_parser("validate", help="run scenarios and check them against the analytic results")
+    val.add_argument("scenario", nargs="*", help="scenario names (default: the default scenarios)")
+    val.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                     help="set a parameter or simulator setting (repeatable)")
+    val.add_argument("--preset", default=None, help="simulator preset: fast or accurate")
+    val.add_argument("--json", metavar="PATH|-", help="write the result as JSON (- for stdout)")
+    val.add_argument("--seed", type=int, default=0, help="seed of the bootstrap (same seed, same result)")
+    val.set_defaults(func=_cmd_validate)
+
+    bench = sub.add_parser("bench", help="run time against error over timestep, integrator and contact settings")
+    bench.add_argument("scenario", help="scenario name")
+    bench.add_argument("--set", action="append", default=[], metavar="NAME=VALUE")
+    bench.add_argument("-o", "--output", default="renders/bench-{scenario}.png", help="PNG plot path")
+    bench.add_argument("--json", metavar="PATH|-", help="write the bench table as JSON")
+    bench.add_argument("--quick", action="store_true", help="a small sweep (for tests)")
+    bench.set_defaults(func=_cmd_bench)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point: exit 0 when all checks pass, 1 when one fails, 2 on bad input."""
+    args = build_parser().parse_args(argv)
+    try:
+        return int(args.func(args))
+    except ParameterError as err:
+        print(f"mjpoincare: error: {err}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,111 @@
+"""Declared, validated parameters: one record per name, with its type, default and bounds.
+
+Every scenario parameter and every simulator setting is a :class:`Param`. The CLI's
+``--set name=value`` text, presets and Python callers all go through :meth:`Param.coerce`,
+so a bad value is refused in one place with one line naming the parameter and its range.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+Value = float | int | str
+
+
+class ParameterError(ValueError):
+    """An invalid parameter: the message is one line naming the parameter and the allowed range."""
+
+
+@dataclass(frozen=True)
+class Param:
+    """One named parameter with its default, type and allowed range.
+
+    ``low``/``high`` bound numbers (``low_open``/``high_open`` make the bound strict);
+    ``choices`` restricts strings.
+    """
+
+    name: str
+    default: Value
+    doc: str
+    kind: type = float
+    low: float | None = None
+    high: float | None = None
+    low_open: bool = False
+    high_open: bool = False
+    choices: tuple[str, ...] | None = None
+
+    def range_text(self) -> str:
+        """The allowed range in words, e.g. ``in (0, 1.571)`` or ``one of euler, rk4``."""
+        if self.choices is not None:
+            return "one of " + ", ".join(self.choices)
+        if self.low is not None and self.high is not None:
+            left = "(" if self.low_open else "["
+            right = ")" if self.high_open else "]"
+            return f"in {left}{self.low:g}, {self.high:g}{right}"
+        if self.low is not None:
+            return f"{'>' if self.low_open else '>='} {self.low:g}"
+        if self.high is not None:
+            return f"{'<' if self.high_open else '<='} {self.high:g}"
+        return "any " + self.kind.__name__
+
+    def coerce(self, value: Any) -> Value:
+        """Convert ``value`` (text or number) to this parameter's type and check its range."""
+        if self.kind is str:
+            text = str(value).strip().lower()
+            if self.choices is not None and text not in self.choices:
+                raise ParameterError(f"{self.name} must be {self.range_text()} (got {value!r})")
+            return text
+        try:
+            number = float(value)
+        except (TypeError, ValueError):
+            raise ParameterError(
+                f"{self.name} must be a number {self.range_text()} (got {value!r})"
+            ) from None
+        if not math.isfinite(number):
+            raise ParameterError(f"{self.name} must be a finite number {self.range_text()} (got {value!r})")
+        if self.kind is int:
+            if number != int(number):
+                raise ParameterError(f"{self.name} must be an integer {self.range_text()} (got {value!r})")
+            number = int(number)
+        too_low = self.low is not None and (number <= self.low if self.low_open else number < self.low)
+        too_high = self.high is not None and (number >= self.high if self.high_open else number > self.high)
+        if too_low or too_high:
+            raise ParameterError(f"{self.name} must be {self.range_text()} (got {value})")
+        return number
+
+
+def parse_assignments(items: Iterable[str]) -> dict[str, str]:
+    """Parse CLI ``name=value`` strings into a dict (later assignments win)."""
+    out: dict[str, str] = {}
+    for item in items:
+        name, sep, value = item.partition("=")
+        if not sep or not name.strip():
+            raise ParameterError(f"--set expects name=value (got {item!r})")
+        out[name.strip()] = value.strip()
+    return out
+
+
+def resolve(
+    declared: Sequence[Param], base: Mapping[str, Value], overrides: Mapping[str, Any]
+) -> dict[str, Value]:
+    """Values for ``declared``: ``base`` (defaults or a preset) updated by ``overrides``, all checked.
+
+    Names in ``overrides`` that are not declared are left for the caller (see :func:`unknown`).
+    """
+    by_name = {p.name: p for p in declared}
+    values = {name: by_name[name].coerce(value) for name, value in base.items()}
+    for name, value in overrides.items():
+        if name in by_name:
+            values[name] = by_name[name].coerce(value)
+    return values
+
+
+def unknown(names: Iterable[str], *declared: Sequence[Param]) -> None:
+    """Raise :class:`ParameterError` for the first name not declared in any of ``declared``."""
+    known = sorted({p.name for group in declared for p in group})
+    for name in names:
+        if name not in known:
+            raise ParameterError(f"unknown parameter {name!r}; known: {', '.join(known)}")

@@ -1,0 +1,100 @@
+"""A validation result: parameters, settings, checks, timings and captured warnings; table and JSON."""
+
+from __future__ import annotations
+
+import json
+import os
+import sys
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from analysis.checks import Check, jsonable
+
+
+@dataclass
+class Result:
+    """Everything a run reports. ``passed`` is True only if every check passed."""
+
+    scenario: str
+    preset: str
+    seed: int
+    params: dict[str, Any]
+    settings: dict[str, Any]
+    mujoco_version: str
+    checks: list[Check]
+    timing: dict[str, float]
+    warnings: list[str]
+    diverged: list[int]
+    extras: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def passed(self) -> bool:
+        """All checks passed (a diverged run or a MuJoCo warning fails the ``stable`` check)."""
+        return all(c.passed for c in self.checks)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict (vectors as lists, complex numbers as ``[re, im]``)."""
+        return jsonable({
+            "scenario": self.scenario,
+            "preset": self.preset,
+            "seed": self.seed,
+            "passed": self.passed,
+            "params": self.params,
+            "settings": self.settings,
+            "mujoco_version": self.mujoco_version,
+            "checks": [c.to_dict() for c in self.checks],
+            "timing": self.timing,
+            "warnings": self.warnings,
+            "diverged_trajectories": self.diverged,
+            **self.extras,
+        })
+
+    def table(self) -> str:
+        """The check table a person reads: analytic, simulated, error, tolerance, verdict."""
+        head = (f"{self.scenario}  preset={self.preset}  MuJoCo {self.mujoco_version}  "
+                + " ".join(f"{k}={v}" for k, v in self.params.items()))
+        rows = [("check", "analytic", "simulated", "error", "tolerance", "verdict")]
+        for c in self.checks:
+            rows.append((c.name, _fmt(c.analytic), _fmt(c.simulated), f"{_fmt(c.error)} {c.kind[:3]}",
+                         f"{c.tolerance:.3g}", "PASS" if c.passed else "FAIL"))
+        widths = [max(len(r[i]) for r in rows) for i in range(len(rows[0]))]
+        lines = [head] + ["  ".join(cell.ljust(w) for cell, w in zip(r, widths, strict=True)).rstrip()
+                          for r in rows]
+        t = self.timing
+        lines.append(f"wall {t['wall_s']:.2f} s, {t['steps']:.3g} steps, {t['steps_per_s']:.3g} steps/s "
+                     f"(MuJoCo alone {t['rollout_steps_per_s']:.3g} steps/s)")
+        if self.diverged:
+            lines.append(f"DIVERGED trajectories: {self.diverged}")
+        lines.extend(f"mujoco warning: {w}" for w in self.warnings)
+        return "\n".join(lines)
+
+
+def _fmt(value: Any) -> str:
+    if isinstance(value, complex):
+        return f"{value.real:.6g}{value.imag:+.3g}j" if value.imag else f"{value.real:.6g}"
+    if isinstance(value, float):
+        return f"{value:.6g}"
+    return str(value)
+
+
+def write_json(payload: Any, path: str) -> None:
+    """Write ``payload`` as JSON to ``path`` whole or not at all (temp file + rename); ``-`` is stdout."""
+    text = json.dumps(payload, indent=2, allow_nan=False) + "\n"
+    if path == "-":
+        sys.stdout.write(text)
+        sys.stdout.flush()
+        return
+    target = Path(path)
+    target.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "w") as handle:
+            handle.write(text)
+            handle.flush()
+            os.fsync(handle.fileno())
+        os.replace(tmp, target)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise

@@ -1,0 +1,21 @@
+"""The scenario registry: every entry point (CLI, tests, bench, render) lists scenarios from here."""
+
+from __future__ import annotations
+
+from mjpoincare.params import ParameterError
+from mjpoincare.scenarios.base import Evaluation, Scenario
+from mjpoincare.scenarios.rimless_wheel import RIMLESS_WHEEL
+
+REGISTRY: dict[str, Scenario] = {s.name: s for s in (RIMLESS_WHEEL,)}
+DEFAULT_SCENARIOS: tuple[str, ...] = ("rimless-wheel",)
+
+
+def get(name: str) -> Scenario:
+    """The scenario called ``name``; unknown names raise :class:`ParameterError` listing the known ones."""
+    try:
+        return REGISTRY[name]
+    except KeyError:
+        raise ParameterError(f"unknown scenario {name!r}; known: {', '.join(REGISTRY)}") from None
+
+
+__all__ = ["DEFAULT_SCENARIOS", "REGISTRY", "Evaluation", "Scenario", "get"]

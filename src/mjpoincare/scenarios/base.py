@@ -1,0 +1,62 @@
+"""What a scenario is: one model + its parameters + its analytic reference + its tolerances.
+
+A :class:`Scenario` is declared once (in its own module) and used by the CLI, the tests, the
+benchmark and the renderer alike; :mod:`mjpoincare.scenarios` keeps the registry.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+import mujoco
+
+from analysis.checks import Check
+from mjpoincare.params import Param, ParameterError, Value
+from mjpoincare.simulate import RolloutReport
+
+Values = Mapping[str, Value]
+
+
+@dataclass
+class Evaluation:
+    """A scenario's run: its checks, what the rollouts did, and extra data for reports."""
+
+    checks: list[Check]
+    rollout: RolloutReport
+    extras: dict[str, Any] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class Scenario:
+    """A validation scenario.
+
+    Attributes:
+        name: CLI name, e.g. ``rimless-wheel``.
+        summary: one line for ``mjpoincare list``.
+        source: the paper and equations the analytic reference comes from.
+        params: the physical parameters with defaults and bounds.
+        presets: simulator-setting overrides per preset name (``fast``, ``accurate``).
+        check_params: cross-parameter validation (raises :class:`ParameterError`).
+        build: ``(params, settings) -> MjModel``.
+        evaluate: ``(params, settings, preset, seed) -> Evaluation``; ``preset`` picks the tolerances.
+        default_preset: preset used when none is named.
+    """
+
+    name: str
+    summary: str
+    source: str
+    params: tuple[Param, ...]
+    presets: Mapping[str, Values]
+    check_params: Callable[[Values], None]
+    build: Callable[[Values, Values], mujoco.MjModel]
+    evaluate: Callable[[Values, Values, str, int], Evaluation]
+    default_preset: str = "fast"
+
+    def preset(self, name: str | None) -> tuple[str, Values]:
+        """The preset's name and setting overrides (the default preset when ``name`` is None)."""
+        name = name or self.default_preset
+        if name not in self.presets:
+            raise ParameterError(f"preset must be one of {', '.join(self.presets)} (got {name!r})")
+        return name, self.presets[name]

@@ -1,0 +1,307 @@
+"""Scenario ``rimless-wheel``: the planar rimless wheel on a slope, sticking contact.
+
+Analytic reference: Kiša (2020) Sec. 3 (return map 3.13-3.14 corrected, fixed points, Table 1
+regions, basins 3.17-3.18) with the hub inertia of Gamus & Or (eq 12-25); see
+:mod:`analysis.theory.rimless_wheel`.
+
+Poincaré section. The post-impact instant is smeared over the soft contact's impact window, so
+the wheel is sampled at **mid-stance** (stance spoke normal to the slope, wrapped hinge angle
+``psi`` crossing 0 upward, linearly interpolated) and each sample is pulled back to the
+post-impact section with the exact stance energy integral (003 eq 3.5 / 002 eq 13). The pull-back
+is a fixed conjugacy of the map, so fixed point and multiplier are those of the post-impact map;
+any error MuJoCo makes at the impact or during the swing shows in the samples.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+
+import mujoco
+import numpy as np
+
+from analysis import checks
+from analysis.outcomes import classify_outcomes
+from analysis.returnmap import fit_return_map, sample_pairs
+from analysis.sections import Crossings, level_crossings, wrap_events, wrap_phase
+from analysis.theory import rimless_wheel as theory
+from mjpoincare import settings as sim_settings
+from mjpoincare.models import compile_spec, load_spec
+from mjpoincare.params import Param, ParameterError
+from mjpoincare.scenarios.base import Evaluation, Scenario, Values
+from mjpoincare.simulate import Chunk, RolloutReport, initial_states, rollout_batch
+
+PARAMS: tuple[Param, ...] = (
+    Param("spokes", 8, "number of spokes n (alpha = pi/n)", int, 3, 64),
+    Param("slope", 0.08, "slope gamma, rad", float, 0.0, math.pi / 2, True, True),
+    Param("leg_length", 1.0, "spoke length l, m", float, 0.0, 100.0, low_open=True),
+    Param("mass", 1.0, "hub mass m, kg", float, 0.0, 1e6, low_open=True),
+    Param("gyration", 0.0, "hub radius of gyration, m (0 = point mass; kappa = (gyration/l)^2)", float, 0.0,
+          100.0),
+    Param("mu", 1.0, "Coulomb friction coefficient (sticking needs mu >= the required friction)", float, 0.0,
+          1e3),
+    Param("gravity", 9.81, "gravity, m/s^2", float, 0.0, 1e3, low_open=True),
+)
+
+#: Simulator presets. ``accurate``: contact time constant 0.5 ms (10 steps of 50 us), stiff solimp,
+#: 0.5 mm feet. ``fast``: 4 ms contact, 0.4 ms steps: 20x fewer steps.
+PRESETS: dict[str, dict[str, float | int | str]] = {
+    "fast": {"timestep": 4e-4, "solref_timeconst": 4e-3, "integrator": "implicitfast", "tolerance": 1e-8,
+             "iterations": 20},
+    "accurate": {"timestep": 5e-5, "solref_timeconst": 5e-4, "integrator": "implicitfast",
+                 "tolerance": 1e-10, "iterations": 50},
+}
+
+#: Tolerances per preset, with where they come from (see README "time against error").
+TOLERANCES: dict[str, dict[str, float]] = {
+    "accurate": {"omega_post_impact": 1e-3, "eigenvalue": 0.01, "impact_coefficient": 1e-3,
+                 "step_period": 1e-3},
+    "fast": {"omega_post_impact": 1e-2, "eigenvalue": 0.02, "impact_coefficient": 1e-2, "step_period": 1e-2},
+}
+WHY = {
+    "accurate": "soft contact (time constant 0.5 ms) and 50 us steps: the error is first order in both and "
+                "measured at ~2e-4 (bench); 1e-3 is the suite's accuracy target",
+    "fast": "4 ms contact time constant and 0.4 ms steps: measured error ~4e-3 (bench), first order in the "
+            "contact time constant; 1e-2 leaves no margin beyond that scaling",
+}
+
+FIT_STEPS = 8  # impacts per fitting trajectory: 0.5^8 of the initial offset remains (multiplier beta^2)
+FIT_BATCH = 8
+BASIN_SECONDS = 5.0
+TAIL_SECONDS = 1.0  # final window classified by the basin check; also the rollout chunk length
+FLIGHT_CLEARANCE = 1e-3  # all feet this far (x leg_length) above the ground = flight
+
+
+def wheel(p: Values) -> theory.RimlessWheel:
+    """The analytic model for the scenario parameters."""
+    return theory.RimlessWheel(spokes=int(p["spokes"]), slope=float(p["slope"]),
+                               leg_length=float(p["leg_length"]), gyration=float(p["gyration"]),
+                               gravity=float(p["gravity"]), mass=float(p["mass"]))
+
+
+def check_params(p: Values) -> None:
+    """Refuse parameters outside the theory's assumptions, naming the bound (003 eq 3.16, no-flight, 002 eq 22)."""
+    if float(p["gyration"]) > float(p["leg_length"]):
+        raise ParameterError(f"gyration must be in [0, leg_length={p['leg_length']:g}] m (got {p['gyration']})")
+    w = wheel(p)
+    low = theory.existence_bound(w.spokes, w.gyration, w.leg_length)
+    high = theory.no_flight_bound(w.spokes, w.gyration, w.leg_length)
+    if high <= low:
+        raise ParameterError(
+            f"spokes={w.spokes} has no flight-free rolling gait (existence bound {low:.4f} rad >= no-flight "
+            f"bound {high:.4f} rad); use spokes >= 6")
+    if not low < w.slope < high:
+        raise ParameterError(
+            f"slope must be in ({low:.4f}, {high:.4f}) rad for spokes={w.spokes}, gyration={w.gyration:g}: "
+            f"above the existence bound (003 eq 3.16) and below the no-flight bound (got {w.slope:g})")
+    need = theory.required_friction(w)
+    if float(p["mu"]) < need:
+        raise ParameterError(
+            f"mu must be >= {need:.4f} (the friction a sticking gait needs, 002 eq 22-25) for these spokes and "
+            f"slope (got {p['mu']}); stick-slip gaits are not part of this scenario")
+
+
+def build(p: Values, s: Values) -> mujoco.MjModel:
+    """The MJCF wheel rebuilt through MjSpec with ``p`` (physics) and ``s`` (simulator settings)."""
+    spec = load_spec("rimless_wheel_2d.xml")
+    sim_settings.apply_options(spec, s)
+    g, slope, l = float(p["gravity"]), float(p["slope"]), float(p["leg_length"])
+    spec.option.gravity = [g * math.sin(slope), 0.0, -g * math.cos(slope)]
+    hub = spec.body("hub")
+    mass = float(p["mass"])
+    inertia = max(mass * float(p["gyration"]) ** 2, 1e-9 * mass * l * l)  # MuJoCo needs I > 0
+    hub.mass = mass
+    hub.inertia = [inertia, inertia, inertia]
+    radius = float(s["foot_radius"])
+    template_spoke, template_foot = spec.geom("spoke0"), spec.geom("foot0")
+    spoke_size, spoke_rgba = list(template_spoke.size), list(template_spoke.rgba)
+    foot_rgba = list(template_foot.rgba)
+    for geom in [g for g in hub.geoms if g.name.startswith(("spoke", "foot"))]:
+        spec.delete(geom)
+    mu = float(p["mu"])
+    for k in range(int(p["spokes"])):
+        angle = 2.0 * math.pi * k / int(p["spokes"])
+        direction = np.array([-math.sin(angle), 0.0, -math.cos(angle)])
+        hub.add_geom(name=f"spoke{k}", type=mujoco.mjtGeom.mjGEOM_CAPSULE, size=spoke_size, rgba=spoke_rgba,
+                     fromto=[0, 0, 0, *((l - radius) * direction)], contype=0, conaffinity=0, mass=0)
+        hub.add_geom(name=f"foot{k}", type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[radius, 0, 0], rgba=foot_rgba,
+                     pos=(l - radius) * direction, contype=1, conaffinity=0, condim=3, friction=[mu, 0, 0],
+                     solref=sim_settings.solref(s), solimp=sim_settings.solimp(s), mass=0)
+    floor = spec.geom("slope")
+    floor.friction = [mu, 0, 0]
+    floor.solref = sim_settings.solref(s)
+    floor.solimp = sim_settings.solimp(s)
+    return compile_spec(spec)
+
+
+def post_impact_states(model: mujoco.MjModel, w: theory.RimlessWheel, omega0: np.ndarray,
+                       foot_radius: float) -> np.ndarray:
+    """Initial states just after an impact (two feet on the ground) with post-impact speeds ``omega0``.
+
+    As in the map's section (003 Sec. 3.2): omega0 > 0 pivots on the downhill foot (hinge angle
+    -alpha), omega0 < 0 on the uphill foot (+alpha); the hub moves as rotation about the pivot.
+    """
+    a, l = w.alpha, w.leg_length
+    psi = np.where(omega0 >= 0, -a, a)
+    qpos = np.stack([np.zeros_like(omega0), np.full_like(omega0, (l - foot_radius) * math.cos(a) + foot_radius),
+                     psi], axis=1)
+    qvel = np.stack([l * omega0 * np.cos(psi), -l * omega0 * np.sin(psi), omega0], axis=1)
+    return initial_states(model, qpos, qvel)
+
+
+class _Recorder:
+    """Consumes rollout chunks: mid-stance samples, impacts, flight flags and the final window."""
+
+    def __init__(self, w: theory.RimlessWheel, batch: int, foot_radius: float) -> None:
+        self.w, self.radius = w, foot_radius
+        self.mid = Crossings.empty(3)
+        self.impacts = Crossings.empty(1)
+        self.flew = np.zeros(batch, bool)
+        self.tail: Chunk | None = None
+
+    def __call__(self, chunk: Chunk) -> None:
+        w = self.w
+        psi = wrap_phase(chunk.qpos[:, :, 2], w.alpha)
+        values = np.stack([chunk.qvel[:, :, 2], chunk.qpos[:, :, 0], chunk.qpos[:, :, 1]], axis=2)
+        self.mid = self.mid.concat(level_crossings(chunk.time, psi, values, max_jump=w.alpha))
+        self.impacts = self.impacts.concat(wrap_events(chunk.time, psi, w.alpha))
+        clearance = chunk.qpos[:, :, 1] - (w.leg_length - self.radius) * np.cos(psi) - self.radius
+        self.flew |= np.nanmax(clearance, axis=1) > FLIGHT_CLEARANCE * w.leg_length
+        self.tail = chunk
+
+
+def _simulate(model: mujoco.MjModel, w: theory.RimlessWheel, omega0: np.ndarray, seconds: float,
+              s: Values) -> tuple[_Recorder, RolloutReport]:
+    radius = float(s["foot_radius"])
+    recorder = _Recorder(w, len(omega0), radius)
+    chunk = max(1, round(TAIL_SECONDS / model.opt.timestep))
+    nstep = chunk * math.ceil(seconds / (chunk * model.opt.timestep))  # whole chunks: the last one is the tail
+    report = rollout_batch(model, post_impact_states(model, w, omega0, radius), nstep, recorder,
+                           threads=int(s["threads"]), chunk_steps=chunk)
+    return recorder, report
+
+
+def fit_initial_speeds(w: theory.RimlessWheel) -> np.ndarray:
+    """Post-impact speeds around the rolling fixed point, inside its basin, flight-free on the first step."""
+    star = theory.rolling_fixed_point(w)
+    low = max(0.85 * star, theory.forward_threshold(w) + 0.3 * (star - theory.forward_threshold(w)))
+    high = 1.15 * star
+    while not theory.step_stays_in_contact(w, high) and high > 1.01 * star:
+        high = star + 0.5 * (high - star)
+    return np.linspace(low, high, FIT_BATCH)
+
+
+def basin_initial_speeds(w: theory.RimlessWheel, count: int = 16) -> np.ndarray:
+    """A grid of post-impact speeds spanning the standing bands, the rolling bands and the forward basin."""
+    star = theory.rolling_fixed_point(w)
+    omega1, _ = theory.basin_band_edges(w, 2)
+    return np.linspace(1.15 * omega1[-1], 1.3 * star, count)
+
+
+def _fit_checks(w: theory.RimlessWheel, rec: _Recorder, batch: int, tol: Mapping[str, float],
+                why: str, seed: int) -> tuple[list[checks.Check], dict[str, object]]:
+    gamma, alpha = w.slope, w.alpha
+    mid_speed = [seq[:, 0] for seq in rec.mid.sequences(batch)]
+    times = rec.mid.times(batch)
+    post = [np.asarray(theory.post_impact_speed(w, gamma, m), float) for m in mid_speed]
+    x, x_next = sample_pairs(post)
+    fit = fit_return_map(x, x_next, degree=2, seed=seed)
+    star_sim = float(fit.fixed_point[0])
+    eig_sim = complex(fit.eigenvalues[0])
+    pre = np.asarray(theory.phase_speed(w, x[:, 0], gamma + alpha), float)
+    beta_sim = float(np.median(x_next[:, 0] / pre))
+    dts = np.concatenate([np.diff(t) for t in times])
+    omegas = np.concatenate([p[:-1] for p in post])
+    slope_fit = np.polyfit(omegas - star_sim, dts, 1)
+    period_sim = float(slope_fit[1])
+    star = theory.rolling_fixed_point(w)
+    out = [
+        checks.relative("omega_post_impact", star, star_sim, tol["omega_post_impact"], "rad/s",
+                        "post-impact speed at the rolling fixed point (003 3.13, 002 eq 16); " + why),
+        checks.absolute("eigenvalue", theory.rolling_multiplier(w), eig_sim, tol["eigenvalue"], "",
+                        "return-map multiplier beta^2 (002 eq 17) from a quadratic fit of the samples; the fit's "
+                        "own bias is ~1e-3 (synthetic tests) on top of the simulation error"),
+        checks.relative("impact_coefficient", w.beta, beta_sim, tol["impact_coefficient"], "",
+                        "omega+/omega- across each impact (003 eq 3.11, 002 eq 14): isolates the contact model "
+                        "from the swing; the foot sphere adds ~+0.7 r/l"),
+        checks.relative("step_period", theory.step_period(w, star), period_sim, tol["step_period"], "s",
+                        "time between mid-stance crossings, regressed on omega+ and taken at the fitted fixed "
+                        "point; same error sources as omega_post_impact"),
+    ]
+    return out, {"fit": fit.to_dict(), "fit_pairs": int(fit.n_pairs)}
+
+
+def _basin_checks(w: theory.RimlessWheel, rec: _Recorder, omega0: np.ndarray) -> tuple[list[checks.Check],
+                                                                                        dict[str, object]]:
+    tail = rec.tail
+    assert tail is not None
+    runaway = 1.5 * math.sqrt(w.gravity / w.leg_length)
+    psi = wrap_phase(tail.qpos[:, :, 2], w.alpha)
+    clearance = tail.qpos[:, :, 1] - (w.leg_length - rec.radius) * np.cos(psi) - rec.radius
+    simulated = classify_outcomes(tail.qvel[:, :, 2], clearance, rest_speed=0.05 * theory.rolling_fixed_point(w),
+                                  runaway_speed=runaway, flight_clearance=FLIGHT_CLEARANCE * w.leg_length)
+    predicted = []
+    for om in omega0:
+        outcome = theory.predicted_outcome(w, float(om))
+        if outcome != "boundary" and not theory.flight_free(w, float(om), 6):
+            outcome = "flight"
+        predicted.append(outcome)
+    edges = _basin_edges(w)
+    margin = 0.02
+    near = np.array([np.min(np.abs(om - edges)) < margin * max(abs(om), 0.1) for om in omega0])
+    judged = np.array([p in ("rolling", "standing") for p in predicted]) & ~near
+    agree = judged & (np.array(predicted) == simulated)
+    table = [{"omega0": float(om), "predicted": p, "simulated": str(sm), "judged": bool(j), "flew": bool(f)}
+             for om, p, sm, j, f in zip(omega0, predicted, simulated, judged, rec.flew, strict=True)]
+    check = checks.fraction(
+        "basins", int(agree.sum()), int(judged.sum()), 0.0,
+        "end state (rolling/standing) from a grid of post-impact speeds vs the regions of attraction "
+        "(003 Table 1, eq 3.17-3.18); speeds within 2% of a basin edge or whose analytic run would lift off are "
+        "reported, not judged")
+    return [check], {"basins": table}
+
+
+def _basin_edges(w: theory.RimlessWheel) -> np.ndarray:
+    omega1, omega2 = theory.basin_band_edges(w, 8)
+    return np.concatenate([[theory.forward_threshold(w), 0.0], omega1, omega2])
+
+
+def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
+    """Run the fitting batch and the basin grid (two rollout batches) and check them against the theory."""
+    w = wheel(p)
+    model = build(p, s)
+    tol = TOLERANCES.get(preset, TOLERANCES["fast"])
+    why = WHY.get(preset, WHY["fast"])
+    fit_speeds = fit_initial_speeds(w)
+    fit_seconds = FIT_STEPS * theory.step_period(w, theory.rolling_fixed_point(w)) + 0.5
+    fit_rec, fit_report = _simulate(model, w, fit_speeds, fit_seconds, s)
+    try:
+        fit_checks, extras = _fit_checks(w, fit_rec, len(fit_speeds), tol, why, seed)
+    except ValueError as err:  # too few samples: a diverged or stalled run
+        fit_checks = [checks.relative("omega_post_impact", theory.rolling_fixed_point(w), math.nan,
+                                      tol["omega_post_impact"], "rad/s", f"no return map: {err}")]
+        extras = {}
+    basin_speeds = basin_initial_speeds(w)
+    basin_rec, basin_report = _simulate(model, w, basin_speeds, BASIN_SECONDS, s)
+    basin_checks, basin_extras = _basin_checks(w, basin_rec, basin_speeds)
+    extras.update(basin_extras)
+    extras["analytic"] = {
+        "region": theory.region(w), "beta": w.beta, "omega_forward_threshold": theory.forward_threshold(w),
+        "existence_bound": theory.existence_bound(w.spokes, w.gyration, w.leg_length),
+        "no_flight_bound": theory.no_flight_bound(w.spokes, w.gyration, w.leg_length),
+        "required_friction": theory.required_friction(w), "impact_impulse_ratio": theory.impact_impulse_ratio(w),
+        "standing_multiplier": theory.standing_multiplier(w),
+    }
+    return Evaluation(fit_checks + basin_checks, fit_report.merge(basin_report), extras)
+
+
+RIMLESS_WHEEL = Scenario(
+    name="rimless-wheel",
+    summary="planar rimless wheel on a slope: rolling fixed point, multiplier, impact law, basins",
+    source="Kisa 2020 Sec. 3 (eq 3.11-3.18, Table 1); Gamus & Or eq 12-25 (hub inertia, friction)",
+    params=PARAMS,
+    presets=PRESETS,
+    check_params=check_params,
+    build=build,
+    evaluate=evaluate,
+)

@@ -1,0 +1,135 @@
+"""Batched rollouts through :mod:`mujoco.rollout`: no Python between steps.
+
+A batch of initial states is stepped by MuJoCo's threaded C++ rollout in native chunks of
+``chunk_steps`` steps. Each chunk's recorded states (time, qpos, qvel) are handed to a consumer
+(usually a vectorised section detector) and then dropped, so memory stays
+``O(batch x chunk_steps)`` whatever the duration. Consecutive chunks overlap by one row so that
+a crossing at a chunk boundary is seen once.
+
+MuJoCo's reaction to a numerical blow-up (NaN/huge qacc) is to *reset* the data and carry on
+silently; :func:`rollout_batch` detects that per trajectory from the recorded time, and reports
+MuJoCo's warnings, captured by :func:`mjpoincare.mjlog.captured_mujoco_log`.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import mujoco
+import numpy as np
+from mujoco import rollout as mj_rollout
+
+from mjpoincare.mjlog import captured_mujoco_log
+
+STATE_SPEC = mujoco.mjtState.mjSTATE_FULLPHYSICS
+
+
+@dataclass(frozen=True)
+class Chunk:
+    """States recorded over one chunk: ``time`` (B, T), ``qpos`` (B, T, nq), ``qvel`` (B, T, nv).
+
+    Row 0 repeats the last row of the previous chunk (or is the initial state).
+    """
+
+    time: np.ndarray
+    qpos: np.ndarray
+    qvel: np.ndarray
+
+
+@dataclass
+class RolloutReport:
+    """What a batch rollout did: ``steps`` simulated, ``wall_s`` spent in MuJoCo, divergence, warnings."""
+
+    steps: int = 0
+    wall_s: float = 0.0
+    diverged: np.ndarray = field(default_factory=lambda: np.zeros(0, bool))
+    warnings: list[str] = field(default_factory=list)
+    final_state: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
+
+    def merge(self, other: RolloutReport) -> RolloutReport:
+        """One report for two batches run one after the other."""
+        return RolloutReport(self.steps + other.steps, self.wall_s + other.wall_s,
+                             np.concatenate([self.diverged, other.diverged]), self.warnings + other.warnings,
+                             self.final_state)
+
+    def merge(self, other: RolloutReport) -> RolloutReport:
+        """One report for two batches run one after the other."""
+        return RolloutReport(self.steps + other.steps, self.wall_s + other.wall_s,
+                             np.concatenate([self.diverged, other.diverged]), self.warnings + other.warnings,
+                             self.final_state)
+
+    @property
+    def steps_per_s(self) -> float:
+        """Raw simulation rate over all trajectories."""
+        return self.steps / self.wall_s if self.wall_s > 0 else float("nan")
+
+
+def initial_states(model: mujoco.MjModel, qpos: np.ndarray, qvel: np.ndarray) -> np.ndarray:
+    """Full-physics state vectors (B, nstate) for the given (B, nq) positions and (B, nv) velocities."""
+    data = mujoco.MjData(model)
+    qpos = np.atleast_2d(qpos)
+    qvel = np.atleast_2d(qvel)
+    out = np.empty((qpos.shape[0], mujoco.mj_stateSize(model, STATE_SPEC)))
+    for i in range(qpos.shape[0]):
+        mujoco.mj_resetData(model, data)
+        data.qpos[:] = qpos[i]
+        data.qvel[:] = qvel[i]
+        mujoco.mj_getState(model, data, out[i], STATE_SPEC)
+    return out
+
+
+def _warning_lines(datas: list[mujoco.MjData]) -> list[str]:
+    lines = []
+    for name, kind in mujoco.mjtWarning.__members__.items():
+        if name == "mjNWARNING":
+            continue
+        count = sum(int(d.warning[int(kind)].number) for d in datas)
+        if count:
+            lines.append(f"{name}: raised {count} time(s)")
+    return lines
+
+
+def rollout_batch(
+    model: mujoco.MjModel,
+    state0: np.ndarray,
+    nstep: int,
+    consume: Callable[[Chunk], None],
+    *,
+    threads: int = 2,
+    chunk_steps: int = 20000,
+) -> RolloutReport:
+    """Step every initial state in ``state0`` (B, nstate) for ``nstep`` steps, in native chunks.
+
+    ``consume`` is called with each :class:`Chunk`. Trajectories whose time does not advance by
+    exactly one timestep per step (MuJoCo reset them after an instability) or that contain
+    NaN/inf are flagged in ``diverged``; their rows after the divergence are set to NaN before
+    ``consume`` sees them, so no sample is taken from a reset state.
+    """
+    nq, nv = model.nq, model.nv
+    batch = state0.shape[0]
+    datas = [mujoco.MjData(model) for _ in range(max(1, threads))]
+    report = RolloutReport(diverged=np.zeros(batch, bool))
+    current = np.array(state0, dtype=float)
+    dt = model.opt.timestep
+    with captured_mujoco_log() as log, mj_rollout.Rollout(nthread=threads) as pool:
+        done = 0
+        while done < nstep:
+            n = min(chunk_steps, nstep - done)
+            start = time.perf_counter()
+            states, _ = pool.rollout(model, datas, current, nstep=n)
+            report.wall_s += time.perf_counter() - start
+            report.steps += batch * n
+            full = np.concatenate([current[:, None, :], states], axis=1)
+            expected = full[:, :1, 0] + dt * np.arange(n + 1)[None, :]
+            bad = ~np.isfinite(full).all(axis=2) | (np.abs(full[:, :, 0] - expected) > 0.5 * dt)
+            bad = np.logical_or.accumulate(bad | report.diverged[:, None], axis=1)
+            report.diverged |= bad[:, -1]
+            full[bad] = np.nan
+            consume(Chunk(time=full[:, :, 0], qpos=full[:, :, 1 : 1 + nq], qvel=full[:, :, 1 + nq : 1 + nq + nv]))
+            current = states[:, -1, :].copy()
+            done += n
+    report.final_state = current
+    report.warnings = _warning_lines(datas) + log
+    return report

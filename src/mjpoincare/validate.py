@@ -1,0 +1,50 @@
+"""Run one scenario's validation: resolve and check the inputs, simulate, compare, time it."""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Mapping
+
+import mujoco
+
+from analysis.checks import Check
+from mjpoincare import scenarios
+from mjpoincare import settings as sim_settings
+from mjpoincare.params import resolve, unknown
+from mjpoincare.result import Result
+
+
+def resolve_inputs(name: str, assignments: Mapping[str, str], preset: str | None
+                   ) -> tuple[scenarios.Scenario, str, dict, dict]:
+    """Scenario, preset name, checked parameters and settings; bad input raises ParameterError."""
+    scenario = scenarios.get(name)
+    unknown(assignments, scenario.params, sim_settings.SETTINGS)
+    preset_name, overrides = scenario.preset(preset)
+    params = resolve(scenario.params, {p.name: p.default for p in scenario.params}, assignments)
+    settings = resolve(sim_settings.SETTINGS, {**sim_settings.DEFAULTS, **overrides}, assignments)
+    scenario.check_params(params)
+    return scenario, preset_name, params, settings
+
+
+def stability_check(diverged: int, warnings: int) -> Check:
+    """A run is stable when no trajectory diverged (NaN or MuJoCo reset) and MuJoCo raised no warning."""
+    count = float(diverged + warnings)
+    return Check("stable", 0.0, count, count, 0.0, "count", "",
+                 "diverged trajectories + MuJoCo warnings: any is a failure, never silent")
+
+
+def run_validation(name: str, assignments: Mapping[str, str] | None = None, preset: str | None = None,
+                   seed: int = 0) -> Result:
+    """Validate scenario ``name`` with ``--set``-style ``assignments`` under ``preset``."""
+    scenario, preset_name, params, settings = resolve_inputs(name, assignments or {}, preset)
+    start = time.perf_counter()
+    evaluation = scenario.evaluate(params, settings, preset_name, seed)
+    wall = time.perf_counter() - start
+    report = evaluation.rollout
+    diverged = [int(i) for i in report.diverged.nonzero()[0]]
+    checks = [*evaluation.checks, stability_check(len(diverged), len(report.warnings))]
+    timing = {"wall_s": wall, "rollout_wall_s": report.wall_s, "steps": float(report.steps),
+              "steps_per_s": report.steps / wall, "rollout_steps_per_s": report.steps_per_s}
+    return Result(scenario=scenario.name, preset=preset_name, seed=seed, params=params,
+                  settings=sim_settings.as_json(settings), mujoco_version=mujoco.__version__, checks=checks,
+                  timing=timing, warnings=report.warnings, diverged=diverged, extras=evaluation.extras)
