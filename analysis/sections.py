@@ -69,10 +69,7 @@ def level_crossings(
     impact) are not crossings; NaN rows (diverged trajectories) never produce a sample.
     """
     a, b = phase[:, :-1] - level, phase[:, 1:] - level
-    if direction > 0:
-        hit = (a < 0) & (b >= 0)
-    else:
-        hit = (a > 0) & (b <= 0)
+    hit = ((a < 0) & (b >= 0)) if direction > 0 else ((a > 0) & (b <= 0))
     hit &= np.abs(b - a) <= max_jump
     traj, k = np.nonzero(hit)
     frac = (a[traj, k] / (a[traj, k] - b[traj, k]))[:, None]

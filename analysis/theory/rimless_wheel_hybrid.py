@@ -130,7 +130,7 @@ def plastic_impact(
 
 def _pose(w: RimlessWheel, foot_x: float, psi: float, omega: float) -> tuple[NDArray[np.float64], ...]:
     """Hub position and velocity pivoting on a foot at (foot_x, 0) with stance angle psi and rate omega."""
-    l = w.leg_length  # noqa: E741 - the papers' symbol
+    l = w.leg_length
     q = np.array([foot_x + l * math.sin(psi), l * math.cos(psi)])
     qd = np.array([l * omega * math.cos(psi), -l * omega * math.sin(psi), omega])
     return q, qd
@@ -191,7 +191,7 @@ def simulate_hybrid(
     impacts, standing, flight (if ``stop_on_flight``) or a stalled stance. See :class:`HybridResult`.
     """
     validate(w)
-    l, a = w.leg_length, w.alpha  # noqa: E741 - the papers' symbol
+    l, a = w.leg_length, w.alpha
     foot_x, t_now, omega = 0.0, 0.0, float(omega0)
     psi0 = -a if omega >= 0.0 else a
     times: list[float] = []

@@ -54,12 +54,6 @@ class RolloutReport:
                              np.concatenate([self.diverged, other.diverged]), self.warnings + other.warnings,
                              self.final_state)
 
-    def merge(self, other: RolloutReport) -> RolloutReport:
-        """One report for two batches run one after the other."""
-        return RolloutReport(self.steps + other.steps, self.wall_s + other.wall_s,
-                             np.concatenate([self.diverged, other.diverged]), self.warnings + other.warnings,
-                             self.final_state)
-
     @property
     def steps_per_s(self) -> float:
         """Raw simulation rate over all trajectories."""

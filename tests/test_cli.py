@@ -1,0 +1,49 @@
+"""The CLI's contract: exit codes, one-line errors naming the parameter, nothing written on bad input."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from mjpoincare.cli import main
+
+
+@pytest.mark.parametrize(
+    ("assignment", "needle"),
+    [
+        ("spokes=2", "spokes must be in [3, 64] (got 2)"),
+        ("slope=-0.1", "slope must be in (0, 1.5708) (got -0.1)"),
+        ("mu=-1", "mu must be in [0, 1000] (got -1)"),
+        ("slope=0.3", "slope must be in (0.0682, 0.2621) rad for spokes=8"),
+        ("slope=0.05", "above the existence bound"),
+        ("mu=0.3", "mu must be >= 0.4142"),
+        ("spokes=5", "spokes=5 has no flight-free rolling gait"),
+        ("spokez=8", "unknown parameter 'spokez'"),
+        ("slope=abc", "slope must be a number"),
+        ("timestep=0", "timestep must be in (0, 0.05]"),
+        ("integrator=verlet", "integrator must be one of euler, implicit, implicitfast, rk4"),
+    ],
+)
+def test_bad_input_exits_2_with_one_line(assignment: str, needle: str, tmp_path: Path,
+                                         capsys: pytest.CaptureFixture[str]) -> None:
+    out_file = tmp_path / "result.json"
+    code = main(["validate", "rimless-wheel", "--set", assignment, "--json", str(out_file)])
+    captured = capsys.readouterr()
+    assert code == 2
+    assert needle in captured.err
+    assert captured.err.count("\n") == 1 and "Traceback" not in captured.err
+    assert not out_file.exists()
+
+
+def test_unknown_scenario_and_preset(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["validate", "no-such-wheel"]) == 2
+    assert "unknown scenario 'no-such-wheel'" in capsys.readouterr().err
+    assert main(["validate", "rimless-wheel", "--preset", "turbo"]) == 2
+    assert "preset must be one of fast, accurate" in capsys.readouterr().err
+
+
+def test_list_shows_scenarios_and_parameters(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["list"]) == 0
+    out = capsys.readouterr().out
+    assert "rimless-wheel" in out and "spokes = 8" in out and "presets: fast, accurate" in out

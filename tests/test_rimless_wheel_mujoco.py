@@ -1,0 +1,115 @@
+"""Regression: MuJoCo's rimless wheel against the analytic results (Kisa 2020 Sec. 3; Gamus & Or eq 12-25).
+
+These run the real pipeline (rollout, sections, fit, checks). Tolerances are the scenario's own,
+declared once in :mod:`mjpoincare.scenarios.rimless_wheel`; nothing here loosens them.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import mujoco
+import numpy as np
+import pytest
+
+from analysis.theory import rimless_wheel as theory
+from mjpoincare.cli import main
+from mjpoincare.scenarios import rimless_wheel as rw
+from mjpoincare.simulate import initial_states, rollout_batch
+from mjpoincare.validate import resolve_inputs, run_validation
+
+pytestmark = pytest.mark.mujoco
+
+
+@pytest.fixture(scope="module")
+def fast_result() -> dict:
+    return run_validation("rimless-wheel", {}, "fast", seed=0).to_dict()
+
+
+def test_default_fast_validation_passes(fast_result: dict) -> None:
+    failed = [c for c in fast_result["checks"] if not c["passed"]]
+    assert not failed, failed
+    names = {c["name"] for c in fast_result["checks"]}
+    assert {"omega_post_impact", "eigenvalue", "basins", "stable"} <= names
+
+
+def test_result_json_schema(fast_result: dict) -> None:
+    for key in ("scenario", "params", "settings", "mujoco_version", "checks", "timing", "warnings"):
+        assert key in fast_result
+    for key in ("wall_s", "steps", "steps_per_s"):
+        assert fast_result["timing"][key] > 0
+    check = fast_result["checks"][0]
+    assert set(check) >= {"name", "analytic", "simulated", "error", "tolerance", "passed"}
+    eig = fast_result["fit"]["eigenvalues"][0]
+    assert isinstance(eig, list) and len(eig) == 2  # complex as [re, im]
+    assert fast_result["settings"]["solref"] == [4e-3, 1.0]
+    json.dumps(fast_result, allow_nan=False)
+
+
+def test_same_seed_same_result(fast_result: dict) -> None:
+    again = run_validation("rimless-wheel", {}, "fast", seed=0).to_dict()
+    assert [c["simulated"] for c in again["checks"]] == [c["simulated"] for c in fast_result["checks"]]
+
+
+@pytest.mark.parametrize(("spokes", "slope"), [(8, 0.08), (10, 0.1), (6, 0.25)])
+def test_accurate_preset_meets_targets(spokes: int, slope: float) -> None:
+    """Acceptance: omega_post_impact rel error <= 1e-3 and eigenvalue abs error <= 0.01 (accurate preset)."""
+    result = run_validation("rimless-wheel", {"spokes": str(spokes), "slope": str(slope)}, "accurate")
+    by_name = {c.name: c for c in result.checks}
+    assert by_name["omega_post_impact"].error <= 1e-3
+    assert by_name["eigenvalue"].error <= 0.01
+    assert result.passed, result.table()
+
+
+def test_error_shrinks_as_timestep_is_refined() -> None:
+    """Fixed-point error is first order in the step and contact time constant (kept at 10 steps)."""
+    errors = []
+    for dt in (8e-4, 4e-4, 2e-4):
+        result = run_validation("rimless-wheel", {"timestep": str(dt), "solref_timeconst": str(10 * dt)}, "fast")
+        errors.append(next(c.error for c in result.checks if c.name == "omega_post_impact"))
+    assert errors[0] > errors[1] > errors[2], errors
+    assert errors[2] < 0.6 * errors[0]
+
+
+def test_json_to_stdout_is_clean(capsys: pytest.CaptureFixture[str]) -> None:
+    code = main(["validate", "rimless-wheel", "--set", "spokes=8", "--set", "slope=0.08", "--json", "-"])
+    out = capsys.readouterr().out
+    payload = json.loads(out)
+    assert payload["params"]["spokes"] == 8
+    assert code == (0 if payload["passed"] else 1)
+
+
+def test_json_file_written_whole(tmp_path: Path) -> None:
+    target = tmp_path / "out" / "result.json"
+    main(["validate", "--json", str(target)])
+    assert json.loads(target.read_text())["scenario"] == "rimless-wheel"
+    assert [p.name for p in target.parent.iterdir()] == ["result.json"]
+
+
+def test_divergence_is_reported_and_warnings_captured(tmp_path: Path) -> None:
+    """A blown-up state: MuJoCo resets it silently; the rollout flags it and captures the warning."""
+    _, _, params, settings = resolve_inputs("rimless-wheel", {}, "fast")
+    model = rw.build(params, settings)
+    w = rw.wheel(params)
+    good = rw.post_impact_states(model, w, np.array([1.1]), float(settings["foot_radius"]))
+    bad = initial_states(model, np.array([[0.0, 1.0, 0.0]]), np.array([[1e12, 0.0, 1e12]]))
+    seen: list[int] = []
+    report = rollout_batch(model, np.concatenate([good, bad]), 200, lambda c: seen.append(c.time.shape[1]),
+                           threads=2, chunk_steps=100)
+    assert report.diverged.tolist() == [False, True]
+    assert any("mjWARN_BADQVEL" in line or "QVEL" in line for line in report.warnings), report.warnings
+    assert not (tmp_path / "MUJOCO_LOG.TXT").exists()
+    assert seen == [101, 101]
+
+
+def test_model_file_is_the_default_wheel() -> None:
+    """models/rimless_wheel_2d.xml loads on its own; the MjSpec rebuild keeps its structure."""
+    model = mujoco.MjModel.from_xml_path(str(rw.load_spec.__globals__["MODELS_DIR"] / "rimless_wheel_2d.xml"))
+    assert model.nq == 3 and model.nv == 3
+    _, _, params, settings = resolve_inputs("rimless-wheel", {"spokes": "10", "slope": "0.1"}, "fast")
+    rebuilt = rw.build(params, settings)
+    feet = [i for i in range(rebuilt.ngeom) if rebuilt.geom(i).name.startswith("foot")]
+    assert len(feet) == 10
+    np.testing.assert_allclose(rebuilt.opt.gravity, [9.81 * np.sin(0.1), 0, -9.81 * np.cos(0.1)])
+    assert theory.rolling_fixed_point(rw.wheel(params)) > 0
