@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import mujoco
+import numpy as np
 
 from analysis.checks import Check
 from mjpoincare.params import Param, ParameterError, Value
@@ -41,6 +42,11 @@ class Scenario:
         check_params: cross-parameter validation (raises :class:`ParameterError`).
         build: ``(params, settings) -> MjModel``.
         evaluate: ``(params, settings, preset, seed) -> Evaluation``; ``preset`` picks the tolerances.
+        accuracy_checks: names of the checks whose errors the benchmark plots (first = Pareto axis).
+        probe: ``(params, settings) -> (model, initial states, nstep)`` of the main rollout batch, for
+            timing ``mujoco.rollout`` alone.
+        reference_bench: ``(params, rtol) -> dict`` time and error of the exact solve_ivp reference
+            run at tolerance ``rtol`` through the same fit (keys ``rtol``, ``wall_s``, ``<check>_error``).
         default_preset: preset used when none is named.
     """
 
@@ -52,6 +58,9 @@ class Scenario:
     check_params: Callable[[Values], None]
     build: Callable[[Values, Values], mujoco.MjModel]
     evaluate: Callable[[Values, Values, str, int], Evaluation]
+    accuracy_checks: tuple[str, ...]
+    probe: Callable[[Values, Values], tuple[mujoco.MjModel, np.ndarray, int]]
+    reference_bench: Callable[[Values, float], dict[str, float]]
     default_preset: str = "fast"
 
     def preset(self, name: str | None) -> tuple[str, Values]:

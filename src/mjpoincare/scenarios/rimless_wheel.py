@@ -15,6 +15,7 @@ any error MuJoCo makes at the impact or during the swing shows in the samples.
 from __future__ import annotations
 
 import math
+import time
 from collections.abc import Mapping
 
 import mujoco
@@ -25,6 +26,7 @@ from analysis.outcomes import classify_outcomes
 from analysis.returnmap import fit_return_map, sample_pairs
 from analysis.sections import Crossings, level_crossings, wrap_events, wrap_phase
 from analysis.theory import rimless_wheel as theory
+from analysis.theory.rimless_wheel_hybrid import simulate_hybrid
 from mjpoincare import settings as sim_settings
 from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
@@ -310,6 +312,31 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     return Evaluation(fit_checks + basin_checks, fit_report.merge(basin_report), extras)
 
 
+def probe(p: Values, s: Values) -> tuple[mujoco.MjModel, np.ndarray, int]:
+    """The fitting batch's model, initial states and step count (for timing ``mujoco.rollout`` alone)."""
+    w = wheel(p)
+    model = build(p, s)
+    seconds = FIT_STEPS * theory.step_period(w, theory.rolling_fixed_point(w)) + 0.5
+    return (model, post_impact_states(model, w, fit_initial_speeds(w), float(s["foot_radius"])),
+            math.ceil(seconds / model.opt.timestep))
+
+
+def reference_bench(p: Values, rtol: float) -> dict[str, float]:
+    """The exact hybrid reference (solve_ivp, tolerance ``rtol``) through the same fit: time and errors."""
+    w = wheel(p)
+    start = time.perf_counter()
+    sequences = []
+    for omega0 in fit_initial_speeds(w):
+        run = simulate_hybrid(w, float(omega0), FIT_STEPS, rtol=rtol, atol=0.1 * rtol)
+        sequences.append(np.concatenate([[omega0], run.omega_post]))
+    fit = fit_return_map(*sample_pairs(sequences), degree=2)
+    wall = time.perf_counter() - start
+    star = theory.rolling_fixed_point(w)
+    return {"rtol": rtol, "wall_s": wall,
+            "omega_post_impact_error": abs(float(fit.fixed_point[0]) - star) / star,
+            "eigenvalue_error": abs(complex(fit.eigenvalues[0]) - theory.rolling_multiplier(w))}
+
+
 RIMLESS_WHEEL = Scenario(
     name="rimless-wheel",
     summary="planar rimless wheel on a slope: rolling fixed point, multiplier, impact law, basins",
@@ -319,4 +346,7 @@ RIMLESS_WHEEL = Scenario(
     check_params=check_params,
     build=build,
     evaluate=evaluate,
+    accuracy_checks=("omega_post_impact", "eigenvalue", "impact_coefficient", "step_period"),
+    probe=probe,
+    reference_bench=reference_bench,
 )

@@ -1,0 +1,158 @@
+"""``mjpoincare bench``: run time against error over timestep, integrator and contact settings.
+
+Every configuration is a full validation run (the same pipeline users run) with one set of
+simulator settings; the table gives wall time, steps/s and the errors of the scenario's accuracy
+checks, marks the Pareto front (no other configuration is both faster and more accurate), and
+sets two reference figures beside it:
+
+* MuJoCo alone: ``mujoco.rollout`` on the same model and initial states with nothing else to do
+  (one call, no chunking, no sampling), to show what the pipeline costs on top;
+* the exact event-driven ``solve_ivp`` reference at several tolerances, with its own error, to
+  compare its cost at equal accuracy.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+import time
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+import mujoco
+import numpy as np
+from mujoco import rollout as mj_rollout
+
+from mjpoincare import scenarios
+from mjpoincare.params import Value
+from mjpoincare.result import write_json
+from mjpoincare.validate import resolve_inputs, run_validation
+
+#: (label, setting overrides): timestep refinement per integrator with the contact time constant kept at
+#: 10 steps, then contact variants at 0.1 ms steps.
+SWEEP: tuple[tuple[str, dict[str, Value]], ...] = tuple(
+    [(f"{integ} dt={dt:g}", {"integrator": integ, "timestep": dt, "solref_timeconst": 10 * dt})
+     for integ, steps in (("implicitfast", (8e-4, 4e-4, 2e-4, 1e-4, 5e-5, 2.5e-5)), ("euler", (4e-4, 1e-4)),
+                          ("rk4", (4e-4, 1e-4)))
+     for dt in steps]
+    + [(f"implicitfast dt=1e-4 {name}", {"integrator": "implicitfast", "timestep": 1e-4, **extra})
+       for name, extra in (("tc=2dt", {"solref_timeconst": 2e-4}), ("tc=40dt", {"solref_timeconst": 4e-3}),
+                           ("dampratio=3", {"solref_timeconst": 1e-3, "solref_dampratio": 3.0}),
+                           ("pyramidal", {"solref_timeconst": 1e-3, "cone": "pyramidal"}),
+                           ("foot r=2mm", {"solref_timeconst": 1e-3, "foot_radius": 2e-3}))]
+)
+QUICK: tuple[str, ...] = ("implicitfast dt=0.0008", "implicitfast dt=0.0004")
+REFERENCE_RTOLS = (1e-3, 1e-5, 1e-7, 1e-9)
+
+
+def raw_rollout_rate(name: str, assignments: Mapping[str, str]) -> dict[str, float]:
+    """Steps/s of ``mujoco.rollout`` alone on the scenario's model and fitting batch (default preset)."""
+    scenario, _, params, settings = resolve_inputs(name, assignments, None)
+    model, state0, nstep = scenario.probe(params, settings)
+    threads = int(settings["threads"])
+    datas = [mujoco.MjData(model) for _ in range(threads)]
+    with mj_rollout.Rollout(nthread=threads) as pool:
+        start = time.perf_counter()
+        pool.rollout(model, datas, state0, nstep=nstep)
+        wall = time.perf_counter() - start
+    steps = state0.shape[0] * nstep
+    return {"steps": float(steps), "wall_s": wall, "steps_per_s": steps / wall}
+
+
+def pareto_front(walls: list[float], errors: list[float]) -> list[bool]:
+    """True for configurations that no other one beats on both wall time and error."""
+    flags = []
+    for i, (w, e) in enumerate(zip(walls, errors, strict=True)):
+        dominated = any(
+            (w2 <= w and e2 <= e) and (w2 < w or e2 < e)
+            for j, (w2, e2) in enumerate(zip(walls, errors, strict=True)) if j != i and math.isfinite(e2)
+        )
+        flags.append(math.isfinite(e) and not dominated)
+    return flags
+
+
+def run_bench(name: str, assignments: Mapping[str, str], output: str, json_path: str | None,
+              quick: bool = False) -> int:
+    """Run the sweep, print the table, write the PNG (and JSON); exit 0, or 2 on bad input."""
+    scenario = scenarios.get(name)
+    resolve_inputs(name, assignments, None)  # bad input fails before any run
+    configs = [c for c in SWEEP if not quick or c[0] in QUICK]
+    rows: list[dict[str, Any]] = []
+    accuracy = scenario.accuracy_checks
+    for label, overrides in configs:
+        merged = {**{k: str(v) for k, v in overrides.items()}, **assignments}
+        result = run_validation(name, merged, None)
+        by_name = {c.name: c for c in result.checks}
+        rows.append({"config": label, "settings": overrides, "wall_s": result.timing["wall_s"],
+                     "steps_per_s": result.timing["steps_per_s"], "stable": by_name["stable"].passed,
+                     **{f"{c}_error": by_name[c].error for c in accuracy}})
+        _progress(f"{label}: {rows[-1]['wall_s']:.2f} s")
+    key = f"{accuracy[0]}_error"
+    front = pareto_front([r["wall_s"] for r in rows], [r[key] for r in rows])
+    for row, flag in zip(rows, front, strict=True):
+        row["pareto"] = flag
+    raw = raw_rollout_rate(name, assignments)
+    _, _, params, _ = resolve_inputs(name, assignments, None)
+    reference = [scenario.reference_bench(params, rtol) for rtol in ([1e-3, 1e-7] if quick else REFERENCE_RTOLS)]
+    print(format_table(rows, accuracy, raw, reference))
+    _plot(rows, reference, key, output.format(scenario=name), name)
+    if json_path:
+        write_json({"scenario": name, "mujoco_version": mujoco.__version__, "rows": rows, "raw_rollout": raw,
+                    "reference": reference}, json_path)
+    return 0
+
+
+def format_table(rows: list[dict[str, Any]], accuracy: tuple[str, ...], raw: dict[str, float],
+                 reference: list[dict[str, float]]) -> str:
+    """Markdown table (the README's time-against-error table is pasted from it)."""
+    head = "| settings | wall s | steps/s | " + " | ".join(f"{c} error" for c in accuracy) + " | Pareto |"
+    lines = [head, "|" + "---|" * (4 + len(accuracy))]
+    for r in rows:
+        errs = " | ".join(f"{r[f'{c}_error']:.2e}" for c in accuracy)
+        stable = "" if r["stable"] else " (UNSTABLE)"
+        lines.append(f"| {r['config']}{stable} | {r['wall_s']:.2f} | {r['steps_per_s']:.3g} | {errs} | "
+                     f"{'*' if r['pareto'] else ''} |")
+    lines.append(f"\nmujoco.rollout alone, same model and batch: {raw['steps_per_s']:.3g} steps/s "
+                 f"({raw['steps']:.3g} steps in {raw['wall_s']:.2f} s)")
+    metrics = [k for k in reference[0] if k not in ("rtol", "wall_s")]
+    lines.append("\n| solve_ivp reference (DOP853), same fit | wall s | " + " | ".join(metrics) + " |")
+    lines.append("|" + "---|" * (2 + len(metrics)))
+    for ref in reference:
+        lines.append(f"| rtol={ref['rtol']:g} | {ref['wall_s']:.2f} | "
+                     + " | ".join(f"{ref[k]:.2e}" for k in metrics) + " |")
+    return "\n".join(lines)
+
+
+def _progress(message: str) -> None:
+    if sys.stderr.isatty():
+        print(message, file=sys.stderr)
+
+
+def _plot(rows: list[dict[str, Any]], reference: list[dict[str, float]], key: str, path: str, name: str) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    walls = np.array([r["wall_s"] for r in rows])
+    errors = np.array([r[key] for r in rows])
+    front = np.array([r["pareto"] for r in rows])
+    ax.scatter(walls, errors, c=["tab:red" if f else "tab:blue" for f in front], zorder=3)
+    for r in rows:
+        ax.annotate(r["config"], (r["wall_s"], r[key]), fontsize=6, xytext=(3, 3), textcoords="offset points")
+    order = np.argsort(walls[front])
+    ax.plot(walls[front][order], errors[front][order], "r--", lw=1, label="MuJoCo Pareto front")
+    ref_key = key if key in reference[0] else next(k for k in reference[0] if k.endswith("_error"))
+    ax.plot([r["wall_s"] for r in reference], [r[ref_key] for r in reference], "ks-", label="solve_ivp reference")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("wall time of one validation, s (2 threads)")
+    ax.set_ylabel(key.replace("_", " "))
+    ax.set_title(f"{name}: run time against error (MuJoCo {mujoco.__version__})")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
