@@ -1,24 +1,25 @@
 """Closed-form theory of the planar rimless wheel on a slope (sticking contact, plastic impacts).
 
-Sources: seed 003 = Kiša (2020), *Mathematical modelling of walking robots*, MSc thesis, Sec. 3, eqs
-(3.2)-(3.18); seed 002 = Gamus & Or (2015), "Dynamic bipedal walking under stick-slip transitions", SIAM J.
-Appl. Dyn. Syst., Sec. 3.1, eqs (12)-(26).
+Sources: seed 003 = Kiša (2020), *Mathematical modelling of walking robots*, MSc thesis, Sec. 3,
+eqs (3.2)-(3.18); seed 002 = Gamus & Or (2015), "Dynamic bipedal walking under stick-slip transitions",
+SIAM J. Appl. Dyn. Syst., Sec. 3.1, eqs (12)-(26).
 
 Conventions (SI units): ``theta`` is the stance spoke's angle from the true vertical, clockwise positive, so
 that a downhill lean is positive (003's convention); ``omega`` = d(theta)/dt, positive when rolling downhill.
-The slope is ``gamma``; ``alpha`` = pi/n is half the inter-spoke angle. A forward step runs theta: gamma -
-alpha -> gamma + alpha. The Poincaré section is "just after an impact"; the sign of omega fixes the
-configuration (omega > 0: theta = gamma - alpha, pivot on the downhill foot; omega < 0: theta = gamma + alpha,
-pivot on the uphill foot).
+The slope is ``gamma``; ``alpha`` = pi/n is half the inter-spoke angle. A forward step runs
+theta: gamma - alpha -> gamma + alpha. The Poincaré section is "just after an impact"; the sign of omega
+fixes the configuration (omega > 0: theta = gamma - alpha, pivot on the downhill foot;
+omega < 0: theta = gamma + alpha, pivot on the uphill foot).
 
 Hub inertia (002): radius of gyration ``gyration``, kappa = (gyration/l)^2. Every formula of 003 generalises
-with g/l -> rate2 = g/(l(1+kappa)) (stance dynamics, 002 eq 12) and cos 2alpha -> beta = (cos 2alpha +
-kappa)/(1+kappa) (impact, 002 eq 14): the stance equation keeps the form theta'' = rate2 sin theta and the
-impact keeps the form omega+ = beta omega-, so the derivations of 003 carry over symbol for symbol.
+with g/l -> rate2 = g/(l(1+kappa)) (stance dynamics, 002 eq 12) and
+cos 2alpha -> beta = (cos 2alpha + kappa)/(1+kappa) (impact, 002 eq 14): the stance equation keeps the form
+theta'' = rate2 sin theta and the impact keeps the form omega+ = beta omega-, so the derivations of 003 carry
+over symbol for symbol.
 
-Corrections to the sources (re-derived here): for gamma > alpha the backward-step threshold of 003 (3.14) must
-be -sqrt(K) instead of omega_b (3.7), because a backward step then never passes the vertical; the rolling
-multiplier is beta^2 (003 gives no number).
+Corrections to the sources (re-derived here): for gamma > alpha the backward-step threshold of 003 (3.14)
+must be -sqrt(K) instead of omega_b (3.7), because a backward step then never passes the vertical; the
+rolling multiplier is beta^2 (003 gives no number).
 """
 
 from __future__ import annotations
@@ -43,8 +44,9 @@ _SCAN_POINTS = 401
 class RimlessWheel:
     """Rimless wheel parameters (003 Sec. 3.1; hub inertia as in 002 Sec. 3.1).
 
-    ``spokes`` n >= 3, ``slope`` gamma in (0, pi/2) rad, ``leg_length`` l > 0 (m), ``gyration`` hub radius of
-    gyration in [0, l] (m), ``gravity`` g > 0 (m/s^2), ``mass`` m > 0 (kg; it drops out of every speed).
+    ``spokes`` n >= 3, ``slope`` gamma in (0, pi/2) rad, ``leg_length`` l > 0 (m),
+    ``gyration`` hub radius of gyration in [0, l] (m), ``gravity`` g > 0 (m/s^2),
+    ``mass`` m > 0 (kg; it drops out of every speed).
     """
 
     spokes: int
@@ -71,8 +73,8 @@ class RimlessWheel:
 
     @property
     def beta(self) -> float:
-        """Sticking impact coefficient beta = (cos 2alpha + kappa)/(1+kappa) (002 eq 14; 003 eq 3.11 for
-        kappa=0)."""
+        """Sticking impact coefficient beta = (cos 2alpha + kappa)/(1+kappa)
+        (002 eq 14; 003 eq 3.11 for kappa=0)."""
         return (math.cos(2.0 * self.alpha) + self.kappa) / (1.0 + self.kappa)
 
     @property
@@ -87,8 +89,8 @@ class RimlessWheel:
 
 
 def validate(w: RimlessWheel) -> None:
-    """Raise ``ValueError`` naming the parameter and its allowed range (003 eq 3.1 admissible set, 002 kappa
-    <= 1)."""
+    """Raise ``ValueError`` naming the parameter and its allowed range
+    (003 eq 3.1 admissible set, 002 kappa <= 1)."""
     if not isinstance(w.spokes, (int, np.integer)) or w.spokes < 3:
         raise ValueError(f"spokes must be an integer >= 3 (got {w.spokes!r})")
     if not 0.0 < w.slope < math.pi / 2:
@@ -119,11 +121,11 @@ def _level(w: RimlessWheel) -> bool:
 
 
 def forward_threshold(w: RimlessWheel) -> float:
-    """omega_f = sqrt(2 rate2 (1 - cos(gamma - alpha))), the least post-impact speed completing a forward
-    step.
+    """omega_f = sqrt(2 rate2 (1 - cos(gamma - alpha))),
+    the least post-impact speed completing a forward step.
 
-    003 eq 3.4 (g/l -> rate2); 002 eq 26 (theta_dot_min). For gamma >= alpha the hub starts on or past the
-    vertical, no threshold is needed and 0.0 is returned.
+    003 eq 3.4 (g/l -> rate2); 002 eq 26 (theta_dot_min).
+    For gamma >= alpha the hub starts on or past the vertical, no threshold is needed and 0.0 is returned.
     """
     if w.slope >= w.alpha - REGION_TOL:
         return 0.0
@@ -133,10 +135,10 @@ def forward_threshold(w: RimlessWheel) -> float:
 def backward_threshold(w: RimlessWheel) -> float:
     """Largest (negative) post-impact speed that completes a backward (uphill) step.
 
-    003 eq 3.7 for gamma <= alpha: omega_b = -sqrt(2 rate2 (1 - cos(gamma + alpha))) (the step must pass the
-    vertical). Corrected for gamma > alpha (003 eq 3.14 is wrong there): the step stays on theta > 0 and only
-    has to reach gamma - alpha, where omega^2 = omega0^2 - K, so the threshold is -sqrt(K). Both agree at
-    gamma = alpha.
+    003 eq 3.7 for gamma <= alpha: omega_b = -sqrt(2 rate2 (1 - cos(gamma + alpha)))
+    (the step must pass the vertical). Corrected for gamma > alpha (003 eq 3.14 is wrong there): the step stays
+    on theta > 0 and only has to reach gamma - alpha, where omega^2 = omega0^2 - K, so the threshold is
+    -sqrt(K). Both agree at gamma = alpha.
     """
     if w.slope >= w.alpha:
         return -math.sqrt(w.K)
@@ -144,8 +146,8 @@ def backward_threshold(w: RimlessWheel) -> float:
 
 
 def _branches(w: RimlessWheel, omega: NDArray[np.float64]) -> tuple[NDArray[np.bool_], ...]:
-    """Masks (forward, rocking, backward) of the return map 003 eqs 3.13/3.14 (corrected); thresholds
-    excluded."""
+    """Masks (forward, rocking, backward) of the return map 003 eqs 3.13/3.14 (corrected);
+    thresholds excluded."""
     hi = forward_threshold(w)
     lo = backward_threshold(w)
     if _steep(w):
@@ -154,13 +156,13 @@ def _branches(w: RimlessWheel, omega: NDArray[np.float64]) -> tuple[NDArray[np.b
 
 
 def return_map(w: RimlessWheel, omega: ArrayLike) -> NDArray[np.float64] | float:
-    """Post-impact speed -> next post-impact speed, 003 eqs 3.13 (gamma <= alpha) and 3.14 (gamma > alpha,
-    corrected).
+    """Post-impact speed -> next post-impact speed,
+    003 eqs 3.13 (gamma <= alpha) and 3.14 (gamma > alpha, corrected).
 
-    Forward step beta sqrt(omega^2 + K) (003 3.5 + 3.11), rocking -beta omega (3.10 + 3.11), backward step
-    -beta sqrt(omega^2 - K) (3.8 + 3.11), with cos 2alpha -> beta (002 eq 14) and g/l -> rate2 (002 eq 12).
-    For gamma > alpha the backward threshold is -sqrt(K) (see :func:`backward_threshold`). NaN on the
-    heteroclinic thresholds (gamma <= alpha).
+    Forward step beta sqrt(omega^2 + K) (003 3.5 + 3.11), rocking -beta omega (3.10 + 3.11),
+    backward step -beta sqrt(omega^2 - K) (3.8 + 3.11), with cos 2alpha -> beta (002 eq 14) and
+    g/l -> rate2 (002 eq 12). For gamma > alpha the backward threshold is -sqrt(K)
+    (see :func:`backward_threshold`). NaN on the heteroclinic thresholds (gamma <= alpha).
     """
     om = np.asarray(omega, dtype=float)
     fwd, rock, back = _branches(w, om)
@@ -176,8 +178,8 @@ def return_map(w: RimlessWheel, omega: ArrayLike) -> NDArray[np.float64] | float
 def return_map_derivative(w: RimlessWheel, omega: ArrayLike) -> NDArray[np.float64] | float:
     """dP/domega of :func:`return_map` (derivative of 003 eqs 3.13/3.14 corrected, c -> beta of 002 eq 14).
 
-    Forward beta omega/sqrt(omega^2 + K), rocking -beta, backward -beta omega/sqrt(omega^2 - K) (infinite at
-    omega = -sqrt(K) for gamma > alpha). NaN on the heteroclinic thresholds.
+    Forward beta omega/sqrt(omega^2 + K), rocking -beta, backward -beta omega/sqrt(omega^2 - K)
+    (infinite at omega = -sqrt(K) for gamma > alpha). NaN on the heteroclinic thresholds.
     """
     om = np.asarray(omega, dtype=float)
     fwd, rock, back = _branches(w, om)
@@ -195,16 +197,16 @@ def return_map_derivative(w: RimlessWheel, omega: ArrayLike) -> NDArray[np.float
 
 
 def _rolling_formula(w: RimlessWheel) -> float:
-    """beta sqrt(K/(1 - beta^2)), the root of P(omega) = omega on the forward branch (003 Sec. 3.3.2, 002 eq
-    16)."""
+    """beta sqrt(K/(1 - beta^2)), the root of P(omega) = omega on the forward branch
+    (003 Sec. 3.3.2, 002 eq 16)."""
     return w.beta * math.sqrt(w.K / (1.0 - w.beta**2))
 
 
 def rolling_exists(w: RimlessWheel) -> bool:
     """Whether the rolling fixed point exists: 0 < beta and (gamma >= alpha or (3.16) holds strictly).
 
-    003 eq 3.16 generalised: beta sqrt(K/(1 - beta^2)) > omega_f; equivalently 002 eq 18. With beta <= 0 (n =
-    3, or n = 4 and kappa = 0) a forward step never returns to the forward branch.
+    003 eq 3.16 generalised: beta sqrt(K/(1 - beta^2)) > omega_f; equivalently 002 eq 18.
+    With beta <= 0 (n = 3, or n = 4 and kappa = 0) a forward step never returns to the forward branch.
     """
     if not _beta_positive(w):
         return False
@@ -214,15 +216,16 @@ def rolling_exists(w: RimlessWheel) -> bool:
 
 
 def rolling_fixed_point(w: RimlessWheel) -> float:
-    """omega*_roll = beta sqrt(K/(1 - beta^2)) (003 Sec. 3.3.2: 2 cot 2alpha sqrt((g/l) sin gamma sin alpha)
-    for kappa = 0; 002 eq 16 in SI units). NaN when it does not exist (see :func:`rolling_exists`)."""
+    """omega*_roll = beta sqrt(K/(1 - beta^2))
+    (003 Sec. 3.3.2: 2 cot 2alpha sqrt((g/l) sin gamma sin alpha) for kappa = 0; 002 eq 16 in SI units).
+    NaN when it does not exist (see :func:`rolling_exists`)."""
     return _rolling_formula(w) if rolling_exists(w) else math.nan
 
 
 def rolling_multiplier(w: RimlessWheel) -> float:
-    """P'(omega*_roll) = beta^2 (002 eq 17; for 003 Thm 3.13 it is cos^2 2alpha, re-derived): with P = beta
-    sqrt(omega^2 + K), P' = beta omega*/sqrt(omega*^2 + K) = beta omega*/(omega*/beta). NaN if no rolling
-    gait."""
+    """P'(omega*_roll) = beta^2 (002 eq 17; for 003 Thm 3.13 it is cos^2 2alpha, re-derived):
+    with P = beta sqrt(omega^2 + K), P' = beta omega*/sqrt(omega*^2 + K) = beta omega*/(omega*/beta).
+    NaN if no rolling gait."""
     return w.beta**2 if rolling_exists(w) else math.nan
 
 
@@ -242,8 +245,8 @@ def standing_multiplier(w: RimlessWheel) -> float:
 def region(w: RimlessWheel) -> int:
     """Parameter region 1..5 of 003 Sec. 3.3.5 / Table 1 / Fig. 14.
 
-    Ω1 gamma > alpha; Ω2 gamma == alpha (tolerance 1e-12); for gamma < alpha the generalised (3.16), beta^2
-    K/(1 - beta^2) vs omega_f^2 (compared in units of rate2, tolerance 1e-12): Ω3 "<", Ω4 "=", Ω5 ">".
+    Ω1 gamma > alpha; Ω2 gamma == alpha (tolerance 1e-12); for gamma < alpha the generalised (3.16),
+    beta^2 K/(1 - beta^2) vs omega_f^2 (compared in units of rate2, tolerance 1e-12): Ω3 "<", Ω4 "=", Ω5 ">".
     """
     if _steep(w):
         return 1
@@ -259,11 +262,11 @@ def region(w: RimlessWheel) -> int:
 def existence_bound(
     spokes: int, gyration: float = 0.0, leg_length: float = 1.0, gravity: float = 9.81
 ) -> float:
-    """gamma*(alpha): slope where the generalised 003 eq 3.16 (002 eq 18) holds with equality, omega*_roll =
-    omega_f.
+    """gamma*(alpha): slope where the generalised 003 eq 3.16 (002 eq 18) holds with equality,
+    omega*_roll = omega_f.
 
-    A rolling gait exists for slope > gamma* (003 Fig. 14; alpha_min of 002). Independent of g and l at fixed
-    kappa. NaN when beta <= 0 (no rolling gait at any slope).
+    A rolling gait exists for slope > gamma* (003 Fig. 14; alpha_min of 002).
+    Independent of g and l at fixed kappa. NaN when beta <= 0 (no rolling gait at any slope).
     """
 
     def gap(slope: float) -> float:
@@ -281,8 +284,9 @@ def normal_force_ratio(w: RimlessWheel, theta: ArrayLike, omega: ArrayLike) -> N
     """f_n/(m g): ground force on the stance foot normal to the slope, sticking stance at (theta, omega).
 
     002 eq 19 rewritten with the slope-frame angle psi = theta - gamma and theta_dot_nd^2 = omega^2/rate2:
-    f_n/(mg) = cos(gamma) - sin(theta) sin(psi)/(1+kappa) - (l omega^2/g) cos(psi). For kappa = 0 this is (cos
-    theta - l omega^2/g) cos(theta - gamma) (003 Sec. 3.1 pendulum force along the spoke).
+    f_n/(mg) = cos(gamma) - sin(theta) sin(psi)/(1+kappa) - (l omega^2/g) cos(psi).
+    For kappa = 0 this is (cos theta - l omega^2/g) cos(theta - gamma)
+    (003 Sec. 3.1 pendulum force along the spoke).
     """
     th = np.asarray(theta, dtype=float)
     om = np.asarray(omega, dtype=float)
@@ -298,11 +302,11 @@ def normal_force_ratio(w: RimlessWheel, theta: ArrayLike, omega: ArrayLike) -> N
 def tangential_force_ratio(
     w: RimlessWheel, theta: ArrayLike, omega: ArrayLike
 ) -> NDArray[np.float64] | float:
-    """f_t/(m g): ground force on the stance foot along the slope, positive downhill, sticking stance at
-    (theta, omega).
+    """f_t/(m g): ground force on the stance foot along the slope, positive downhill,
+    sticking stance at (theta, omega).
 
-    002 eq 19 with psi = theta - gamma: f_t/(mg) = sin(theta) cos(psi)/(1+kappa) - (l omega^2/g) sin(psi) -
-    sin(gamma).
+    002 eq 19 with psi = theta - gamma:
+    f_t/(mg) = sin(theta) cos(psi)/(1+kappa) - (l omega^2/g) sin(psi) - sin(gamma).
     """
     th = np.asarray(theta, dtype=float)
     om = np.asarray(omega, dtype=float)
@@ -318,8 +322,8 @@ def tangential_force_ratio(
 def phase_speed(w: RimlessWheel, omega_post: ArrayLike, theta: ArrayLike) -> NDArray[np.float64] | float:
     """|omega| at stance angle theta on a step that started at theta = gamma - alpha with speed omega_post.
 
-    Energy integral omega^2 = omega_post^2 + 2 rate2 (cos(gamma - alpha) - cos theta) (003 eqs 3.3-3.5, 002 eq
-    13). NaN where the motion does not reach theta.
+    Energy integral omega^2 = omega_post^2 + 2 rate2 (cos(gamma - alpha) - cos theta)
+    (003 eqs 3.3-3.5, 002 eq 13). NaN where the motion does not reach theta.
     """
     om = np.asarray(omega_post, dtype=float)
     th = np.asarray(theta, dtype=float)
@@ -331,8 +335,8 @@ def phase_speed(w: RimlessWheel, omega_post: ArrayLike, theta: ArrayLike) -> NDA
 
 def post_impact_speed(w: RimlessWheel, theta: ArrayLike, omega: ArrayLike) -> NDArray[np.float64] | float:
     """Inverse of :func:`phase_speed`: pull a stance state (theta, omega) back along the sticking flow to the
-    post-impact section theta = gamma - alpha of a forward step (003 eq 3.5 / 002 eq 13 solved for omega_post
-    >= 0).
+    post-impact section theta = gamma - alpha of a forward step
+    (003 eq 3.5 / 002 eq 13 solved for omega_post >= 0).
 
     NaN if no motion from the section reaches (theta, omega).
     """
@@ -381,8 +385,8 @@ def _minimize_on(
 def _stance_speed(
     w: RimlessWheel, theta_start: float, omega_start: float, theta: ArrayLike
 ) -> NDArray[np.float64]:
-    """omega^2 along a sticking stance from (theta_start, omega_start) (003 eq 3.2 energy integral), clipped
-    at 0."""
+    """omega^2 along a sticking stance from (theta_start, omega_start) (003 eq 3.2 energy integral),
+    clipped at 0."""
     sq = omega_start**2 + 2.0 * w.rate2 * (math.cos(theta_start) - np.cos(np.asarray(theta, dtype=float)))
     return np.maximum(sq, 0.0)
 
@@ -405,9 +409,9 @@ def excursion_min_normal_force(w: RimlessWheel, omega_post: float) -> float:
 def step_stays_in_contact(w: RimlessWheel, omega_post: float) -> bool:
     """Whether the sticking stance after an impact with speed omega_post keeps f_n >= 0 throughout.
 
-    For omega_post > omega_f this is one forward step (002 eq 26 unnumbered theta_dot_max condition,
-    generalising 002 eq 21 / 003 Sec. 3.1 to any start speed); rocking and backward excursions are handled as
-    well.
+    For omega_post > omega_f this is one forward step
+    (002 eq 26 unnumbered theta_dot_max condition, generalising 002 eq 21 / 003 Sec. 3.1 to any start speed);
+    rocking and backward excursions are handled as well.
     """
     return excursion_min_normal_force(w, omega_post) >= 0.0
 
@@ -431,9 +435,9 @@ def no_flight_bound(spokes: int, gyration: float = 0.0, leg_length: float = 1.0)
     """gamma_fly: largest slope for which the rolling fixed-point orbit keeps f_n >= 0 over the whole step.
 
     002 eq 21 (alpha_max) / 003 Sec. 3.1 unilateral-contact condition, found by scanning theta over the step
-    (no assumption on where the minimum is) and root-finding in the slope. Independent of g and l at fixed
-    kappa. The orbit is the formal one of 002 eq 20: for n = 5, kappa = 0 the result (0.2486) lies below
-    :func:`existence_bound` (0.3397), i.e. no flight-free rolling gait exists.
+    (no assumption on where the minimum is) and root-finding in the slope.
+    Independent of g and l at fixed kappa. The orbit is the formal one of 002 eq 20: for n = 5, kappa = 0
+    the result (0.2486) lies below :func:`existence_bound` (0.3397), i.e. no flight-free rolling gait exists.
     """
     validate(RimlessWheel(spokes, 0.1, leg_length, gyration))
     if not _beta_positive(RimlessWheel(spokes, 0.1, leg_length, gyration)):
@@ -451,9 +455,9 @@ def no_flight_bound(spokes: int, gyration: float = 0.0, leg_length: float = 1.0)
 
 
 def step_period(w: RimlessWheel, omega_post: float) -> float:
-    """Duration of a forward step started with post-impact speed omega_post: T = int dtheta/omega(theta) over
-    [gamma - alpha, gamma + alpha] with the energy integral (003 eq 3.5, 002 eq 13). NaN if the step is not
-    completed (omega_post <= omega_f, or omega_post < 0)."""
+    """Duration of a forward step started with post-impact speed omega_post:
+    T = int dtheta/omega(theta) over [gamma - alpha, gamma + alpha] with the energy integral
+    (003 eq 3.5, 002 eq 13). NaN if the step is not completed (omega_post <= omega_f, or omega_post < 0)."""
     if omega_post < 0.0 or (w.slope < w.alpha and omega_post <= forward_threshold(w)):
         return math.nan
     lo, hi = w.slope - w.alpha, w.slope + w.alpha
@@ -467,8 +471,8 @@ def step_period(w: RimlessWheel, omega_post: float) -> float:
 
 
 def required_friction(w: RimlessWheel) -> float:
-    """mu_c = max |f_t/f_n| over the rolling fixed-point orbit (002 eqs 22-23; tan(alpha) for kappa = 0, 003
-    Sec. 3.1).
+    """mu_c = max |f_t/f_n| over the rolling fixed-point orbit
+    (002 eqs 22-23; tan(alpha) for kappa = 0, 003 Sec. 3.1).
 
     NaN if the rolling gait does not exist; inf if f_n <= 0 somewhere on the orbit.
     """
@@ -488,11 +492,11 @@ def required_friction(w: RimlessWheel) -> float:
 
 
 def impact_impulse_ratio(w: RimlessWheel) -> float:
-    """Signed tangential/normal impulse ratio of the sticking impact, -sin 2alpha/(2(kappa + cos^2 alpha))
-    (002 eq 25).
+    """Signed tangential/normal impulse ratio of the sticking impact,
+    -sin 2alpha/(2(kappa + cos^2 alpha)) (002 eq 25).
 
-    Re-derived from the hub velocity jump m l ((beta-1) omega- cos alpha, (beta+1) omega- sin alpha); negative
-    means the ground pushes uphill. Independent of the slope and of the speed.
+    Re-derived from the hub velocity jump m l ((beta-1) omega- cos alpha, (beta+1) omega- sin alpha);
+    negative means the ground pushes uphill. Independent of the slope and of the speed.
     """
     return -math.sin(2.0 * w.alpha) / (2.0 * (w.kappa + math.cos(w.alpha) ** 2))
 
@@ -507,10 +511,12 @@ def _require_basin_parameters(w: RimlessWheel) -> None:
 def basin_band_edges(w: RimlessWheel, m_max: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Edges of the Ω5 basin bands, 003 Def. 3.20 (c -> beta, g/l -> rate2).
 
-    Returns (omega1, omega2) with omega1[m] = omega_1^m for m = 0..m_max and omega2[m] = omega_2^m for m =
-    0..m_max+1, where omega_1^m = -sqrt(2 rate2 [beta^-2m (1 - cos(gamma+alpha)) + 2 sin gamma sin alpha (1 -
-    beta^-2m)/(1 - beta^-2)]) and omega_2^m is the same with beta^-2(m+1) (1 - cos(gamma - alpha)). Then
-    I^m_roll = (omega1[m], omega2[m]) and I^m_stop = (omega2[m+1], omega1[m]) (003 eqs 3.17-3.18).
+    Returns (omega1, omega2) with omega1[m] = omega_1^m for m = 0..m_max and
+    omega2[m] = omega_2^m for m = 0..m_max+1, where
+    omega_1^m = -sqrt(2 rate2 [beta^-2m (1 - cos(gamma+alpha))
+      + 2 sin gamma sin alpha (1 - beta^-2m)/(1 - beta^-2)])
+    and omega_2^m is the same with beta^-2(m+1) (1 - cos(gamma - alpha)).
+    Then I^m_roll = (omega1[m], omega2[m]) and I^m_stop = (omega2[m+1], omega1[m]) (003 eqs 3.17-3.18).
     """
     _require_basin_parameters(w)
     s = math.sin(w.slope) * math.sin(w.alpha)
@@ -531,8 +537,9 @@ def basin_band_edges(w: RimlessWheel, m_max: int) -> tuple[NDArray[np.float64], 
 
 
 def _forward_preimages(w: RimlessWheel, target: float, upto: float) -> list[float]:
-    """Forward-branch preimages target_{-m} <= upto: omega^2 = beta^-2m target^2 - K (1 - beta^-2m)/(1 -
-    beta^-2) (inverse of 003 Lemma 3.1 with c -> beta); only grows when target > omega*_roll (region Ω3)."""
+    """Forward-branch preimages target_{-m} <= upto:
+    omega^2 = beta^-2m target^2 - K (1 - beta^-2m)/(1 - beta^-2) (inverse of 003 Lemma 3.1 with c -> beta);
+    only grows when target > omega*_roll (region Ω3)."""
     out = [target]
     while out[-1] <= upto and len(out) < 10_000:
         nxt = math.sqrt((out[-1] / w.beta) ** 2 - w.K)
@@ -555,11 +562,11 @@ def _bands_below(w: RimlessWheel, omega0: float) -> tuple[NDArray[np.float64], N
 def predicted_outcome(w: RimlessWheel, omega0: float) -> str:
     """Long-term outcome from post-impact speed omega0 by the basin formulas, not by iterating the map.
 
-    003 Table 1 and Thms 3.14-3.21 (Ω5: eqs 3.17-3.18 with the bands of :func:`basin_band_edges`). Returns
-    "rolling", "standing" or "boundary" (within 1e-9 rad/s of a basin edge, i.e. of the set H of speeds that
-    reach omega_f or omega_b). Ω1: always rolling; Ω2: rolling except omega0 = 0 and H; Ω3: standing except H;
-    Ω4: rolling above omega_f (the semistable ghost), standing below; Ω5: the band table. Requires 0 < beta <
-    1.
+    003 Table 1 and Thms 3.14-3.21 (Ω5: eqs 3.17-3.18 with the bands of :func:`basin_band_edges`).
+    Returns "rolling", "standing" or "boundary" (within 1e-9 rad/s of a basin edge, i.e. of the set H of speeds
+    that reach omega_f or omega_b). Ω1: always rolling; Ω2: rolling except omega0 = 0 and H;
+    Ω3: standing except H; Ω4: rolling above omega_f (the semistable ghost), standing below;
+    Ω5: the band table. Requires 0 < beta < 1.
     """
     _require_basin_parameters(w)
     reg = region(w)

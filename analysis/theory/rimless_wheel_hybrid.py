@@ -1,24 +1,27 @@
 """Exact event-driven reference simulator of the planar rimless wheel (independent of the closed forms).
 
-Model (the physics of 003 Sec. 3.1-3.2 = Kiša 2020 and of 002 Sec. 3.1 eqs 11-14 = Gamus & Or 2015, but solved
-generically, without using any of the closed forms of :mod:`analysis.theory.rimless_wheel`):
+Model (the physics of 003 Sec. 3.1-3.2 = Kiša 2020 and of 002 Sec. 3.1 eqs 11-14 = Gamus & Or 2015,
+but solved generically, without using any of the closed forms of :mod:`analysis.theory.rimless_wheel`):
 
 * A planar rigid body with generalized coordinates q = (x, z, psi) in the SLOPE frame: x downhill along the
-  slope, z normal to it, psi the stance spoke's angle from the slope normal, clockwise positive (003's theta =
-  psi + gamma). Mass m, inertia I = m gyration^2 about the hub, gravity g (sin gamma, -cos gamma).
-* Spoke j's foot sits at hub + l (-sin psi_j, -cos psi_j) with psi_j = psi + 2 alpha (j - k) for stance spoke
-  k; the spoke ahead (downhill) is j = k - 1, the one behind is j = k + 1. The state stores psi as psi_start +
-  delta with the offset delta integrated from 0, so that small rocking excursions keep full relative precision
-  (Zeno sequences).
-* Stance: the stance foot is pinned (two holonomic constraints, Jacobian J). The saddle-point system [[M,
-  -J^T], [J, 0]] [qdd; lambda] = [f; -Jdot qd] gives the accelerations and the contact force lambda = (f_t,
-  f_n) on the wheel (f_t positive downhill, f_n positive pushing away from the slope). This form also works
-  for a point mass (I = 0, M singular) because M is positive definite on the null space of J.
-* Impact: when another foot reaches the slope, i.e. its height above the stance foot, 2 l sin(alpha) sin(alpha
-  -/+ psi), falls to 0, a plastic impulse is applied at the NEW foot and the old foot is released: [[M, -J^T],
-  [J, 0]] [qd+; Lambda] = [M qd-; 0], which equals qd+ = [1 - M^-1 J^T (J M^-1 J^T)^-1 J] qd- when M is
-  invertible. Lambda = (tangential, normal) impulse. After the impact the configuration is snapped onto the
-  exact two-feet-on-ground pose (new stance angle -/+ alpha, new foot at z = 0), removing constraint drift.
+  slope, z normal to it, psi the stance spoke's angle from the slope normal, clockwise positive
+  (003's theta = psi + gamma). Mass m, inertia I = m gyration^2 about the hub,
+  gravity g (sin gamma, -cos gamma).
+* Spoke j's foot sits at hub + l (-sin psi_j, -cos psi_j) with psi_j = psi + 2 alpha (j - k) for stance
+  spoke k; the spoke ahead (downhill) is j = k - 1, the one behind is j = k + 1. The state stores psi as
+  psi_start + delta with the offset delta integrated from 0, so that small rocking excursions keep full
+  relative precision (Zeno sequences).
+* Stance: the stance foot is pinned (two holonomic constraints, Jacobian J). The saddle-point system
+  [[M, -J^T], [J, 0]] [qdd; lambda] = [f; -Jdot qd] gives the accelerations and the contact force
+  lambda = (f_t, f_n) on the wheel (f_t positive downhill, f_n positive pushing away from the slope).
+  This form also works for a point mass (I = 0, M singular) because M is positive definite on the null
+  space of J.
+* Impact: when another foot reaches the slope, i.e. its height above the stance foot,
+  2 l sin(alpha) sin(alpha -/+ psi), falls to 0, a plastic impulse is applied at the NEW foot and the old foot
+  is released: [[M, -J^T], [J, 0]] [qd+; Lambda] = [M qd-; 0], which equals
+  qd+ = [1 - M^-1 J^T (J M^-1 J^T)^-1 J] qd- when M is invertible. Lambda = (tangential, normal) impulse.
+  After the impact the configuration is snapped onto the exact two-feet-on-ground pose
+  (new stance angle -/+ alpha, new foot at z = 0), removing constraint drift.
 * Events via ``solve_ivp(method="DOP853", rtol=1e-11, atol=1e-12)`` with terminal events. Unilateral contact
   is NOT enforced during integration (as in the analytic map): f_n < 0 is only flagged, and with
   ``stop_on_flight`` the run stops after that stance with outcome "flight". Whether the released foot
@@ -50,13 +53,14 @@ class HybridResult:
     """Result of :func:`simulate_hybrid`.
 
     ``t_impacts``, ``omega_post`` (post-impact d(psi)/dt = 003's theta_dot, sign = direction),
-    ``impulse_ratio`` (tangential/normal impulse at the new foot) and ``kinds`` ("forward", "backward" or
-    "rock": how the stance ended) have one entry per impact. ``min_normal_force`` (min f_n/(m g)) and
-    ``max_friction_ratio`` (max |f_t/f_n|) have one entry per integrated stance phase (one more than impacts
-    when the run ended inside a stance). ``outcome``: "rolling" (all impacts done, last one a forward step),
-    "standing" (|omega| < 1e-7), "flight" (``stop_on_flight`` and f_n < 0), "stalled" (a stance exceeded
-    ``max_stance_time``, e.g. a heteroclinic speed) or "moving" (all impacts done otherwise). ``flight`` is
-    True if f_n < 0 occurred in any stance.
+    ``impulse_ratio`` (tangential/normal impulse at the new foot) and
+    ``kinds`` ("forward", "backward" or "rock": how the stance ended) have one entry per impact.
+    ``min_normal_force`` (min f_n/(m g)) and ``max_friction_ratio`` (max |f_t/f_n|) have one entry per
+    integrated stance phase (one more than impacts when the run ended inside a stance).
+    ``outcome``: "rolling" (all impacts done, last one a forward step), "standing" (|omega| < 1e-7),
+    "flight" (``stop_on_flight`` and f_n < 0), "stalled" (a stance exceeded ``max_stance_time``,
+    e.g. a heteroclinic speed) or "moving" (all impacts done otherwise).
+    ``flight`` is True if f_n < 0 occurred in any stance.
     """
 
     t_impacts: NDArray[np.float64]
@@ -97,12 +101,12 @@ def _kkt(w: RimlessWheel, jac: NDArray[np.float64]) -> NDArray[np.float64]:
 def stance_dynamics(
     w: RimlessWheel, psi: NDArray[np.float64] | float, qd: NDArray[np.float64]
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Pinned-foot dynamics M qdd = f + J^T lambda, J qdd = -Jdot qd (003 eq 3.2, 002 eqs 11-12, solved
-    generically).
+    """Pinned-foot dynamics M qdd = f + J^T lambda, J qdd = -Jdot qd
+    (003 eq 3.2, 002 eqs 11-12, solved generically).
 
-    ``psi``: stance spoke angle(s) from the slope normal (shape (...)); ``qd``: (..., 3) velocities (xdot,
-    zdot, psidot). Returns qdd (..., 3) and the contact force on the wheel lambda = (f_t, f_n) (..., 2) in
-    newtons.
+    ``psi``: stance spoke angle(s) from the slope normal (shape (...));
+    ``qd``: (..., 3) velocities (xdot, zdot, psidot).
+    Returns qdd (..., 3) and the contact force on the wheel lambda = (f_t, f_n) (..., 2) in newtons.
     """
     psi = np.asarray(psi, dtype=float)
     qd = np.asarray(qd, dtype=float)
@@ -120,9 +124,9 @@ def stance_dynamics(
 def plastic_impact(
     w: RimlessWheel, psi_new: float, qd_minus: NDArray[np.float64]
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Plastic impulse projection onto the new foot's constraint (003 eq 3.11 / 002 eq 14, solved
-    generically): [[M, -J^T], [J, 0]] [qd+; Lambda] = [M qd-; 0]. Returns qd+ and the impulse Lambda =
-    (tangential, normal)."""
+    """Plastic impulse projection onto the new foot's constraint (003 eq 3.11 / 002 eq 14, solved generically):
+    [[M, -J^T], [J, 0]] [qd+; Lambda] = [M qd-; 0].
+    Returns qd+ and the impulse Lambda = (tangential, normal)."""
     rhs = np.concatenate([_mass_matrix(w) @ qd_minus, np.zeros(2)])
     sol = np.linalg.solve(_kkt(w, _jacobian(w, np.asarray(psi_new))), rhs)
     return sol[:3], sol[3:]
@@ -189,10 +193,10 @@ def simulate_hybrid(
     """Simulate the rimless wheel from a post-impact pose (two feet on the slope) with rate omega0.
 
     The pivot is the downhill foot (stance angle psi = -alpha) if omega0 >= 0, the uphill foot (psi = +alpha)
-    otherwise; this is the post-impact section of 003 eqs 3.13/3.14 and 002 eq 15. Runs until ``n_impacts``
-    impacts, standing, flight (if ``stop_on_flight``) or a stalled stance. See :class:`HybridResult`.
-    ``rtol``/``atol`` are solve_ivp's tolerances (defaults: the exact reference; looser ones are timed by
-    the benchmark).
+    otherwise; this is the post-impact section of 003 eqs 3.13/3.14 and 002 eq 15.
+    Runs until ``n_impacts`` impacts, standing, flight (if ``stop_on_flight``) or a stalled stance.
+    See :class:`HybridResult`. ``rtol``/``atol`` are solve_ivp's tolerances
+    (defaults: the exact reference; looser ones are timed by the benchmark).
     """
     validate(w)
     l, a = w.leg_length, w.alpha
@@ -278,16 +282,17 @@ def simulate_hybrid(
 
 
 def hybrid_return_map(w: RimlessWheel, omega0: float) -> float:
-    """One step of the post-impact return map by simulation (reference for 003 eqs 3.13/3.14, 002 eq 15); NaN
-    if the stance stalls (heteroclinic speed)."""
+    """One step of the post-impact return map by simulation (reference for 003 eqs 3.13/3.14, 002 eq 15);
+    NaN if the stance stalls (heteroclinic speed)."""
     res = simulate_hybrid(w, omega0, 1)
     return float(res.omega_post[0]) if res.omega_post.size else math.nan
 
 
 def hybrid_fixed_point(w: RimlessWheel) -> float:
     """Rolling fixed point by secant shooting on s = omega^2, G(s) = P(sqrt s)^2 - s, started from a fast
-    forward step (reference for 003 Sec. 3.3.2 / 002 eq 16; energy bookkeeping makes G nearly affine on the
-    forward branch). NaN if shooting does not end on a forward-step fixed point."""
+    forward step (reference for 003 Sec. 3.3.2 / 002 eq 16;
+    energy bookkeeping makes G nearly affine on the forward branch).
+    NaN if shooting does not end on a forward-step fixed point."""
     start = (3.0 * math.sqrt(w.gravity / w.leg_length)) ** 2
 
     def gap(s: float) -> float:

@@ -1,0 +1,32 @@
+"""The benchmark command produces its table, Pareto marks, reference rows and PNG (quick sweep)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from mjpoincare.bench import pareto_front
+from mjpoincare.cli import main
+
+
+def test_pareto_front() -> None:
+    walls = [1.0, 2.0, 3.0, 2.5]
+    errors = [1e-2, 1e-3, 1e-4, 1e-2]
+    assert pareto_front(walls, errors) == [True, True, True, False]
+
+
+@pytest.mark.mujoco
+def test_quick_bench_writes_table_plot_and_json(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    png, out = tmp_path / "bench.png", tmp_path / "bench.json"
+    assert main(["bench", "rimless-wheel", "--quick", "-o", str(png), "--json", str(out)]) == 0
+    table = capsys.readouterr().out
+    assert "omega_post_impact error" in table and "solve_ivp reference" in table
+    assert png.stat().st_size > 10_000
+    payload = json.loads(out.read_text())
+    assert len(payload["rows"]) == 2 and any(r["pareto"] for r in payload["rows"])
+    assert payload["raw_rollout"]["steps_per_s"] > 0
+    # refining the step (0.8 ms -> 0.4 ms, contact time constant 10 steps) reduces the error
+    errors = [r["omega_post_impact_error"] for r in payload["rows"]]
+    assert errors[1] < errors[0]
