@@ -26,13 +26,13 @@ def test_level_crossings_interpolate_time_and_values() -> None:
 def test_wrap_jumps_are_not_crossings_but_impacts() -> None:
     alpha = 0.4
     t = np.linspace(0.0, 3.0, 3001)[None, :]
-    angle = 1.0 * t  # rolling forward at 1 rad/s from 0: wraps at alpha, 3 alpha, 5 alpha
+    angle = 1.0 * t  # rolling forward at 1 rad/s from 0: wraps at alpha, 3 alpha, 5 alpha, 7 alpha
     psi = wrap_phase(angle, alpha)
     assert psi.min() >= -alpha - 1e-12 and psi.max() < alpha
     mid = level_crossings(t, psi, angle[..., None], max_jump=alpha)
     np.testing.assert_allclose(mid.times(1)[0], [2 * alpha, 4 * alpha, 6 * alpha], atol=1e-9)
     impacts = wrap_events(t, psi, alpha)
-    np.testing.assert_allclose(impacts.times(1)[0], [alpha, 3 * alpha, 5 * alpha], atol=1e-3)
+    np.testing.assert_allclose(impacts.times(1)[0], [alpha, 3 * alpha, 5 * alpha, 7 * alpha], atol=1e-3)
     assert (impacts.values[:, 0] == 1).all()
     back = wrap_events(t, wrap_phase(-angle, alpha), alpha)
     assert (back.values[:, 0] == -1).all()
