@@ -43,8 +43,8 @@ class Scenario:
         build: ``(params, settings) -> MjModel``.
         evaluate: ``(params, settings, preset, seed) -> Evaluation``; ``preset`` picks the tolerances.
         accuracy_checks: names of the checks whose errors the benchmark plots (first = Pareto axis).
-        probe: ``(params, settings) -> (model, initial states, nstep)`` of the main rollout batch, for
-            timing ``mujoco.rollout`` alone.
+        probe: ``(params, settings) -> (model, [(initial states, nstep), ...])``: the rollout batches
+            ``evaluate`` runs, for timing ``mujoco.rollout`` alone on the same work.
         reference_bench: ``(params, rtol) -> dict`` time and error of the exact solve_ivp reference
             run at tolerance ``rtol`` through the same fit (keys ``rtol``, ``wall_s``, ``<check>_error``).
         default_preset: preset used when none is named.
@@ -59,7 +59,7 @@ class Scenario:
     build: Callable[[Values, Values], mujoco.MjModel]
     evaluate: Callable[[Values, Values, str, int], Evaluation]
     accuracy_checks: tuple[str, ...]
-    probe: Callable[[Values, Values], tuple[mujoco.MjModel, np.ndarray, int]]
+    probe: Callable[[Values, Values], tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]]
     reference_bench: Callable[[Values, float], dict[str, float]]
     default_preset: str = "fast"
 

@@ -173,14 +173,27 @@ class _Recorder:
         self.tail = chunk
 
 
+def _chunk(model: mujoco.MjModel) -> int:
+    """Steps per native rollout chunk: one tail window."""
+    return max(1, round(TAIL_SECONDS / model.opt.timestep))
+
+
+def _whole_chunks(model: mujoco.MjModel, seconds: float) -> int:
+    """Steps covering ``seconds`` in whole chunks, so that the last chunk is a full tail window."""
+    return _chunk(model) * math.ceil(seconds / (_chunk(model) * model.opt.timestep))
+
+
+def _fit_seconds(w: theory.RimlessWheel) -> float:
+    """Duration of the fitting runs: FIT_STEPS steps at the fixed point's period, plus half a second."""
+    return FIT_STEPS * theory.step_period(w, theory.rolling_fixed_point(w)) + 0.5
+
+
 def _simulate(model: mujoco.MjModel, w: theory.RimlessWheel, omega0: np.ndarray, seconds: float,
               s: Values) -> tuple[_Recorder, RolloutReport]:
     radius = float(s["foot_radius"])
     recorder = _Recorder(w, len(omega0), radius)
-    chunk = max(1, round(TAIL_SECONDS / model.opt.timestep))
-    nstep = chunk * math.ceil(seconds / (chunk * model.opt.timestep))  # whole chunks: the last one is the tail
-    report = rollout_batch(model, post_impact_states(model, w, omega0, radius), nstep, recorder,
-                           threads=int(s["threads"]), chunk_steps=chunk)
+    report = rollout_batch(model, post_impact_states(model, w, omega0, radius), _whole_chunks(model, seconds),
+                           recorder, threads=int(s["threads"]), chunk_steps=_chunk(model))
     return recorder, report
 
 
@@ -290,8 +303,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     tol = TOLERANCES.get(preset, TOLERANCES["fast"])
     why = WHY.get(preset, WHY["fast"])
     fit_speeds = fit_initial_speeds(w)
-    fit_seconds = FIT_STEPS * theory.step_period(w, theory.rolling_fixed_point(w)) + 0.5
-    fit_rec, fit_report = _simulate(model, w, fit_speeds, fit_seconds, s)
+    fit_rec, fit_report = _simulate(model, w, fit_speeds, _fit_seconds(w), s)
     try:
         fit_checks, extras = _fit_checks(w, fit_rec, len(fit_speeds), tol, why, seed)
     except ValueError as err:  # too few samples: a diverged or stalled run
@@ -312,13 +324,15 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     return Evaluation(fit_checks + basin_checks, fit_report.merge(basin_report), extras)
 
 
-def probe(p: Values, s: Values) -> tuple[mujoco.MjModel, np.ndarray, int]:
-    """The fitting batch's model, initial states and step count (for timing ``mujoco.rollout`` alone)."""
+def probe(p: Values, s: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
+    """The model and the (initial states, steps) of each rollout batch :func:`evaluate` runs."""
     w = wheel(p)
     model = build(p, s)
-    seconds = FIT_STEPS * theory.step_period(w, theory.rolling_fixed_point(w)) + 0.5
-    return (model, post_impact_states(model, w, fit_initial_speeds(w), float(s["foot_radius"])),
-            math.ceil(seconds / model.opt.timestep))
+    radius = float(s["foot_radius"])
+    batches = []
+    for speeds, seconds in ((fit_initial_speeds(w), _fit_seconds(w)), (basin_initial_speeds(w), BASIN_SECONDS)):
+        batches.append((post_impact_states(model, w, speeds, radius), _whole_chunks(model, seconds)))
+    return model, batches
 
 
 def reference_bench(p: Values, rtol: float) -> dict[str, float]:
