@@ -107,6 +107,7 @@ def run_bench(name: str, assignments: Mapping[str, str], output: str, json_path:
     print(format_table(rows, accuracy, raw, reference))
     _plot(rows, reference, key, output.format(scenario=name), name)
     if json_path:
+        json_path = json_path.format(scenario=name)
         write_json({"scenario": name, "mujoco_version": mujoco.__version__, "rows": rows, "raw_rollout": raw,
                     "reference": reference}, json_path)
     return 0

@@ -6,14 +6,14 @@ import argparse
 import sys
 from collections.abc import Sequence
 
-from mjpoincare import scenarios
 from mjpoincare.params import ParameterError, parse_assignments
-from mjpoincare.result import write_json
 
 EXIT_PASS, EXIT_FAIL, EXIT_BAD_INPUT = 0, 1, 2
 
 
 def _cmd_list(_: argparse.Namespace) -> int:
+    from mjpoincare import scenarios
+
     for scenario in scenarios.REGISTRY.values():
         print(f"{scenario.name}: {scenario.summary}")
         print(f"  source: {scenario.source}")
@@ -24,6 +24,8 @@ def _cmd_list(_: argparse.Namespace) -> int:
 
 
 def _cmd_validate(args: argparse.Namespace) -> int:
+    from mjpoincare import scenarios
+    from mjpoincare.result import write_json
     from mjpoincare.validate import resolve_inputs, run_validation
 
     names = args.scenario or list(scenarios.DEFAULT_SCENARIOS)
@@ -38,6 +40,13 @@ def _cmd_validate(args: argparse.Namespace) -> int:
     if args.json:
         payload = results[0].to_dict() if len(results) == 1 else [r.to_dict() for r in results]
         write_json(payload, args.json)
+    if args.report:
+        from mjpoincare.report import write_report
+
+        for result in results:
+            path = write_report(result.to_dict(), args.report)
+            if args.json != "-":
+                print(f"report: {path}")
     return EXIT_PASS if all(r.passed for r in results) else EXIT_FAIL
 
 
@@ -45,6 +54,25 @@ def _cmd_bench(args: argparse.Namespace) -> int:
     from mjpoincare.bench import run_bench
 
     return run_bench(args.scenario, parse_assignments(args.set), args.output, args.json, quick=args.quick)
+
+
+def _cmd_render(args: argparse.Namespace) -> int:
+    from mjpoincare.render import parse_size, render_frames, select_gl_backend, write_media
+
+    size = parse_size(args.size)
+    assignments = parse_assignments(args.set)
+    if not args.seconds > 0 or not 1 <= args.fps <= 240:
+        raise ParameterError(f"--seconds must be > 0 and --fps in [1, 240] (got {args.seconds}, {args.fps})")
+    backend = select_gl_backend()  # before MuJoCo is imported
+    from mjpoincare.validate import resolve_inputs
+
+    resolve_inputs(args.scenario, assignments, args.preset)
+    output = args.output or f"renders/{args.scenario}.mp4"
+    frames, timing = render_frames(args.scenario, assignments, args.preset, args.seconds, args.fps, size)
+    write_media(output, frames, args.fps)
+    print(f"wrote {output}: {len(frames)} frames {size[0]}x{size[1]} with MUJOCO_GL={backend}; "
+          f"simulate {timing['simulate_s']:.2f} s, render {timing['ms_per_frame']:.1f} ms/frame")
+    return EXIT_PASS
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -60,15 +88,27 @@ def build_parser() -> argparse.ArgumentParser:
     val.add_argument("--preset", default=None, help="simulator preset: fast or accurate")
     val.add_argument("--json", metavar="PATH|-", help="write the result as JSON (- for stdout)")
     val.add_argument("--seed", type=int, default=0, help="seed of the bootstrap (same seed, same result)")
+    val.add_argument("--report", metavar="DIR", help="write a self-contained HTML report per scenario into DIR")
     val.set_defaults(func=_cmd_validate)
 
     bench = sub.add_parser("bench", help="run time against error over timestep, integrator and contact settings")
     bench.add_argument("scenario", help="scenario name")
     bench.add_argument("--set", action="append", default=[], metavar="NAME=VALUE")
     bench.add_argument("-o", "--output", default="renders/bench-{scenario}.png", help="PNG plot path")
-    bench.add_argument("--json", metavar="PATH|-", help="write the bench table as JSON")
+    bench.add_argument("--json", metavar="PATH|-", default="renders/bench-{scenario}.json",
+                       help="bench table as JSON (the report's convergence plot reads the default path)")
     bench.add_argument("--quick", action="store_true", help="a small sweep (for tests)")
     bench.set_defaults(func=_cmd_bench)
+
+    render = sub.add_parser("render", help="render a scenario off-screen to a video (.mp4, .gif) or still (.png)")
+    render.add_argument("scenario", help="scenario name")
+    render.add_argument("--set", action="append", default=[], metavar="NAME=VALUE")
+    render.add_argument("--preset", default=None)
+    render.add_argument("-o", "--output", default=None, help="output path (default renders/SCENARIO.mp4)")
+    render.add_argument("--seconds", type=float, default=5.0)
+    render.add_argument("--fps", type=int, default=30)
+    render.add_argument("--size", default="640x480", help="WIDTHxHEIGHT")
+    render.set_defaults(func=_cmd_render)
     return parser
 
 
@@ -78,6 +118,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         return int(args.func(args))
     except ParameterError as err:
+        print(f"mjpoincare: error: {err}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    except RuntimeError as err:  # RenderError: what to install
+        if type(err).__name__ != "RenderError":
+            raise
         print(f"mjpoincare: error: {err}", file=sys.stderr)
         return EXIT_BAD_INPUT
 

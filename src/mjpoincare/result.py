@@ -81,7 +81,11 @@ def _fmt(value: Any) -> str:
 
 def write_json(payload: Any, path: str) -> None:
     """Write ``payload`` as JSON to ``path`` whole or not at all (temp file + rename); ``-`` is stdout."""
-    text = json.dumps(payload, indent=2, allow_nan=False) + "\n"
+    write_text(json.dumps(payload, indent=2, allow_nan=False) + "\n", path)
+
+
+def write_text(text: str, path: str) -> None:
+    """Write ``text`` to ``path`` whole or not at all (temp file + rename); ``-`` is stdout."""
     if path == "-":
         sys.stdout.write(text)
         sys.stdout.flush()
@@ -89,6 +93,9 @@ def write_json(payload: Any, path: str) -> None:
     target = Path(path)
     target.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".tmp")
+    umask = os.umask(0)
+    os.umask(umask)
+    os.chmod(tmp, 0o666 & ~umask)
     try:
         with os.fdopen(fd, "w") as handle:
             handle.write(text)

@@ -47,6 +47,10 @@ class Scenario:
             ``evaluate`` runs, for timing ``mujoco.rollout`` alone on the same work.
         reference_bench: ``(params, rtol) -> dict`` time and error of the exact solve_ivp reference
             run at tolerance ``rtol`` through the same fit (keys ``rtol``, ``wall_s``, ``<check>_error``).
+        render_start: ``(params, settings, model) -> (1, nstate)`` initial state of a rendered clip.
+        track_body: body the render camera follows.
+        frame_tilt: parameter whose value (rad) rotates rendered frames (a slope made by tilted gravity).
+        camera_distance: render camera distance, m.
         default_preset: preset used when none is named.
     """
 
@@ -61,6 +65,10 @@ class Scenario:
     accuracy_checks: tuple[str, ...]
     probe: Callable[[Values, Values], tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]]
     reference_bench: Callable[[Values, float], dict[str, float]]
+    render_start: Callable[[Values, Values, mujoco.MjModel], np.ndarray]
+    track_body: str
+    frame_tilt: str | None = None
+    camera_distance: float = 3.0
     default_preset: str = "fast"
 
     def preset(self, name: str | None) -> tuple[str, Values]:

@@ -249,7 +249,12 @@ def _fit_checks(w: theory.RimlessWheel, rec: _Recorder, batch: int, tol: Mapping
                         "time between mid-stance crossings, regressed (quadratic) on the two post-impact speeds "
                         "it spans and taken at the fitted fixed point; same error sources as omega_post_impact"),
     ]
-    return out, {"fit": fit.to_dict(), "max_clearance_rolling": float(np.max(rec.max_clearance))}
+    grid = np.linspace(float(x.min()), float(x.max()), 60)
+    plot = {"label": "post-impact speed omega+ (rad/s)", "x": x[:, 0], "x_next": x_next[:, 0],
+            "analytic_x": grid, "analytic_y": np.asarray(theory.return_map(w, grid), float),
+            "analytic_eigenvalues": [theory.rolling_multiplier(w)]}
+    return out, {"fit": fit.to_dict(), "max_clearance_rolling": float(np.max(rec.max_clearance)),
+                 "return_map": plot}
 
 
 def _period_at(star: float, before: list[np.ndarray], after: list[np.ndarray], dts: list[np.ndarray]) -> float:
@@ -288,7 +293,12 @@ def _basin_checks(w: theory.RimlessWheel, rec: _Recorder, omega0: np.ndarray) ->
         "end state (rolling/standing) from a grid of post-impact speeds vs the regions of attraction "
         "(003 Table 1, eq 3.17-3.18); speeds within 2% of a basin edge or whose analytic run would lift off are "
         "reported, not judged")
-    return [check], {"basins": table}
+    omega1, omega2 = theory.basin_band_edges(w, 3)
+    bands = [[float(omega1[m]), float(omega2[m]), "rolling"] for m in range(3)]
+    bands += [[float(omega2[m + 1]), float(omega1[m]), "standing"] for m in range(3)]
+    bands += [[float(omega2[0]), float(theory.forward_threshold(w)), "standing"],
+              [float(theory.forward_threshold(w)), float(1.3 * theory.rolling_fixed_point(w)), "rolling"]]
+    return [check], {"basins": table, "basin_bands": bands}
 
 
 def _basin_edges(w: theory.RimlessWheel) -> np.ndarray:
@@ -351,6 +361,12 @@ def reference_bench(p: Values, rtol: float) -> dict[str, float]:
             "eigenvalue_error": abs(complex(fit.eigenvalues[0]) - theory.rolling_multiplier(w))}
 
 
+def render_start(p: Values, s: Values, model: mujoco.MjModel) -> np.ndarray:
+    """A clip starts just after an impact, 20 % above the rolling fixed point's speed."""
+    w = wheel(p)
+    return post_impact_states(model, w, np.array([1.2 * theory.rolling_fixed_point(w)]), float(s["foot_radius"]))
+
+
 RIMLESS_WHEEL = Scenario(
     name="rimless-wheel",
     summary="planar rimless wheel on a slope: rolling fixed point, multiplier, impact law, basins",
@@ -363,4 +379,8 @@ RIMLESS_WHEEL = Scenario(
     accuracy_checks=("omega_post_impact", "eigenvalue", "impact_coefficient", "step_period"),
     probe=probe,
     reference_bench=reference_bench,
+    render_start=render_start,
+    track_body="hub",
+    frame_tilt="slope",
+    camera_distance=4.0,
 )

@@ -1,0 +1,132 @@
+"""Off-screen videos and stills of any scenario with :class:`mujoco.Renderer`, written with mediapy.
+
+The trajectory is simulated first (one ``mujoco.rollout`` call, no rendering in the loop), then
+replayed frame by frame: ``mj_setState`` + ``mj_forward`` + render. The camera tracks the
+scenario's main body; contact points and forces are drawn. Models whose slope is made by tilting
+gravity look flat in the world frame, so each frame is rotated by the slope angle (the ground then
+falls to the right, as in the papers' figures).
+
+The OpenGL backend is chosen before MuJoCo is imported (:func:`select_gl_backend`): the user's
+``MUJOCO_GL`` if set, else the first of ``egl`` and ``osmesa`` that can open a context.
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import time
+from collections.abc import Mapping
+from pathlib import Path
+
+import numpy as np
+
+BACKENDS = ("egl", "osmesa")
+INSTALL_HINT = ("no off-screen OpenGL backend works here: install Mesa's EGL (apt-get install libegl1 "
+                "libgl1-mesa-dri) for MUJOCO_GL=egl, or OSMesa (apt-get install libosmesa6) for MUJOCO_GL=osmesa")
+_PROBE = "import mujoco; m = mujoco.MjModel.from_xml_string('<mujoco/>'); mujoco.Renderer(m, 8, 8).render()"
+
+
+class RenderError(RuntimeError):
+    """Rendering is impossible here; the message says what to install."""
+
+
+def select_gl_backend() -> str:
+    """Set ``MUJOCO_GL`` (if unset) to a backend that works; must run before ``import mujoco``."""
+    chosen = os.environ.get("MUJOCO_GL")
+    for backend in [chosen] if chosen else BACKENDS:
+        env = {**os.environ, "MUJOCO_GL": backend}
+        probe = subprocess.run([sys.executable, "-c", _PROBE], env=env, capture_output=True, timeout=120)
+        if probe.returncode == 0:
+            os.environ["MUJOCO_GL"] = backend
+            return backend
+    where = f"MUJOCO_GL={chosen} does not work" if chosen else "neither MUJOCO_GL=egl nor osmesa works"
+    raise RenderError(f"{where}; {INSTALL_HINT}")
+
+
+def parse_size(text: str) -> tuple[int, int]:
+    """``640x480`` -> (width, height)."""
+    from mjpoincare.params import ParameterError
+
+    try:
+        width, height = (int(v) for v in text.lower().split("x"))
+    except ValueError:
+        raise ParameterError(f"size must be WIDTHxHEIGHT, e.g. 640x480 (got {text!r})") from None
+    if not (16 <= width <= 4096 and 16 <= height <= 4096):
+        raise ParameterError(f"size must be between 16x16 and 4096x4096 (got {text!r})")
+    return width, height
+
+
+def render_frames(name: str, assignments: Mapping[str, str], preset: str | None, seconds: float, fps: int,
+                  size: tuple[int, int]) -> tuple[np.ndarray, dict[str, float]]:
+    """Frames (n, height, width, 3) of ``seconds`` of the scenario, and timings."""
+    import mujoco
+    from mujoco import rollout as mj_rollout
+    from scipy import ndimage
+
+    from mjpoincare.mjlog import captured_mujoco_log
+    from mjpoincare.validate import resolve_inputs
+
+    scenario, _, params, settings = resolve_inputs(name, assignments, preset)
+    model = scenario.build(params, settings)
+    state0 = scenario.render_start(params, settings, model)
+    dt = model.opt.timestep
+    frame_every = max(1, round(1.0 / (fps * dt)))
+    nframes = max(1, round(seconds * fps))
+    start = time.perf_counter()
+    with captured_mujoco_log():
+        states, _ = mj_rollout.rollout(model, mujoco.MjData(model), state0, nstep=nframes * frame_every)
+    sim_wall = time.perf_counter() - start
+    tilt = float(params[scenario.frame_tilt]) if scenario.frame_tilt else 0.0
+    width, height = size
+    pad = 1.0 + abs(np.sin(tilt)) * 1.2  # render larger, rotate, crop back to the requested size
+    big_w, big_h = int(width * pad) // 2 * 2, int(height * pad) // 2 * 2
+    model.vis.global_.offwidth = max(model.vis.global_.offwidth, big_w)
+    model.vis.global_.offheight = max(model.vis.global_.offheight, big_h)
+    data = mujoco.MjData(model)
+    camera = mujoco.MjvCamera()
+    camera.type = mujoco.mjtCamera.mjCAMERA_TRACKING
+    camera.trackbodyid = model.body(scenario.track_body).id
+    camera.distance, camera.elevation, camera.azimuth = scenario.camera_distance, 0.0, 90.0
+    option = mujoco.MjvOption()
+    option.flags[mujoco.mjtVisFlag.mjVIS_CONTACTPOINT] = True  # the active contacts, drawn as red discs
+    model.vis.scale.contactwidth, model.vis.scale.contactheight = 0.06, 0.02
+    model.vis.rgba.contactpoint[:] = (1.0, 0.15, 0.1, 1.0)
+    model.vis.quality.offsamples = 0  # software (Mesa) rendering: multisampling costs more than it shows
+    frames = np.empty((nframes, height, width, 3), np.uint8)
+    start = time.perf_counter()
+    with mujoco.Renderer(model, big_h, big_w) as renderer:
+        renderer.scene.flags[mujoco.mjtRndFlag.mjRND_SHADOW] = False
+        renderer.scene.flags[mujoco.mjtRndFlag.mjRND_REFLECTION] = False
+        for i in range(nframes):
+            mujoco.mj_setState(model, data, states[0, (i + 1) * frame_every - 1], mujoco.mjtState.mjSTATE_FULLPHYSICS)
+            mujoco.mj_forward(model, data)
+            renderer.update_scene(data, camera, option)
+            image = renderer.render()
+            if tilt:
+                image = ndimage.rotate(image, -np.degrees(tilt), reshape=False, order=1, mode="nearest")
+            top, left = (big_h - height) // 2, (big_w - width) // 2
+            frames[i] = image[top : top + height, left : left + width]
+    render_wall = time.perf_counter() - start
+    return frames, {"frames": float(nframes), "simulate_s": sim_wall, "render_s": render_wall,
+                    "ms_per_frame": 1e3 * render_wall / nframes}
+
+
+def write_media(path: str, frames: np.ndarray, fps: int) -> None:
+    """Write a video (``.mp4``/``.gif``) or, for ``.png``, the last frame; whole or not at all."""
+    import mediapy
+
+    target = Path(path)
+    target.parent.mkdir(parents=True, exist_ok=True)
+    tmp = target.with_name(f".{target.stem}.tmp{target.suffix}")
+    try:
+        if target.suffix.lower() == ".png":
+            mediapy.write_image(tmp, frames[-1])
+        else:
+            import imageio_ffmpeg
+
+            mediapy.set_ffmpeg(imageio_ffmpeg.get_ffmpeg_exe())
+            mediapy.write_video(tmp, frames, fps=fps)
+        os.replace(tmp, target)
+    finally:
+        tmp.unlink(missing_ok=True)

@@ -1,0 +1,68 @@
+"""Off-screen rendering (the backend CI has: EGL from Mesa) and the self-contained HTML report."""
+
+from __future__ import annotations
+
+import json
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from mjpoincare.cli import main
+from mjpoincare.params import ParameterError
+from mjpoincare.render import parse_size
+
+pytestmark = pytest.mark.mujoco
+
+
+def test_size_parsing() -> None:
+    assert parse_size("640x480") == (640, 480)
+    with pytest.raises(ParameterError, match="WIDTHxHEIGHT"):
+        parse_size("big")
+
+
+def test_render_frames_are_sized_not_blank_and_change(tmp_path: Path) -> None:
+    import os
+    import subprocess
+    import sys
+
+    code = (
+        "import json, numpy as np\n"
+        "from mjpoincare.render import select_gl_backend\n"
+        "backend = select_gl_backend()\n"
+        "from mjpoincare.render import render_frames\n"
+        "frames, timing = render_frames('rimless-wheel', {}, None, 1.0, 10, (160, 120))\n"
+        "np.save('frames.npy', frames)\n"
+        "print(json.dumps({'backend': backend, **timing}))\n"
+    )
+    env = {k: v for k, v in os.environ.items() if k != "MUJOCO_GL"}  # exercise the automatic choice
+    out = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, env=env, capture_output=True, text=True,
+                         timeout=300, check=True)
+    info = json.loads(out.stdout.strip().splitlines()[-1])
+    assert info["backend"] in ("egl", "osmesa")
+    frames = np.load(tmp_path / "frames.npy")
+    assert frames.shape == (10, 120, 160, 3)
+    assert all(f.std() > 5 for f in frames)  # not blank
+    assert np.abs(frames[0].astype(int) - frames[-1].astype(int)).mean() > 1  # the wheel moved
+
+
+def test_render_cli_writes_video_and_still(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    video, still = tmp_path / "wheel.mp4", tmp_path / "wheel.png"
+    assert main(["render", "rimless-wheel", "-o", str(video), "--seconds", "0.5", "--fps", "10",
+                 "--size", "160x120"]) == 0
+    assert video.stat().st_size > 1000
+    assert main(["render", "rimless-wheel", "-o", str(still), "--seconds", "0.2", "--size", "160x120"]) == 0
+    assert still.read_bytes()[:4] == b"\x89PNG"
+    assert "ms/frame" in capsys.readouterr().out
+    assert main(["render", "rimless-wheel", "--size", "huge"]) == 2
+
+
+def test_report_table_matches_json(tmp_path: Path) -> None:
+    assert main(["validate", "rimless-wheel", "--report", str(tmp_path / "report")]) in (0, 1)
+    page = (tmp_path / "report" / "rimless-wheel.html").read_text()
+    result = json.loads((tmp_path / "report" / "rimless-wheel.json").read_text())
+    assert "http" not in page.replace("http-equiv", "")  # no network assets
+    rows = re.findall(r"<tr class=(pass|fail)><td>([^<]+)</td>", page)
+    assert [(("pass" if c["passed"] else "fail"), c["name"]) for c in result["checks"]] == rows
+    assert page.count("data:image/png;base64,") >= 3
