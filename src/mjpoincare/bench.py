@@ -14,6 +14,7 @@ sets two reference figures beside it:
 from __future__ import annotations
 
 import math
+import os
 import sys
 import time
 from collections.abc import Mapping
@@ -136,7 +137,8 @@ def format_table(rows: list[dict[str, Any]], accuracy: tuple[str, ...], raw: dic
 
 
 def _progress(message: str) -> None:
-    if sys.stderr.isatty():
+    """One line per finished configuration on an interactive terminal; silent in CI and pipes."""
+    if sys.stderr.isatty() and not os.environ.get("CI"):
         print(message, file=sys.stderr)
 
 
