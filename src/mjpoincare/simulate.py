@@ -127,3 +127,55 @@ def rollout_batch(
     report.final_state = current
     report.warnings = _warning_lines(datas) + log
     return report
+
+
+def event_rollout(
+    models: list[mujoco.MjModel],
+    state0: np.ndarray,
+    nstep: int,
+    on_chunk: Callable[[Chunk, list[mujoco.MjModel]], np.ndarray],
+    *,
+    threads: int = 2,
+    chunk_steps: int = 200,
+) -> RolloutReport:
+    """Batched rollout with a controller that acts at events, without Python between steps.
+
+    Each trajectory has its own model copy (same sizes), so a controller can switch a trajectory's
+    contacts or constraints. The batch is stepped by ``mujoco.rollout`` in native chunks of
+    ``chunk_steps``; ``on_chunk(chunk, models)`` inspects the recorded chunk (vectorised), and for
+    each trajectory returns the row to continue from: ``chunk_steps`` to go on, or an earlier row
+    ``k >= 1`` where an event happened, after changing ``models[b]``. Trajectory ``b`` then restarts
+    exactly from its recorded state at row ``k`` (no event overshoot) and rows after ``k`` are
+    discarded. Every trajectory is stepped until it has ``nstep`` kept steps. Steps discarded after
+    an event are counted in ``steps`` (they cost time).
+    """
+    batch = state0.shape[0]
+    nq, nv = models[0].nq, models[0].nv
+    datas = [mujoco.MjData(models[0]) for _ in range(max(1, threads))]
+    report = RolloutReport(diverged=np.zeros(batch, bool))
+    current = np.array(state0, dtype=float)
+    kept = np.zeros(batch, int)
+    dt = models[0].opt.timestep
+    with captured_mujoco_log() as log, mj_rollout.Rollout(nthread=threads) as pool:
+        while (kept < nstep).any():
+            start = time.perf_counter()
+            states, _ = pool.rollout(models, datas, current, nstep=chunk_steps)
+            report.wall_s += time.perf_counter() - start
+            report.steps += batch * chunk_steps
+            full = np.concatenate([current[:, None, :], states], axis=1)
+            expected = full[:, :1, 0] + dt * np.arange(chunk_steps + 1)[None, :]
+            bad = ~np.isfinite(full).all(axis=2) | (np.abs(full[:, :, 0] - expected) > 0.5 * dt)
+            bad = np.logical_or.accumulate(bad | report.diverged[:, None], axis=1)
+            report.diverged |= bad[:, -1]
+            full[bad] = np.nan
+            done = kept >= nstep
+            full[done, 1:] = np.nan  # finished trajectories idle; nothing is sampled from them
+            chunk = Chunk(time=full[:, :, 0], qpos=full[:, :, 1 : 1 + nq], qvel=full[:, :, 1 + nq : 1 + nq + nv])
+            restart = np.clip(np.asarray(on_chunk(chunk, models), int), 1, chunk_steps)
+            restart[report.diverged | done] = chunk_steps
+            rows = states[np.arange(batch), restart - 1]
+            current = np.where(done[:, None], current, rows)
+            kept += np.where(done, 0, restart)
+    report.final_state = current
+    report.warnings = _warning_lines(datas) + log
+    return report
