@@ -3,7 +3,10 @@
 from __future__ import annotations
 
 import json
+import os
 import re
+import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -23,10 +26,6 @@ def test_size_parsing() -> None:
 
 
 def test_render_frames_are_sized_not_blank_and_change(tmp_path: Path) -> None:
-    import os
-    import subprocess
-    import sys
-
     code = (
         "import json, numpy as np\n"
         "from mjpoincare.render import select_gl_backend\n"
@@ -47,15 +46,30 @@ def test_render_frames_are_sized_not_blank_and_change(tmp_path: Path) -> None:
     assert np.abs(frames[0].astype(int) - frames[-1].astype(int)).mean() > 1  # the wheel moved
 
 
-def test_render_cli_writes_video_and_still(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    video, still = tmp_path / "wheel.mp4", tmp_path / "wheel.png"
-    assert main(["render", "rimless-wheel", "-o", str(video), "--seconds", "0.5", "--fps", "10",
-                 "--size", "160x120"]) == 0
-    assert video.stat().st_size > 1000
-    assert main(["render", "rimless-wheel", "-o", str(still), "--seconds", "0.2", "--size", "160x120"]) == 0
-    assert still.read_bytes()[:4] == b"\x89PNG"
-    assert "ms/frame" in capsys.readouterr().out
-    assert main(["render", "rimless-wheel", "--size", "huge"]) == 2
+def _cli(*args: str, cwd: Path) -> subprocess.CompletedProcess[str]:
+    """The CLI in a fresh process: the OpenGL backend is chosen before MuJoCo is first imported."""
+    env = {k: v for k, v in os.environ.items() if k != "MUJOCO_GL"}
+    return subprocess.run([sys.executable, "-m", "mjpoincare.cli", *args], cwd=cwd, env=env, capture_output=True,
+                          text=True, timeout=300)
+
+
+def test_render_cli_writes_video_and_still(tmp_path: Path) -> None:
+    video = _cli("render", "rimless-wheel", "-o", "wheel.mp4", "--seconds", "0.5", "--fps", "10",
+                 "--size", "160x120", cwd=tmp_path)
+    assert video.returncode == 0, video.stderr
+    assert "ms/frame" in video.stdout
+    assert (tmp_path / "wheel.mp4").stat().st_size > 1000
+    still = _cli("render", "rimless-wheel", "-o", "wheel.png", "--seconds", "0.2", "--size", "160x120", cwd=tmp_path)
+    assert still.returncode == 0, still.stderr
+    assert (tmp_path / "wheel.png").read_bytes()[:4] == b"\x89PNG"
+    bad = _cli("render", "rimless-wheel", "--size", "huge", cwd=tmp_path)
+    assert bad.returncode == 2 and "size must be WIDTHxHEIGHT" in bad.stderr
+
+
+def test_biped_renders_with_its_contact_switching(tmp_path: Path) -> None:
+    out = _cli("render", "compass-biped", "-o", "biped.png", "--seconds", "0.3", "--size", "160x120", cwd=tmp_path)
+    assert out.returncode == 0, out.stderr
+    assert (tmp_path / "biped.png").stat().st_size > 1000
 
 
 def test_report_table_matches_json(tmp_path: Path) -> None:

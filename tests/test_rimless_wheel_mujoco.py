@@ -86,9 +86,12 @@ def test_json_to_stdout_is_clean(capsys: pytest.CaptureFixture[str]) -> None:
 
 
 def test_json_file_written_whole(tmp_path: Path) -> None:
+    """The default validation (every default scenario) writes one JSON list, whole, and no temp file."""
     target = tmp_path / "out" / "result.json"
-    main(["validate", "--json", str(target)])
-    assert json.loads(target.read_text())["scenario"] == "rimless-wheel"
+    code = main(["validate", "--json", str(target)])
+    payload = json.loads(target.read_text())
+    assert [r["scenario"] for r in payload] == ["rimless-wheel", "compass-biped"]
+    assert code == (0 if all(r["passed"] for r in payload) else 1)
     assert [p.name for p in target.parent.iterdir()] == ["result.json"]
 
 

@@ -61,21 +61,17 @@ def render_frames(name: str, assignments: Mapping[str, str], preset: str | None,
                   size: tuple[int, int]) -> tuple[np.ndarray, dict[str, float]]:
     """Frames (n, height, width, 3) of ``seconds`` of the scenario, and timings."""
     import mujoco
-    from mujoco import rollout as mj_rollout
     from scipy import ndimage
 
-    from mjpoincare.mjlog import captured_mujoco_log
     from mjpoincare.validate import resolve_inputs
 
     scenario, _, params, settings = resolve_inputs(name, assignments, preset)
     model = scenario.build(params, settings)
-    state0 = scenario.render_start(params, settings, model)
     dt = model.opt.timestep
     frame_every = max(1, round(1.0 / (fps * dt)))
     nframes = max(1, round(seconds * fps))
     start = time.perf_counter()
-    with captured_mujoco_log():
-        states, _ = mj_rollout.rollout(model, mujoco.MjData(model), state0, nstep=nframes * frame_every)
+    states = scenario.clip(params, settings, model, nframes * frame_every)
     sim_wall = time.perf_counter() - start
     tilt = float(params[scenario.frame_tilt]) if scenario.frame_tilt else 0.0
     width, height = size
@@ -99,7 +95,7 @@ def render_frames(name: str, assignments: Mapping[str, str], preset: str | None,
         renderer.scene.flags[mujoco.mjtRndFlag.mjRND_SHADOW] = False
         renderer.scene.flags[mujoco.mjtRndFlag.mjRND_REFLECTION] = False
         for i in range(nframes):
-            mujoco.mj_setState(model, data, states[0, (i + 1) * frame_every - 1], mujoco.mjtState.mjSTATE_FULLPHYSICS)
+            mujoco.mj_setState(model, data, states[(i + 1) * frame_every - 1], mujoco.mjtState.mjSTATE_FULLPHYSICS)
             mujoco.mj_forward(model, data)
             renderer.update_scene(data, camera, option)
             image = renderer.render()

@@ -4,10 +4,11 @@ from __future__ import annotations
 
 from mjpoincare.params import ParameterError
 from mjpoincare.scenarios.base import Evaluation, Scenario
+from mjpoincare.scenarios.compass_biped import COMPASS_BIPED
 from mjpoincare.scenarios.rimless_wheel import RIMLESS_WHEEL
 
-REGISTRY: dict[str, Scenario] = {s.name: s for s in (RIMLESS_WHEEL,)}
-DEFAULT_SCENARIOS: tuple[str, ...] = ("rimless-wheel",)
+REGISTRY: dict[str, Scenario] = {s.name: s for s in (RIMLESS_WHEEL, COMPASS_BIPED)}
+DEFAULT_SCENARIOS: tuple[str, ...] = ("rimless-wheel", "compass-biped")
 
 
 def get(name: str) -> Scenario:

@@ -47,7 +47,8 @@ class Scenario:
             ``evaluate`` runs, for timing ``mujoco.rollout`` alone on the same work.
         reference_bench: ``(params, rtol) -> dict`` time and error of the exact solve_ivp reference
             run at tolerance ``rtol`` through the same fit (keys ``rtol``, ``wall_s``, ``<check>_error``).
-        render_start: ``(params, settings, model) -> (1, nstate)`` initial state of a rendered clip.
+        clip: ``(params, settings, model, nstep) -> (nstep, nstate)`` full-physics states of a clip to render
+            (simulated with whatever controller the scenario needs).
         track_body: body the render camera follows.
         frame_tilt: parameter whose value (rad) rotates rendered frames (a slope made by tilted gravity).
         camera_distance: render camera distance, m.
@@ -65,7 +66,7 @@ class Scenario:
     accuracy_checks: tuple[str, ...]
     probe: Callable[[Values, Values], tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]]
     reference_bench: Callable[[Values, float], dict[str, float]]
-    render_start: Callable[[Values, Values, mujoco.MjModel], np.ndarray]
+    clip: Callable[[Values, Values, mujoco.MjModel, int], np.ndarray]
     track_body: str
     frame_tilt: str | None = None
     camera_distance: float = 3.0

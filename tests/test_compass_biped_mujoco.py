@@ -1,0 +1,47 @@
+"""Regression: MuJoCo's passive compass biped against the exact hybrid model (Kisa 2020 Ch. 4; Goswami et al.).
+
+The gait runs with the contact switching the analytic model assumes (no scuffing, trailing foot released at
+heel strike); tolerances are the scenario's own.
+"""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from mjpoincare.cli import main
+from mjpoincare.validate import run_validation
+
+pytestmark = pytest.mark.mujoco
+
+
+def test_fast_validation_passes_without_scuffing() -> None:
+    result = run_validation("compass-biped", {}, "fast")
+    assert result.passed, result.table()
+    assert result.extras["scuffs_avoided"] > 0  # equal legs do pass through the slope mid-swing ...
+    by_name = {c.name: c for c in result.checks}
+    assert by_name["swing_foot_contacts"].simulated == 0  # ... but the switched-off foot never touched
+
+
+@pytest.mark.parametrize("slope", [0.04, 0.0523599])
+def test_accurate_preset_meets_targets(slope: float) -> None:
+    """Acceptance (Kisa slope 0.04 and Goswami 3 deg): fixed point within 1e-3 per component, eigenvalues
+    within 0.01, step period within 1e-3 relative (accurate preset)."""
+    result = run_validation("compass-biped", {"slope": str(slope)}, "accurate")
+    by_name = {c.name: c for c in result.checks}
+    assert by_name["fixed_point"].error <= 1e-3, result.table()
+    assert by_name["eigenvalues"].error <= 0.01, result.table()
+    assert by_name["step_period"].error <= 1e-3, result.table()
+    assert math.isfinite(by_name["step_length"].error)
+
+
+@pytest.mark.parametrize(
+    ("assignment", "needle"),
+    [("m_h=-1", "m_h must be in (0, 1e+06]"), ("a=0", "a must be in (0, 100]"),
+     ("slope=0.09", "unstable passive gait"), ("mu=0.1", "mu must be >= 0.2496")],
+)
+def test_bad_input(assignment: str, needle: str, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["validate", "compass-biped", "--set", assignment]) == 2
+    err = capsys.readouterr().err
+    assert needle in err and err.count("\n") == 1
