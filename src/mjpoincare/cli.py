@@ -56,6 +56,13 @@ def _cmd_bench(args: argparse.Namespace) -> int:
     return run_bench(args.scenario, parse_assignments(args.set), args.output, args.json, quick=args.quick)
 
 
+def _cmd_sweep(args: argparse.Namespace) -> int:
+    from mjpoincare.sweep import parse_values, run_sweep
+
+    return run_sweep(args.scenario, args.param, parse_values(args.values), parse_assignments(args.set), args.preset,
+                     args.json, args.locate)
+
+
 def _cmd_render(args: argparse.Namespace) -> int:
     from mjpoincare.render import parse_size, render_frames, select_gl_backend, write_media
 
@@ -99,6 +106,16 @@ def build_parser() -> argparse.ArgumentParser:
                        help="bench table as JSON (the report's convergence plot reads the default path)")
     bench.add_argument("--quick", action="store_true", help="a small sweep (for tests)")
     bench.set_defaults(func=_cmd_bench)
+
+    sweep = sub.add_parser("sweep", help="validate over a list of values of one parameter")
+    sweep.add_argument("scenario", help="scenario name")
+    sweep.add_argument("--param", required=True, help="parameter or setting to sweep, e.g. slope")
+    sweep.add_argument("--values", required=True, help="v1,v2,... or START:STOP:COUNT")
+    sweep.add_argument("--set", action="append", default=[], metavar="NAME=VALUE")
+    sweep.add_argument("--preset", default=None)
+    sweep.add_argument("--json", metavar="PATH|-", help="write the sweep table as JSON")
+    sweep.add_argument("--locate", choices=("period-doubling",), help="locate where the lowest eigenvalue hits -1")
+    sweep.set_defaults(func=_cmd_sweep)
 
     render = sub.add_parser("render", help="render a scenario off-screen to a video (.mp4, .gif) or still (.png)")
     render.add_argument("scenario", help="scenario name")

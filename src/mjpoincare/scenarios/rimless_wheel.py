@@ -331,7 +331,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
         "existence_bound": theory.existence_bound(w.spokes, w.gyration, w.leg_length),
         "no_flight_bound": theory.no_flight_bound(w.spokes, w.gyration, w.leg_length),
         "required_friction": theory.required_friction(w), "impact_impulse_ratio": theory.impact_impulse_ratio(w),
-        "standing_multiplier": theory.standing_multiplier(w),
+        "standing_multiplier": theory.standing_multiplier(w), "eigenvalues": [theory.rolling_multiplier(w)],
     }
     return Evaluation(fit_checks + basin_checks, fit_report.merge(basin_report), extras)
 
