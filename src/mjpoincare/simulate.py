@@ -133,7 +133,7 @@ def event_rollout(
     models: list[mujoco.MjModel],
     state0: np.ndarray,
     nstep: int,
-    on_chunk: Callable[[Chunk, list[mujoco.MjModel]], np.ndarray],
+    on_chunk: Callable[[Chunk, list[mujoco.MjModel]], np.ndarray | tuple[np.ndarray, dict[int, np.ndarray]]],
     *,
     threads: int = 2,
     chunk_steps: int = 200,
@@ -146,8 +146,10 @@ def event_rollout(
     each trajectory returns the row to continue from: ``chunk_steps`` to go on, or an earlier row
     ``k >= 1`` where an event happened, after changing ``models[b]``. Trajectory ``b`` then restarts
     exactly from its recorded state at row ``k`` (no event overshoot) and rows after ``k`` are
-    discarded. Every trajectory is stepped until it has ``nstep`` kept steps. Steps discarded after
-    an event are counted in ``steps`` (they cost time).
+    discarded. ``on_chunk`` may also return ``(rows, overrides)`` where ``overrides[b]`` is the full
+    state to continue from instead of row ``k`` (e.g. after a fractional step that lands exactly on
+    the event, or a re-parametrisation of the state). Every trajectory is stepped until it has
+    ``nstep`` kept steps. Steps discarded after an event are counted in ``steps`` (they cost time).
     """
     batch = state0.shape[0]
     nq, nv = models[0].nq, models[0].nv
@@ -171,9 +173,14 @@ def event_rollout(
             done = kept >= nstep
             full[done, 1:] = np.nan  # finished trajectories idle; nothing is sampled from them
             chunk = Chunk(time=full[:, :, 0], qpos=full[:, :, 1 : 1 + nq], qvel=full[:, :, 1 + nq : 1 + nq + nv])
-            restart = np.clip(np.asarray(on_chunk(chunk, models), int), 1, chunk_steps)
+            answer = on_chunk(chunk, models)
+            rows_out, overrides = answer if isinstance(answer, tuple) else (answer, {})
+            restart = np.clip(np.asarray(rows_out, int), 1, chunk_steps)
             restart[report.diverged | done] = chunk_steps
             rows = states[np.arange(batch), restart - 1]
+            for b, state in overrides.items():
+                if not (report.diverged[b] or done[b]):
+                    rows[b] = state
             current = np.where(done[:, None], current, rows)
             kept += np.where(done, 0, restart)
     report.final_state = current
