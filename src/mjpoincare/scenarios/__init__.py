@@ -6,9 +6,10 @@ from mjpoincare.params import ParameterError
 from mjpoincare.scenarios.base import Evaluation, Scenario
 from mjpoincare.scenarios.compass_biped import COMPASS_BIPED
 from mjpoincare.scenarios.rimless_wheel import RIMLESS_WHEEL
+from mjpoincare.scenarios.slotted_skate import SLOTTED_SKATE
 
-REGISTRY: dict[str, Scenario] = {s.name: s for s in (RIMLESS_WHEEL, COMPASS_BIPED)}
-DEFAULT_SCENARIOS: tuple[str, ...] = ("rimless-wheel", "compass-biped")
+REGISTRY: dict[str, Scenario] = {s.name: s for s in (RIMLESS_WHEEL, COMPASS_BIPED, SLOTTED_SKATE)}
+DEFAULT_SCENARIOS: tuple[str, ...] = ("rimless-wheel", "compass-biped", "slotted-skate")
 
 
 def get(name: str) -> Scenario:

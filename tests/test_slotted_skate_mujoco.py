@@ -1,0 +1,55 @@
+"""Regression: the peg-switched MuJoCo skate against Coleman & Holmes' exact return map."""
+
+from __future__ import annotations
+
+import pytest
+
+from mjpoincare.cli import main
+from mjpoincare.validate import run_validation
+
+pytestmark = pytest.mark.mujoco
+
+
+def test_fast_validation_passes() -> None:
+    result = run_validation("slotted-skate", {}, "fast")
+    assert result.passed, result.table()
+    assert result.extras["impacts"] > 60
+
+
+@pytest.mark.parametrize(("l0", "delta"), [("1", "0.3333333333333333"), ("-1", "0.3333333333333333")])
+def test_accurate_preset_meets_targets(l0: str, delta: str) -> None:
+    """Acceptance (P1, P2 = Figs 4-6): sigma4 within 1e-6 and the energy per impact within 1e-5, both directions."""
+    result = run_validation("slotted-skate", {"l0": l0, "delta": delta}, "accurate")
+    by_name = {c.name: c for c in result.checks}
+    for name in ("sigma4_forward", "sigma4_backward"):
+        assert by_name[name].error <= 1e-6, result.table()
+    assert by_name["energy_loss"].error <= 1e-5, result.table()
+    assert result.passed, result.table()
+
+
+def test_reversals_follow_the_map() -> None:
+    """P4 (Fig 8, L0 = -sqrt 2, Delta = sqrt 2 / 2): forward starts reverse within a stance (B.5); every stance's
+    reversal matches the map."""
+    result = run_validation("slotted-skate", {"l0": "-1.4142135623730951", "delta": "0.7071067811865476"}, "fast")
+    by_name = {c.name: c for c in result.checks}
+    assert result.extras["reversals_seen"] > 0
+    assert by_name["reversals"].error == 0
+
+
+def test_error_is_first_order_in_the_step() -> None:
+    errors = []
+    for dt in ("1e-3", "5e-4"):
+        result = run_validation("slotted-skate", {"timestep": dt, "solref_timeconst": str(2 * float(dt))}, "fast")
+        errors.append(next(c.error for c in result.checks if c.name == "sigma4_backward"))
+    assert 1.6 < errors[0] / errors[1] < 2.5, errors
+
+
+@pytest.mark.parametrize(
+    ("assignment", "needle"),
+    [("delta=0", "delta must be in (0, 1000]"), ("rho=-1", "rho must be in (0, 1000]"),
+     ("V0=0", "V0 must be non-zero"), ("peg=2", "unknown parameter 'peg'")],
+)
+def test_bad_input(assignment: str, needle: str, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["validate", "slotted-skate", "--set", assignment]) == 2
+    err = capsys.readouterr().err
+    assert needle in err and err.count("\n") == 1
