@@ -90,7 +90,7 @@ def test_json_file_written_whole(tmp_path: Path) -> None:
     target = tmp_path / "out" / "result.json"
     code = main(["validate", "--json", str(target)])
     payload = json.loads(target.read_text())
-    assert [r["scenario"] for r in payload] == ["rimless-wheel", "compass-biped"]
+    assert [r["scenario"] for r in payload] == ["rimless-wheel", "compass-biped", "slotted-skate"]
     assert code == (0 if all(r["passed"] for r in payload) else 1)
     assert [p.name for p in target.parent.iterdir()] == ["result.json"]
 
