@@ -85,6 +85,25 @@ def _warning_lines(datas: list[mujoco.MjData]) -> list[str]:
     return lines
 
 
+def _native_chunk(pool: mj_rollout.Rollout, model: mujoco.MjModel | list[mujoco.MjModel],
+                  datas: list[mujoco.MjData], current: np.ndarray, n: int, dt: float,
+                  report: RolloutReport) -> tuple[np.ndarray, np.ndarray]:
+    """Step ``current`` (B, nstate) ``n`` steps in MuJoCo; returns the raw states (B, n, nstate) and the
+    chunk with its first row prepended, where rows from a divergence on (NaN, or MuJoCo's silent reset,
+    seen as time not advancing by one step per step) are NaN and the trajectory is flagged in ``report``."""
+    start = time.perf_counter()
+    states, _ = pool.rollout(model, datas, current, nstep=n)
+    report.wall_s += time.perf_counter() - start
+    report.steps += current.shape[0] * n
+    full = np.concatenate([current[:, None, :], states], axis=1)
+    expected = full[:, :1, 0] + dt * np.arange(n + 1)[None, :]
+    bad = ~np.isfinite(full).all(axis=2) | (np.abs(full[:, :, 0] - expected) > 0.5 * dt)
+    bad = np.logical_or.accumulate(bad | report.diverged[:, None], axis=1)
+    report.diverged |= bad[:, -1]
+    full[bad] = np.nan
+    return states, full
+
+
 def rollout_batch(
     model: mujoco.MjModel,
     state0: np.ndarray,
@@ -111,16 +130,7 @@ def rollout_batch(
         done = 0
         while done < nstep:
             n = min(chunk_steps, nstep - done)
-            start = time.perf_counter()
-            states, _ = pool.rollout(model, datas, current, nstep=n)
-            report.wall_s += time.perf_counter() - start
-            report.steps += batch * n
-            full = np.concatenate([current[:, None, :], states], axis=1)
-            expected = full[:, :1, 0] + dt * np.arange(n + 1)[None, :]
-            bad = ~np.isfinite(full).all(axis=2) | (np.abs(full[:, :, 0] - expected) > 0.5 * dt)
-            bad = np.logical_or.accumulate(bad | report.diverged[:, None], axis=1)
-            report.diverged |= bad[:, -1]
-            full[bad] = np.nan
+            states, full = _native_chunk(pool, model, datas, current, n, dt, report)
             consume(Chunk(time=full[:, :, 0], qpos=full[:, :, 1 : 1 + nq], qvel=full[:, :, 1 + nq : 1 + nq + nv]))
             current = states[:, -1, :].copy()
             done += n
@@ -160,16 +170,7 @@ def event_rollout(
     dt = models[0].opt.timestep
     with captured_mujoco_log() as log, mj_rollout.Rollout(nthread=threads) as pool:
         while (kept < nstep).any():
-            start = time.perf_counter()
-            states, _ = pool.rollout(models, datas, current, nstep=chunk_steps)
-            report.wall_s += time.perf_counter() - start
-            report.steps += batch * chunk_steps
-            full = np.concatenate([current[:, None, :], states], axis=1)
-            expected = full[:, :1, 0] + dt * np.arange(chunk_steps + 1)[None, :]
-            bad = ~np.isfinite(full).all(axis=2) | (np.abs(full[:, :, 0] - expected) > 0.5 * dt)
-            bad = np.logical_or.accumulate(bad | report.diverged[:, None], axis=1)
-            report.diverged |= bad[:, -1]
-            full[bad] = np.nan
+            states, full = _native_chunk(pool, models, datas, current, chunk_steps, dt, report)
             done = kept >= nstep
             full[done, 1:] = np.nan  # finished trajectories idle; nothing is sampled from them
             chunk = Chunk(time=full[:, :, 0], qpos=full[:, :, 1 : 1 + nq], qvel=full[:, :, 1 + nq : 1 + nq + nv])

@@ -69,7 +69,8 @@ STEPS = 10  # heel strikes per trajectory
 PERTURBATION = 0.03
 ENABLE_AHEAD = 0.05  # swing-foot contact switches on once the foot is this far (x l) ahead of the stance foot
 ENABLE_CLEAR = 2e-3  # ... and this high (x l) above the slope
-CHUNK_SECONDS = 0.01
+CHUNK_SECONDS = 0.05  # native steps between controller looks: 5x fewer Python calls than 10 ms, same results
+FIT_DEGREE = 2  # the map is visibly curved over the +-0.03 spread: an affine fit left 7e-3 residuals (accurate)
 
 
 def biped(p: Values) -> theory.CompassBiped:
@@ -271,7 +272,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     extras: dict[str, object] = {}
     try:
         x, x_next = sample_pairs(sequences)
-        fit = fit_return_map(x, x_next, degree=2, seed=seed)
+        fit = fit_return_map(x, x_next, degree=FIT_DEGREE, seed=seed)
     except ValueError as err:
         out.append(checks.absolute("fixed_point", x_star, math.nan, tol["fixed_point"], "rad, rad/s",
                                    f"no return map: {err}"))
@@ -359,7 +360,7 @@ def reference_bench(p: Values, rtol: float) -> dict[str, float]:
             seq.append(theory.legs_parallel_state(bp, x)[0])
             x = theory.step(bp, x, rtol=rtol, atol=rtol).x_plus_next
         sequences.append(np.array(seq))
-    fit = fit_return_map(*sample_pairs(sequences), degree=1)
+    fit = fit_return_map(*sample_pairs(sequences), degree=FIT_DEGREE)
     wall = time.perf_counter() - start
     x_star = theory.fixed_point(bp)
     x_sim = theory.post_impact_from_parallel(bp, fit.fixed_point)
