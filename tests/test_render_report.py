@@ -66,10 +66,12 @@ def test_render_cli_writes_video_and_still(tmp_path: Path) -> None:
     assert bad.returncode == 2 and "size must be WIDTHxHEIGHT" in bad.stderr
 
 
-def test_biped_renders_with_its_contact_switching(tmp_path: Path) -> None:
-    out = _cli("render", "compass-biped", "-o", "biped.png", "--seconds", "0.3", "--size", "160x120", cwd=tmp_path)
+@pytest.mark.parametrize("scenario", ["compass-biped", "slotted-skate"])
+def test_controlled_scenarios_render(scenario: str, tmp_path: Path) -> None:
+    """Scenarios whose controller switches contacts or pegs render through their own event-driven clip."""
+    out = _cli("render", scenario, "-o", "still.png", "--seconds", "0.3", "--size", "160x120", cwd=tmp_path)
     assert out.returncode == 0, out.stderr
-    assert (tmp_path / "biped.png").stat().st_size > 1000
+    assert (tmp_path / "still.png").stat().st_size > 1000
 
 
 def test_report_table_matches_json(tmp_path: Path) -> None:

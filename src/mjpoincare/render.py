@@ -71,7 +71,8 @@ def render_frames(name: str, assignments: Mapping[str, str], preset: str | None,
     frame_every = max(1, round(1.0 / (fps * dt)))
     nframes = max(1, round(seconds * fps))
     start = time.perf_counter()
-    states = scenario.clip(params, settings, model, nframes * frame_every)
+    clip = scenario.clip(params, settings, model, nframes * frame_every)
+    states, mocap = clip if isinstance(clip, tuple) else (clip, None)
     sim_wall = time.perf_counter() - start
     tilt = float(params[scenario.frame_tilt]) if scenario.frame_tilt else 0.0
     width, height = size
@@ -83,7 +84,7 @@ def render_frames(name: str, assignments: Mapping[str, str], preset: str | None,
     camera = mujoco.MjvCamera()
     camera.type = mujoco.mjtCamera.mjCAMERA_TRACKING
     camera.trackbodyid = model.body(scenario.track_body).id
-    camera.distance, camera.elevation, camera.azimuth = scenario.camera_distance, 0.0, 90.0
+    camera.distance, camera.elevation, camera.azimuth = scenario.camera_distance, scenario.camera_elevation, 90.0
     option = mujoco.MjvOption()
     option.flags[mujoco.mjtVisFlag.mjVIS_CONTACTPOINT] = True  # the active contacts, drawn as red discs
     model.vis.scale.contactwidth, model.vis.scale.contactheight = 0.06, 0.02
@@ -95,7 +96,10 @@ def render_frames(name: str, assignments: Mapping[str, str], preset: str | None,
         renderer.scene.flags[mujoco.mjtRndFlag.mjRND_SHADOW] = False
         renderer.scene.flags[mujoco.mjtRndFlag.mjRND_REFLECTION] = False
         for i in range(nframes):
-            mujoco.mj_setState(model, data, states[(i + 1) * frame_every - 1], mujoco.mjtState.mjSTATE_FULLPHYSICS)
+            row = (i + 1) * frame_every - 1
+            mujoco.mj_setState(model, data, states[row], mujoco.mjtState.mjSTATE_FULLPHYSICS)
+            if mocap is not None:
+                data.mocap_pos[:] = mocap[row]
             mujoco.mj_forward(model, data)
             renderer.update_scene(data, camera, option)
             image = renderer.render()

@@ -47,11 +47,14 @@ class Scenario:
             ``evaluate`` runs, for timing ``mujoco.rollout`` alone on the same work.
         reference_bench: ``(params, rtol) -> dict`` time and error of the exact solve_ivp reference
             run at tolerance ``rtol`` through the same fit (keys ``rtol``, ``wall_s``, ``<check>_error``).
-        clip: ``(params, settings, model, nstep) -> (nstep, nstate)`` full-physics states of a clip to render
-            (simulated with whatever controller the scenario needs).
+        clip: ``(params, settings, model, nstep) -> states (nstep, nstate)`` full-physics states of a clip to
+            render (simulated with whatever controller the scenario needs), or ``(states, mocap_pos)`` with
+            the mocap positions (nstep, nmocap, 3) of each row.
         track_body: body the render camera follows.
         frame_tilt: parameter whose value (rad) rotates rendered frames (a slope made by tilted gravity).
         camera_distance: render camera distance, m.
+        camera_elevation: render camera elevation, degrees (0: side view of a sagittal-plane model; -89: from
+            above, for a system moving in the ground plane).
         default_preset: preset used when none is named.
     """
 
@@ -66,10 +69,11 @@ class Scenario:
     accuracy_checks: tuple[str, ...]
     probe: Callable[[Values, Values], tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]]
     reference_bench: Callable[[Values, float], dict[str, float]]
-    clip: Callable[[Values, Values, mujoco.MjModel, int], np.ndarray]
+    clip: Callable[[Values, Values, mujoco.MjModel, int], np.ndarray | tuple[np.ndarray, np.ndarray]]
     track_body: str
     frame_tilt: str | None = None
     camera_distance: float = 3.0
+    camera_elevation: float = 0.0
     default_preset: str = "fast"
 
     def preset(self, name: str | None) -> tuple[str, Values]:

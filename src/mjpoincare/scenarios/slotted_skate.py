@@ -116,6 +116,7 @@ class PegController:
         self.entry = np.array(entry, float)  # slot end (s value) where each trajectory's current peg went in
         self.start_heading = np.full(len(entry), float(p["heading0"]))  # heading when the current peg went in
         self.start_time = np.zeros(len(entry))
+        self.peg = np.zeros((len(entry), 2))  # the current peg's position in the plane (the chart's origin)
         self.samples: list[list[tuple[float, ...]]] = [[] for _ in entry]
         self.data: mujoco.MjData | None = None
 
@@ -143,6 +144,10 @@ class PegController:
             self.samples[b].append((self.entry[b], energy, self.start_heading[b], momentum, self.start_time[b]))
             overrides[int(b)] = self._insert_peg(state, end)
             self.entry[b], self.start_heading[b], self.start_time[b] = overrides[int(b)][2], state[1], state[0]
+            heading, s_old, n_old, s_new = state[1], state[2], state[3], overrides[int(b)][2]
+            along, normal = np.array([math.cos(heading), math.sin(heading)]), np.array([-math.sin(heading),
+                                                                                      math.cos(heading)])
+            self.peg[b] = self.peg[b] + (s_old - s_new) * along + n_old * normal
             restart[b] = k - 1 if k > 1 else 1
         return restart, overrides
 
@@ -289,21 +294,26 @@ def reference_bench(p: Values, rtol: float) -> dict[str, float]:
     return {"rtol": rtol, "wall_s": time.perf_counter() - start, "sigma4_forward_error": worst}
 
 
-def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
-    """States of a clip of the first trajectory (peg chart coordinates)."""
+def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> tuple[np.ndarray, np.ndarray]:
+    """States of a clip of the first trajectory (peg-chart coordinates) and the peg's position for each row,
+    to be put in ``mocap_pos`` so that the rendered skate moves across the plane."""
     V, Om = initial_conditions(p)
     controller = PegController(p, np.array([float(p["l0"]) if V[0] > 0 else float(p["l0"]) + float(p["delta"])]))
     rows: list[np.ndarray] = []
+    pegs: list[np.ndarray] = []
 
     def record(chunk: Chunk, models: list[mujoco.MjModel]) -> tuple[np.ndarray, dict[int, np.ndarray]]:
+        peg = np.array([*controller.peg[0], 0.0])
         restart, overrides = controller(chunk, models)
-        rows.append(np.concatenate([chunk.time[0, 1 : restart[0] + 1, None], chunk.qpos[0, 1 : restart[0] + 1],
-                                    chunk.qvel[0, 1 : restart[0] + 1]], axis=1))
+        k = int(restart[0])
+        rows.append(np.concatenate([chunk.time[0, 1 : k + 1, None], chunk.qpos[0, 1 : k + 1],
+                                    chunk.qvel[0, 1 : k + 1]], axis=1))
+        pegs.append(np.repeat(peg[None, None, :], k, axis=0))
         return restart, overrides
 
     event_rollout([copy.copy(model)], start_states(model, p, V[:1], Om[:1]), nstep, record, threads=1,
                   chunk_steps=200)
-    return np.concatenate(rows)[:nstep]
+    return np.concatenate(rows)[:nstep], np.concatenate(pegs)[:nstep]
 
 
 SLOTTED_SKATE = Scenario(
@@ -322,4 +332,5 @@ SLOTTED_SKATE = Scenario(
     track_body="skate",
     frame_tilt=None,
     camera_distance=4.0,
+    camera_elevation=-89.0,
 )
