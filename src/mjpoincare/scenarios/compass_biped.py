@@ -72,6 +72,7 @@ STARTS = 12
 PERTURBATION = 0.015
 ENABLE_AHEAD = 0.05  # swing-foot contact switches on once the foot is this far (x l) ahead of the stance foot
 ENABLE_CLEAR = 2e-3  # ... and this high (x l) above the slope
+RELEASE_WINDOW = 0.02  # s: the released trailing foot is followed this long after heel strike
 CHUNK_SECONDS = 0.05  # native steps between controller looks: 5x fewer Python calls than 10 ms, same results
 FIT_DEGREE = 2  # the map is visibly curved over the +-0.03 spread: an affine fit left 7e-3 residuals (accurate)
 
@@ -160,6 +161,11 @@ class GaitController:
         self.early_contacts = np.zeros(batch, int)  # swing-foot touchdowns behind the stance foot (must be 0)
         self._scuffed = np.zeros(batch, bool)
         self.record: list[np.ndarray] | None = None  # set to [] to keep every kept row (render clips)
+        # the released trailing foot: (release time, height then, lowest height since), and per strike the depth it
+        # went below its release height within RELEASE_WINDOW and its upward speed at the end of the window
+        self._release: list[tuple[float, float, float] | None] = [None] * batch
+        self.release_depth: list[float] = []
+        self.release_speed: list[float] = []
 
     def configure(self, models: list[mujoco.MjModel]) -> None:
         """Initial contacts: leg 0 stands, leg 1 swings with its contact off."""
@@ -184,6 +190,8 @@ class GaitController:
             x_st, _ = self._feet(chunk, b, st)
             x_sw, h_sw = self._feet(chunk, b, sw)
             length = self.bp.l
+            if self._release[b] is not None:
+                self._watch_release(chunk, b, sw, h_sw)
             strike = False
             if not self.swing_enabled[b]:
                 self._scuffed[b] |= bool(np.nanmin(h_sw[1:]) < 0.0)
@@ -204,6 +212,8 @@ class GaitController:
                     self.early_contacts[b] += int(x_sw[k] <= x_st[k])
                     models[b].geom_contype[self.feet[st]] = 0  # release the trailing foot before impact
                     self.strikes[b].append((float(chunk.time[b, k]), float(x_sw[k])))
+                    h_st = self._feet(chunk, b, st)[1]
+                    self._release[b] = (float(chunk.time[b, k]), float(h_st[k]), float(h_st[k]))
             self._sample(chunk, b, st, sw, int(restart[b]))
             if self.record is not None:
                 self.record.append(np.concatenate([chunk.time[b, 1 : restart[b] + 1, None],
@@ -212,6 +222,21 @@ class GaitController:
             if strike:
                 self.stance[b], self.swing_enabled[b] = sw, False
         return restart
+
+    def _watch_release(self, chunk: Chunk, b: int, leg: int, height: np.ndarray) -> None:
+        """Follow the released trailing foot for RELEASE_WINDOW: it must rise (no impulse was needed there)."""
+        t_release, h_release, lowest = self._release[b]  # type: ignore[misc]
+        inside = chunk.time[b] <= t_release + RELEASE_WINDOW
+        lowest = min(lowest, float(np.nanmin(np.where(inside, height, np.inf))))
+        after = np.nonzero(~inside & np.isfinite(chunk.time[b]))[0]
+        if after.size == 0:
+            self._release[b] = (t_release, h_release, lowest)
+            return
+        i = int(after[0])
+        q, qd = chunk.qpos[b, i, 2 + leg], chunk.qvel[b, i, 2 + leg]
+        self.release_speed.append(float(chunk.qvel[b, i, 1] + (self.bp.l - self.radius) * math.sin(q) * qd))
+        self.release_depth.append(max(0.0, h_release - lowest))
+        self._release[b] = None
 
     def _sample(self, chunk: Chunk, b: int, st: int, sw: int, last: int) -> None:
         """Legs-parallel crossings (theta_st - theta_sw rising through 0, 003 eq 4.20) in rows 0..last."""
@@ -301,8 +326,15 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     out.append(checks.Check("swing_foot_contacts", 0.0, float(controller.early_contacts.sum()),
                             float(controller.early_contacts.sum()), 0.0, "count", "",
                             "touchdowns of the swing foot behind the stance foot (scuffing): the model forbids them"))
+    depth = max(controller.release_depth, default=math.nan)
+    out.append(checks.Check("trailing_foot_release", 0.0, depth, depth, 1e-6, "max-abs", "m",
+                            "deepest the released trailing foot went below its height at release within 20 ms of "
+                            "heel strike: > 0 would mean the contact the model ignores was still pushing"))
     extras["fit"] = fit.to_dict()
     extras["scuffs_avoided"] = int(controller.scuffs.sum())
+    extras["trailing_foot"] = {"analytic_liftoff_velocity": theory.step(bp, x_star).liftoff_velocity,
+                               "measured_vertical_speed_20ms": float(np.mean(controller.release_speed))
+                               if controller.release_speed else math.nan, "releases": len(controller.release_depth)}
     extras["analytic"] = {"fixed_point": x_star, "eigenvalues": lam, "legs_parallel_fixed_point":
                           theory.legs_parallel_state(bp, x_star)[0], "step": _step_summary(bp, x_star)}
     grid = np.linspace(float(x[:, 0].min()), float(x[:, 0].max()), 2)
