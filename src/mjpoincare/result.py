@@ -72,8 +72,12 @@ class Result:
 
 
 def _fmt(value: Any) -> str:
+    if hasattr(value, "tolist") and not isinstance(value, float | complex):
+        value = value.tolist()
+    if isinstance(value, list):
+        return "[" + ", ".join(_fmt(v) for v in value) + "]"
     if isinstance(value, complex):
-        return f"{value.real:.6g}{value.imag:+.3g}j" if value.imag else f"{value.real:.6g}"
+        return f"{value.real:.5g}{value.imag:+.5g}j" if value.imag else f"{value.real:.6g}"
     if isinstance(value, float):
         return f"{value:.6g}"
     return str(value)
