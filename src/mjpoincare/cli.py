@@ -57,8 +57,13 @@ def _cmd_bench(args: argparse.Namespace) -> int:
 
 
 def _cmd_sweep(args: argparse.Namespace) -> int:
-    from mjpoincare.sweep import parse_values, run_sweep
+    from mjpoincare.sweep import parse_values, run_regions, run_sweep
 
+    if args.grid:
+        return run_regions(args.scenario, args.grid, parse_assignments(args.set), args.preset, args.json,
+                           args.output)
+    if not (args.param and args.values):
+        raise ParameterError("sweep needs --param and --values (or --grid)")
     return run_sweep(args.scenario, args.param, parse_values(args.values), parse_assignments(args.set), args.preset,
                      args.json, args.locate)
 
@@ -109,8 +114,11 @@ def build_parser() -> argparse.ArgumentParser:
 
     sweep = sub.add_parser("sweep", help="validate over a list of values of one parameter")
     sweep.add_argument("scenario", help="scenario name")
-    sweep.add_argument("--param", required=True, help="parameter or setting to sweep, e.g. slope")
-    sweep.add_argument("--values", required=True, help="v1,v2,... or START:STOP:COUNT")
+    sweep.add_argument("--param", help="parameter or setting to sweep, e.g. slope")
+    sweep.add_argument("--values", help="v1,v2,... or START:STOP:COUNT")
+    sweep.add_argument("--grid", help="slotted-skate stability regions: x=START:STOP:N,y=START:STOP:N with "
+                       "x = l0/delta and y = 1/delta^2 (the paper's Fig. 2 axes)")
+    sweep.add_argument("-o", "--output", default="renders/regions-{scenario}.png", help="PNG of the region map")
     sweep.add_argument("--set", action="append", default=[], metavar="NAME=VALUE")
     sweep.add_argument("--preset", default=None)
     sweep.add_argument("--json", metavar="PATH|-", help="write the sweep table as JSON")
