@@ -18,6 +18,8 @@ def test_fast_validation_passes() -> None:
     result = run_validation("slotted-skate", {}, "fast")
     assert result.passed, result.table()
     assert result.extras["impacts"] > 60
+    collisions = next(c for c in result.checks if c.name == "collisions_before_reversal")
+    assert collisions.analytic == [15, 11, 8]  # P1 backward starts (B.6; the note: 11 at Omega0 = 0.1)
 
 
 @pytest.mark.parametrize(("l0", "delta"), [("1", "0.3333333333333333"), ("-1", "0.3333333333333333")])

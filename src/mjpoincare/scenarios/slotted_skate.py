@@ -59,7 +59,7 @@ WHY = {
     "fast": "semi-implicit Euler at 0.5 ms with a dead-beat peg constraint: first order in the step (measured on "
             "the default P1 set: 6e-4 on sigma4 in the unstable backward direction)",
 }
-IMPACTS = 10
+IMPACTS = 14  # enough for P1's backward starts to reach their reversal (B.6: 11 impacts at Omega0 = 0.1)
 SCALES = (0.5, 1.0, 1.5)  # the batch: Omega0 x these, in the given direction and mirrored
 
 
@@ -267,10 +267,37 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
                             "heading at each slot end against the map's theta+ (B.1 quadrature)"))
     out.append(checks.Check("reversals", 0.0, float(reversal_mismatch), float(reversal_mismatch), 0.0, "count", "",
                             f"stances whose reversal (B.5) differs from the map ({reversals} reversals seen)"))
+    predicted_n, observed_n = _collisions_before_reversal(sk, controller.samples, e_unit, h_unit, lo)
+    if predicted_n:
+        wrong = sum(int(a != b) for a, b in zip(predicted_n, observed_n, strict=True))
+        out.append(checks.Check("collisions_before_reversal", predicted_n, observed_n, float(wrong), 0.0, "count", "",
+                                "impacts before the first reversing stance (B.6-B.7), per start whose reversal "
+                                "falls inside the simulated stances"))
     extras["max_stance_time_error"] = worst["duration"]
     extras["reversals_seen"] = reversals
     extras["impacts"] = sum(len(x) for x in controller.samples)
     return Evaluation(out, report, extras)
+
+
+def _collisions_before_reversal(sk: theory.SlottedSkate, runs: list[list[tuple[float, ...]]], e_unit: float,
+                                h_unit: float, lo: float) -> tuple[list[int], list[int]]:
+    """Per run: (B.6) predicted number of non-reversing impacts before the first reversal, and the number seen.
+
+    Only where (B.6) applies (L0 > 0 or L0 < -Delta), a reversal is predicted, and it falls inside the run."""
+    if -sk.Delta <= sk.L0 <= 0.0:
+        return [], []
+    predicted, observed = [], []
+    for samples in runs:
+        if len(samples) < 2 or abs(samples[0][3]) < 1e-12 * h_unit:
+            continue
+        d0, e0, _, h0, _ = samples[0]
+        n = theory.collisions_before_reversal(sk, 0.0 if d0 == lo else sk.Delta, e0 / e_unit, h0 / h_unit)
+        if n < 0 or n + 1 >= len(samples):
+            continue
+        flips = [k for k, (a, b) in enumerate(itertools.pairwise(samples)) if b[0] != a[0]]
+        predicted.append(n)
+        observed.append(flips[0] if flips else len(samples))
+    return predicted, observed
 
 
 def probe(p: Values, s: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
