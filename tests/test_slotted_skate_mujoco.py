@@ -77,3 +77,14 @@ def test_stability_region_map_matches_the_analytic_regions(tmp_path: Path) -> No
 def test_grid_input_is_checked(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["sweep", "slotted-skate", "--grid", "x=0:1:3"]) == 2
     assert "--grid expects x=START:STOP:N,y=START:STOP:N" in capsys.readouterr().err
+
+
+def test_final_state_and_smooth_limit() -> None:
+    """P4 reverses once and ends at V_f = -0.88307 (B.12); a small slot approaches the sleigh's rate -1/2."""
+    result = run_validation("slotted-skate", {"l0": "-1.4142135623730951", "delta": "0.7071067811865476"}, "fast")
+    by_name = {c.name: c for c in result.checks}
+    assert by_name["final_speed"].analytic == pytest.approx(-0.8830719, abs=1e-6)
+    assert by_name["final_speed"].passed and by_name["final_reversals"].simulated == 1
+    small = run_validation("slotted-skate", {"delta": "0.02"}, "fast").extras["smooth_limit"]
+    assert small["discrete_rate_simulated"] == pytest.approx(small["discrete_rate_exact"], abs=1e-4)
+    assert abs(small["discrete_rate_exact"] - small["sleigh_rate"]) < 0.01

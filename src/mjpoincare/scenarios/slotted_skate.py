@@ -50,8 +50,8 @@ PRESETS: dict[str, dict[str, float | int | str]] = {
                  "solimp_dmax": 0.9999, "solimp_width": 1e-3, "iterations": 200, "tolerance": 1e-14},
 }
 TOLERANCES: dict[str, dict[str, float]] = {
-    "accurate": {"sigma4": 1e-6, "energy_loss": 1e-5, "heading": 1e-4},
-    "fast": {"sigma4": 1e-3, "energy_loss": 1e-3, "heading": 1e-2},
+    "accurate": {"sigma4": 1e-6, "energy_loss": 1e-5, "heading": 1e-4, "final_speed": 1e-4},
+    "fast": {"sigma4": 1e-3, "energy_loss": 1e-3, "heading": 1e-2, "final_speed": 1e-2},
 }
 WHY = {
     "accurate": "RK4 at 0.1 ms with the stance ended by a fractional step: the issue's targets (1e-6 on sigma4, "
@@ -242,7 +242,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
                 ratios[forward].append(h1 / h0)
                 pairs[forward].append((h0 / h_unit, h1 / h_unit))
     out: list[checks.Check] = []
-    extras: dict[str, object] = {"analytic": {"stability": theory.stability(sk)}}
+    extras: dict[str, object] = {}
     for forward, label in ((True, "forward"), (False, "backward")):
         ref = theory.sigma4(sk, forward)
         sim = float(np.median(ratios[forward])) if ratios[forward] else math.nan
@@ -273,6 +273,14 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
         out.append(checks.Check("collisions_before_reversal", predicted_n, observed_n, float(wrong), 0.0, "count", "",
                                 "impacts before the first reversing stance (B.6-B.7), per start whose reversal "
                                 "falls inside the simulated stances"))
+    out.extend(_final_state_checks(p, s, sk, tol["final_speed"]))
+    if "fit_forward" in extras:  # the generic sweep reads "fit" and analytic "eigenvalues": the forward map
+        extras["fit"] = extras["fit_forward"]
+        lam = float(extras["fit_forward"]["eigenvalues"][0][0])  # type: ignore[index]
+        extras["smooth_limit"] = {  # (V*/Delta) ln sigma4 with V* = 1, against the smooth sleigh (2.1, 4.1)
+            "discrete_rate_simulated": math.log(lam) / sk.Delta if lam > 0 else math.nan,
+            "discrete_rate_exact": theory.smooth_limit_rate(sk), "sleigh_rate": theory.sleigh_rate(sk.L0)}
+    extras["analytic"] = {"stability": theory.stability(sk), "eigenvalues": [theory.sigma4(sk, True)]}
     extras["max_stance_time_error"] = worst["duration"]
     extras["reversals_seen"] = reversals
     extras["impacts"] = sum(len(x) for x in controller.samples)
@@ -298,6 +306,44 @@ def _collisions_before_reversal(sk: theory.SlottedSkate, runs: list[list[tuple[f
         predicted.append(n)
         observed.append(flips[0] if flips else len(samples))
     return predicted, observed
+
+
+FINAL_DECAY = 1e-6  # the final state is read once |H| has decayed to this fraction of its initial value
+FINAL_IMPACTS_MAX = 400
+
+
+def _final_state_checks(p: Values, s: Values, sk: theory.SlottedSkate, tolerance: float) -> list[checks.Check]:
+    """The user's start run until its rotation has died out: final slot speed (B.10/B.12) and reversal count."""
+    rho, v0 = float(p["rho"]), abs(float(p["V0"]))
+    V, Om = float(p["V0"]) / v0, float(p["Omega0"]) * rho / v0
+    q = theory.initial_state(sk, V, Om, 0.0)
+    h0, n, duration, reversals = abs(q.H_plus), 0, 0.0, 0
+    while abs(q.H_plus) > FINAL_DECAY * h0 and n < FINAL_IMPACTS_MAX:
+        q = theory.return_map(sk, q.D_plus, q.E_plus, q.theta_plus, q.H_plus)
+        n, duration, reversals = n + 1, duration + q.duration, reversals + int(q.reversed)
+    if h0 == 0.0 or abs(q.H_plus) > FINAL_DECAY * h0:
+        return []  # no rotation to decay, or it does not decay (unstable, spinning): no final state to check
+    final = theory.final_state(sk, V, Om)
+    model = build(p, s)
+    start = start_states(model, p, np.array([float(p["V0"])]), np.array([float(p["Omega0"])]))
+    entry = float(p["l0"]) if float(p["V0"]) > 0 else float(p["l0"]) + float(p["delta"])
+    controller = PegController(p, np.array([entry]))
+    nstep = math.ceil((1.1 * duration + 2.0 * q.duration) * rho / v0 / model.opt.timestep)
+    event_rollout([model], start, nstep, controller, threads=1, chunk_steps=max(10, min(2000, nstep // 50)))
+    samples = controller.samples[0]
+    e_unit = float(p["mass"]) * v0 * v0
+    if len(samples) < n + 1:
+        return [checks.relative("final_speed", final.V_f, math.nan, tolerance, "v0", "the run ended early")]
+    d_last, e_last = samples[n][0], samples[n][1] / e_unit
+    v_last = math.copysign(math.sqrt(2.0 * e_last), 1.0 if d_last == float(p["l0"]) else -1.0)
+    seen = sum(int(b[0] != a[0]) for a, b in itertools.pairwise(samples[: n + 1]))
+    return [
+        checks.absolute("final_speed", final.V_f, v_last, tolerance, "v0",
+                        f"slot speed once the rotation has decayed by {FINAL_DECAY:g} ({n} impacts), against "
+                        "(B.10)/(B.12) by the map iterated to the end"),
+        checks.Check("final_reversals", reversals, seen, float(abs(seen - reversals)), 0.0, "count", "",
+                     f"reversals over those {n} impacts: the map's count against the simulation's"),
+    ]
 
 
 def probe(p: Values, s: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
