@@ -260,21 +260,20 @@ def _liftoff_velocity(bp: CompassBiped, x_plus: NDArray[np.float64]) -> float:
 
 def _swing(bp: CompassBiped, x0: ArrayLike, rtol: float, atol: float, dense: bool = False) -> OptimizeResult:
     """Integrate the passive swing (003 eq 4.19) from x0 to the heel strike (003 eq 4.6); RuntimeError on a fall."""
+    sol = _integrate_swing(bp, x0, (_heel_strike(bp),), rtol, atol, dense=dense)
+    if sol.status != 1:
+        raise RuntimeError(f"no heel strike within {sol.t[-1]:.3g} s from x = {np.asarray(x0)!r} (the biped falls)")
+    return sol
+
+
+def _integrate_swing(bp: CompassBiped, x0: ArrayLike, events: tuple[Callable[..., float], ...], rtol: float,
+                     atol: float, *, dense: bool = False, backward: bool = False) -> OptimizeResult:
+    """The passive swing (003 eq 4.19) from x0 with DOP853 until the first terminal event, for at most
+    MAX_SWING sqrt(l/g) seconds (backward in time if ``backward``)."""
     validate(bp)
     t_max = MAX_SWING * math.sqrt(bp.l / bp.gravity)
-    sol = solve_ivp(
-        _rhs(bp),
-        (0.0, t_max),
-        np.asarray(x0, dtype=float),
-        method="DOP853",
-        rtol=rtol,
-        atol=atol,
-        events=_heel_strike(bp),
-        dense_output=dense,
-    )
-    if sol.status != 1:
-        raise RuntimeError(f"no heel strike within {t_max:.3g} s from x = {np.asarray(x0)!r} (the biped falls)")
-    return sol
+    return solve_ivp(_rhs(bp), (0.0, -t_max if backward else t_max), np.asarray(x0, dtype=float), method="DOP853",
+                     rtol=rtol, atol=atol, events=events, dense_output=dense)
 
 
 def step(bp: CompassBiped, x_plus: ArrayLike, *, rtol: float = RTOL, atol: float = ATOL) -> StepResult:
@@ -448,17 +447,7 @@ def legs_parallel_state(bp: CompassBiped, x_plus: ArrayLike) -> tuple[NDArray[np
     swing (003 eq 4.19) from a post-impact state to the legs-parallel crossing. Returns
     (y, t) with y = (theta, dtheta_st, dtheta_sw) and t the time after the impact; RuntimeError if a heel strike
     or a fall comes first."""
-    validate(bp)
-    t_max = MAX_SWING * math.sqrt(bp.l / bp.gravity)
-    sol = solve_ivp(
-        _rhs(bp),
-        (0.0, t_max),
-        np.asarray(x_plus, dtype=float),
-        method="DOP853",
-        rtol=RTOL,
-        atol=ATOL,
-        events=(_legs_parallel, _heel_strike(bp)),
-    )
+    sol = _integrate_swing(bp, x_plus, (_legs_parallel, _heel_strike(bp)), RTOL, ATOL)
     if sol.t_events[0].size == 0:
         raise RuntimeError(f"the legs do not pass parallel from x = {np.asarray(x_plus)!r}")
     y = sol.y_events[0][0]
@@ -491,7 +480,6 @@ def post_impact_from_parallel(bp: CompassBiped, y: ArrayLike) -> NDArray[np.floa
     swing (003 eq 4.19, integrated backward in time) to the post-impact section theta_st + theta_sw = 2 gamma
     (003 eq 4.6). The inverse of :func:`legs_parallel_state`: it maps a simulator's mid-swing sample to the
     post-impact state it came from, under the exact swing dynamics."""
-    validate(bp)
     th, om_st, om_sw = np.asarray(y, dtype=float)
 
     def after_impact(_t: float, x: NDArray[np.float64]) -> float:
@@ -501,9 +489,7 @@ def post_impact_from_parallel(bp: CompassBiped, y: ArrayLike) -> NDArray[np.floa
     # backward in time the sum first rises through 2 gamma where the swing foot scuffs (h = 0 mid-swing), then
     # falls to 2 gamma at the heel strike that began the swing: only the falling crossing counts
     after_impact.direction = -1.0  # type: ignore[attr-defined]
-    t_max = MAX_SWING * math.sqrt(bp.l / bp.gravity)
-    sol = solve_ivp(_rhs(bp), (0.0, -t_max), [th, th, om_st, om_sw], method="DOP853", rtol=RTOL, atol=ATOL,
-                    events=after_impact)
+    sol = _integrate_swing(bp, [th, th, om_st, om_sw], (after_impact,), RTOL, ATOL, backward=True)
     if sol.t_events[0].size == 0:
         raise RuntimeError(f"no post-impact state before the legs-parallel state {np.asarray(y)!r}")
     return np.asarray(sol.y_events[0][0], dtype=float)
