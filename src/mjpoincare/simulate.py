@@ -187,3 +187,35 @@ def event_rollout(
     report.final_state = current
     report.warnings = _warning_lines(datas) + log
     return report
+
+
+class KeptRows:
+    """Wraps an :func:`event_rollout` controller and keeps trajectory 0's kept rows (a render clip).
+
+    ``tag`` (optional) is read before the controller acts on each chunk; its value is kept beside each row
+    of that chunk (e.g. a mocap position that the controller moves at the event)."""
+
+    def __init__(self, on_chunk: Callable[[Chunk, list[mujoco.MjModel]], np.ndarray | tuple[np.ndarray, dict]],
+                 tag: Callable[[], np.ndarray] | None = None) -> None:
+        self.on_chunk, self.tag = on_chunk, tag
+        self.rows: list[np.ndarray] = []
+        self.tags: list[np.ndarray] = []
+
+    def __call__(self, chunk: Chunk, models: list[mujoco.MjModel]) -> np.ndarray | tuple[np.ndarray, dict]:
+        tag = self.tag() if self.tag is not None else None
+        answer = self.on_chunk(chunk, models)
+        restart = answer[0] if isinstance(answer, tuple) else answer
+        k = max(1, int(restart[0]))
+        self.rows.append(np.concatenate([chunk.time[0, 1 : k + 1, None], chunk.qpos[0, 1 : k + 1],
+                                         chunk.qvel[0, 1 : k + 1]], axis=1))
+        if tag is not None:
+            self.tags.append(np.repeat(np.asarray(tag)[None], k, axis=0))
+        return answer
+
+    def states(self, nstep: int) -> np.ndarray:
+        """The first ``nstep`` kept full-physics states (time, qpos, qvel) of trajectory 0."""
+        return np.concatenate(self.rows)[:nstep]
+
+    def tagged(self, nstep: int) -> np.ndarray:
+        """The tag beside each of the first ``nstep`` kept states."""
+        return np.concatenate(self.tags)[:nstep]

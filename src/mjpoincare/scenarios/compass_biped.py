@@ -33,7 +33,7 @@ from mjpoincare import settings as sim_settings
 from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios.base import Evaluation, Scenario, Values
-from mjpoincare.simulate import Chunk, event_rollout, initial_states
+from mjpoincare.simulate import Chunk, KeptRows, event_rollout, initial_states
 
 PARAMS: tuple[Param, ...] = (
     Param("m_h", 10.0, "hip mass, kg", float, 0.0, 1e6, low_open=True),
@@ -160,7 +160,6 @@ class GaitController:
         self.scuffs = np.zeros(batch, int)  # swings in which the (switched-off) swing foot dipped below the slope
         self.early_contacts = np.zeros(batch, int)  # swing-foot touchdowns behind the stance foot (must be 0)
         self._scuffed = np.zeros(batch, bool)
-        self.record: list[np.ndarray] | None = None  # set to [] to keep every kept row (render clips)
         # the released trailing foot: (release time, height then, lowest height since), and per strike the depth it
         # went below its release height within RELEASE_WINDOW and its upward speed at the end of the window
         self._release: list[tuple[float, float, float] | None] = [None] * batch
@@ -215,10 +214,6 @@ class GaitController:
                     h_st = self._feet(chunk, b, st)[1]
                     self._release[b] = (float(chunk.time[b, k]), float(h_st[k]), float(h_st[k]))
             self._sample(chunk, b, st, sw, int(restart[b]))
-            if self.record is not None:
-                self.record.append(np.concatenate([chunk.time[b, 1 : restart[b] + 1, None],
-                                                   chunk.qpos[b, 1 : restart[b] + 1],
-                                                   chunk.qvel[b, 1 : restart[b] + 1]], axis=1))
             if strike:
                 self.stance[b], self.swing_enabled[b] = sw, False
         return restart
@@ -410,12 +405,11 @@ def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
     bp = biped(p)
     start = post_impact_states(model, bp, theory.fixed_point(bp)[None, :], float(s["foot_radius"]))
     controller = GaitController(model, bp, 1, float(s["foot_radius"]))
-    controller.record = []
     models = [copy.copy(model)]
     controller.configure(models)
-    event_rollout(models, start, nstep, controller, threads=1,
-                  chunk_steps=max(10, round(CHUNK_SECONDS / model.opt.timestep)))
-    return np.concatenate(controller.record)[:nstep]
+    kept = KeptRows(controller)
+    event_rollout(models, start, nstep, kept, threads=1, chunk_steps=max(10, round(CHUNK_SECONDS / model.opt.timestep)))
+    return kept.states(nstep)
 
 
 COMPASS_BIPED = Scenario(

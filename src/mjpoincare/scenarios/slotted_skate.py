@@ -30,7 +30,7 @@ from mjpoincare import settings as sim_settings
 from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios.base import Evaluation, Scenario, Values
-from mjpoincare.simulate import Chunk, event_rollout, initial_states
+from mjpoincare.simulate import Chunk, KeptRows, event_rollout, initial_states
 
 PARAMS: tuple[Param, ...] = (
     Param("l0", 1.0, "signed distance from the slot's front end forward to the mass centre, m", float, -1e3, 1e3),
@@ -381,21 +381,10 @@ def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> tuple[np.nd
     to be put in ``mocap_pos`` so that the rendered skate moves across the plane."""
     V, Om = initial_conditions(p)
     controller = PegController(p, np.array([float(p["l0"]) if V[0] > 0 else float(p["l0"]) + float(p["delta"])]))
-    rows: list[np.ndarray] = []
-    pegs: list[np.ndarray] = []
-
-    def record(chunk: Chunk, models: list[mujoco.MjModel]) -> tuple[np.ndarray, dict[int, np.ndarray]]:
-        peg = np.array([*controller.peg[0], 0.0])
-        restart, overrides = controller(chunk, models)
-        k = int(restart[0])
-        rows.append(np.concatenate([chunk.time[0, 1 : k + 1, None], chunk.qpos[0, 1 : k + 1],
-                                    chunk.qvel[0, 1 : k + 1]], axis=1))
-        pegs.append(np.repeat(peg[None, None, :], k, axis=0))
-        return restart, overrides
-
-    event_rollout([copy.copy(model)], start_states(model, p, V[:1], Om[:1]), nstep, record, threads=1,
+    kept = KeptRows(controller, tag=lambda: np.array([*controller.peg[0], 0.0]))
+    event_rollout([copy.copy(model)], start_states(model, p, V[:1], Om[:1]), nstep, kept, threads=1,
                   chunk_steps=200)
-    return np.concatenate(rows)[:nstep], np.concatenate(pegs)[:nstep]
+    return kept.states(nstep), kept.tagged(nstep)[:, None, :]
 
 
 SLOTTED_SKATE = Scenario(
