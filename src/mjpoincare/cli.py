@@ -65,7 +65,8 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
     if not (args.param and args.values):
         raise ParameterError("sweep needs --param and --values (or --grid)")
     return run_sweep(args.scenario, args.param, parse_values(args.values), parse_assignments(args.set), args.preset,
-                     args.json, args.locate)
+                     args.json, args.locate, workers=args.workers, engine=args.engine, scheduler=args.scheduler,
+                     resume=args.resume)
 
 
 def _cmd_render(args: argparse.Namespace) -> int:
@@ -123,6 +124,12 @@ def build_parser() -> argparse.ArgumentParser:
     sweep.add_argument("--preset", default=None)
     sweep.add_argument("--json", metavar="PATH|-", help="write the sweep table as JSON")
     sweep.add_argument("--locate", choices=("period-doubling",), help="locate where the lowest eigenvalue hits -1")
+    sweep.add_argument("--workers", type=int, default=1, help="values validated at once (processes; default 1)")
+    sweep.add_argument("--engine", default="local", help="local (process pool) or dask (pip install "
+                       "'mjpoincare[dask]')")
+    sweep.add_argument("--scheduler", metavar="ADDRESS", help="Dask scheduler address (default: a local cluster "
+                       "of --workers processes)")
+    sweep.add_argument("--resume", action="store_true", help="skip the values the --json results file already holds")
     sweep.set_defaults(func=_cmd_sweep)
 
     render = sub.add_parser("render", help="render a scenario off-screen to a video (.mp4, .gif) or still (.png)")

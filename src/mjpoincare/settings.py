@@ -19,8 +19,16 @@ INTEGRATORS = {
     "implicit": mujoco.mjtIntegrator.mjINT_IMPLICIT,
     "implicitfast": mujoco.mjtIntegrator.mjINT_IMPLICITFAST,
     "rk4": mujoco.mjtIntegrator.mjINT_RK4,
+    **({"discrete": mujoco.mjtIntegrator.mjINT_DISCRETE} if hasattr(mujoco.mjtIntegrator, "mjINT_DISCRETE") else {}),
 }
 CONES = {"pyramidal": mujoco.mjtCone.mjCONE_PYRAMIDAL, "elliptic": mujoco.mjtCone.mjCONE_ELLIPTIC}
+SOLVERS = {"newton": mujoco.mjtSolver.mjSOL_NEWTON, "cg": mujoco.mjtSolver.mjSOL_CG, "pgs": mujoco.mjtSolver.mjSOL_PGS}
+JACOBIANS = {"auto": mujoco.mjtJacobian.mjJAC_AUTO, "dense": mujoco.mjtJacobian.mjJAC_DENSE,
+             "sparse": mujoco.mjtJacobian.mjJAC_SPARSE}
+#: Sensors the ``diagnostics`` setting adds (rollouts record their min and max): the smallest contact distance
+#: (negative = penetration) over all contacts, and the kinetic energy.
+DIAGNOSTIC_SENSORS = ("min_contact_distance", "kinetic_energy")
+_CONTACT_DIST, _REDUCE_MINDIST = 8, 1  # MuJoCo contact-sensor data bit "dist" and reduce mode "mindist"
 
 SETTINGS: tuple[Param, ...] = (
     Param("timestep", 1e-4, "integration step, s", float, 0.0, 0.05, low_open=True),
@@ -38,7 +46,11 @@ SETTINGS: tuple[Param, ...] = (
     Param("iterations", 100, "constraint solver iterations (20 at tolerance 1e-8 gave wrong impacts)", int, 1, 10000),
     Param("tolerance", 1e-10, "constraint solver tolerance", float, 0.0, 1.0),
     Param("noslip_iterations", 0, "noslip post-processing iterations", int, 0, 1000),
+    Param("solver", "newton", "constraint solver", str, choices=tuple(SOLVERS)),
+    Param("jacobian", "auto", "constraint Jacobian storage", str, choices=tuple(JACOBIANS)),
     Param("threads", 2, "rollout threads", int, 1, 256),
+    Param("diagnostics", 0, "1: record the deepest penetration and the largest kinetic energy (adds 2 sensors "
+          "and the energy computation; off unless asked, as nothing else reads them)", int, 0, 1),
 )
 DEFAULTS: dict[str, Value] = {p.name: p.default for p in SETTINGS}
 
@@ -63,6 +75,13 @@ def apply_options(spec: mujoco.MjSpec, settings: Mapping[str, Value]) -> None:
     spec.option.iterations = int(settings["iterations"])
     spec.option.tolerance = float(settings["tolerance"])
     spec.option.noslip_iterations = int(settings["noslip_iterations"])
+    spec.option.solver = SOLVERS[str(settings["solver"])]
+    spec.option.jacobian = JACOBIANS[str(settings["jacobian"])]
+    if int(settings["diagnostics"]):
+        spec.option.enableflags |= int(mujoco.mjtEnableBit.mjENBL_ENERGY)
+        contact = spec.add_sensor(name=DIAGNOSTIC_SENSORS[0], type=mujoco.mjtSensor.mjSENS_CONTACT)
+        contact.intprm[:3] = [_CONTACT_DIST, _REDUCE_MINDIST, 1]
+        spec.add_sensor(name=DIAGNOSTIC_SENSORS[1], type=mujoco.mjtSensor.mjSENS_E_KINETIC)
 
 
 def as_json(settings: Mapping[str, Value]) -> dict[str, object]:

@@ -47,17 +47,37 @@ class RolloutReport:
     diverged: np.ndarray = field(default_factory=lambda: np.zeros(0, bool))
     warnings: list[str] = field(default_factory=list)
     final_state: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
+    #: Smallest and largest value of each sensor over all recorded steps (empty when the model has none).
+    sensor_min: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    sensor_max: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
     def merge(self, other: RolloutReport) -> RolloutReport:
         """One report for two batches run one after the other."""
         return RolloutReport(self.steps + other.steps, self.wall_s + other.wall_s,
                              np.concatenate([self.diverged, other.diverged]), self.warnings + other.warnings,
-                             self.final_state)
+                             self.final_state, *_sensor_extremes(self, other.sensor_min, other.sensor_max))
+
+    def record_sensors(self, sensordata: np.ndarray) -> None:
+        """Fold a chunk's sensor readings (..., nsensordata) into the extremes (NaN rows ignored)."""
+        if sensordata.shape[-1] == 0 or not np.isfinite(sensordata).any():
+            return
+        flat = sensordata.reshape(-1, sensordata.shape[-1])
+        nan = np.isnan(flat)
+        self.sensor_min, self.sensor_max = _sensor_extremes(self, np.where(nan, np.inf, flat).min(axis=0),
+                                                            np.where(nan, -np.inf, flat).max(axis=0))
 
     @property
     def steps_per_s(self) -> float:
         """Raw simulation rate over all trajectories."""
         return self.steps / self.wall_s if self.wall_s > 0 else float("nan")
+
+
+def _sensor_extremes(report: RolloutReport, low: np.ndarray, high: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    if report.sensor_min.size == 0:
+        return low, high
+    if low.size == 0:
+        return report.sensor_min, report.sensor_max
+    return np.fmin(report.sensor_min, low), np.fmax(report.sensor_max, high)
 
 
 def initial_states(model: mujoco.MjModel, qpos: np.ndarray, qvel: np.ndarray) -> np.ndarray:
@@ -92,7 +112,7 @@ def _native_chunk(pool: mj_rollout.Rollout, model: mujoco.MjModel | list[mujoco.
     chunk with its first row prepended, where rows from a divergence on (NaN, or MuJoCo's silent reset,
     seen as time not advancing by one step per step) are NaN and the trajectory is flagged in ``report``."""
     start = time.perf_counter()
-    states, _ = pool.rollout(model, datas, current, nstep=n)
+    states, sensordata = pool.rollout(model, datas, current, nstep=n)
     report.wall_s += time.perf_counter() - start
     report.steps += current.shape[0] * n
     full = np.concatenate([current[:, None, :], states], axis=1)
@@ -101,6 +121,8 @@ def _native_chunk(pool: mj_rollout.Rollout, model: mujoco.MjModel | list[mujoco.
     bad = np.logical_or.accumulate(bad | report.diverged[:, None], axis=1)
     report.diverged |= bad[:, -1]
     full[bad] = np.nan
+    if sensordata.shape[-1]:
+        report.record_sensors(np.where(bad[:, 1:, None], np.nan, sensordata))
     return states, full
 
 

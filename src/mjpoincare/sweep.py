@@ -4,19 +4,30 @@ Each value is a full validation. The table lists, per value, every check's error
 and analytic eigenvalue of smallest real part; ``--locate period-doubling`` estimates where that
 eigenvalue reaches -1 from the simulated values (linear interpolation between the two values that
 bracket -1, or extrapolation from the last two), beside the same estimate from the analytic values.
+
+Scale-out. The values are independent: ``--workers N`` validates N of them at once in separate
+processes (each with ``threads`` = cores / N unless ``--set threads=`` says otherwise), and
+``--engine dask`` hands them to a Dask cluster instead (``--scheduler ADDRESS``, or a local cluster
+of N worker processes). Each finished point goes into the results file at once (whole or not at
+all), and ``--resume`` skips the values that file already holds, so an interrupted sweep loses at
+most the points in flight.
 """
 
 from __future__ import annotations
 
+import json
 import math
 import os
 import sys
+import time
 from collections.abc import Mapping, Sequence
+from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from analysis.checks import jsonable
+from mjpoincare.parallel import check_engine, run_jobs
 from mjpoincare.params import ParameterError
 from mjpoincare.result import write_json
 from mjpoincare.validate import resolve_inputs, run_validation
@@ -53,30 +64,76 @@ def crossing(xs: Sequence[float], ys: Sequence[float], level: float = -1.0) -> f
     return xs[-1] + (level - ys[-1]) * (xs[-1] - xs[-2]) / (ys[-1] - ys[-2])
 
 
+def sweep_point(name: str, param: str, value: str, assignments: Mapping[str, str], preset: str | None
+                ) -> dict[str, Any]:
+    """One sweep row: the validation at ``param = value`` reduced to errors, eigenvalues and wall time
+    (a top-level function so that worker processes and Dask can run it)."""
+    result = run_validation(name, {**assignments, param: value}, preset).to_dict()
+    analytic = result.get("analytic", {}).get("eigenvalues")
+    return {param: float(value), "value": value, "passed": result["passed"],
+            "errors": {c["name"]: c["error"] for c in result["checks"]},
+            "fitted_lowest": _lowest(result["fit"]["eigenvalues"]) if "fit" in result else math.nan,
+            "analytic_lowest": _lowest(analytic) if analytic is not None else math.nan,
+            "wall_s": result["timing"]["wall_s"]}
+
+
+def _point_assignments(assignments: Mapping[str, str], workers: int) -> dict[str, str]:
+    """Give each of ``workers`` concurrent points its share of the cores, unless threads were set."""
+    if workers <= 1 or "threads" in assignments:
+        return dict(assignments)
+    return {**assignments, "threads": str(max(1, (os.cpu_count() or 1) // workers))}
+
+
+def _resumed_rows(json_path: str | None, header: dict[str, Any]) -> list[dict[str, Any]]:
+    """Rows of a previous run of the same sweep (same scenario, parameter, settings and preset)."""
+    if not json_path or json_path == "-" or not Path(json_path).exists():
+        return []
+    try:
+        previous = json.loads(Path(json_path).read_text())
+    except (OSError, json.JSONDecodeError) as err:
+        raise ParameterError(f"--resume: cannot read {json_path} ({err})") from None
+    mismatch = [k for k, v in header.items() if previous.get(k) != v]
+    if mismatch:
+        raise ParameterError(f"--resume: {json_path} holds a different sweep ({', '.join(mismatch)} differ)")
+    return list(previous.get("rows", []))
+
+
 def run_sweep(name: str, param: str, values: list[str], assignments: Mapping[str, str], preset: str | None,
-              json_path: str | None, locate: str | None) -> int:
+              json_path: str | None, locate: str | None, *, workers: int = 1, engine: str = "local",
+              scheduler: str | None = None, resume: bool = False) -> int:
     """Validate at each value; print the table (and the located bifurcation); exit 0, or 1 if a check failed."""
+    check_engine(workers, engine)
+    if resume and (not json_path or json_path == "-"):
+        raise ParameterError("--resume needs --json PATH (the results file to resume from)")
+    point_set = _point_assignments(assignments, workers)
     for value in values:  # every input is checked before the first simulation
-        resolve_inputs(name, {**assignments, param: value}, preset)
-    rows: list[dict[str, Any]] = []
-    for value in values:
-        result = run_validation(name, {**assignments, param: value}, preset).to_dict()
-        analytic = result.get("analytic", {}).get("eigenvalues")
-        row = {param: float(value), "passed": result["passed"],
-               "errors": {c["name"]: c["error"] for c in result["checks"]},
-               "fitted_lowest": _lowest(result["fit"]["eigenvalues"]) if "fit" in result else math.nan,
-               "analytic_lowest": _lowest(analytic) if analytic is not None else math.nan,
-               "wall_s": result["timing"]["wall_s"]}
+        resolve_inputs(name, {**point_set, param: value}, preset)
+    header = {"scenario": name, "param": param, "assignments": dict(assignments), "preset": preset}
+    done = _resumed_rows(json_path, header) if resume else []
+    finished = {r["value"] for r in done}
+    todo = [v for v in values if v not in finished]
+    rows = [r for r in done if r["value"] in set(values)]
+    start = time.perf_counter()
+    jobs = [(name, param, value, point_set, preset) for value in todo]
+    for row in run_jobs(sweep_point, jobs, workers=workers, engine=engine, scheduler=scheduler):
         rows.append(row)
+        if json_path and json_path != "-":
+            write_json(jsonable({**header, "rows": rows}), json_path)
         if sys.stderr.isatty() and not os.environ.get("CI"):
-            print(f"{param}={value}: {'pass' if row['passed'] else 'FAIL'} ({row['wall_s']:.1f} s)", file=sys.stderr)
+            print(f"[{len(rows)}/{len(values)}] {param}={row['value']}: {'pass' if row['passed'] else 'FAIL'} "
+                  f"({row['wall_s']:.1f} s)", file=sys.stderr)
+    wall = time.perf_counter() - start
+    rows.sort(key=lambda r: values.index(r["value"]))
     names = list(rows[0]["errors"])
     lines = [f"| {param} | " + " | ".join(f"{n} error" for n in names) + " | lowest Re λ fitted | analytic |",
              "|" + "---|" * (3 + len(names))]
     for r in rows:
         errs = " | ".join("—" if r["errors"][n] is None else f"{r['errors'][n]:.2e}" for n in names)
         lines.append(f"| {r[param]:g} | {errs} | {r['fitted_lowest']:.4f} | {r['analytic_lowest']:.4f} |")
-    payload: dict[str, Any] = {"scenario": name, "param": param, "rows": rows}
+    busy = sum(r["wall_s"] for r in rows if r["value"] in todo)
+    lines.append(f"\n{len(todo)} points run ({len(values) - len(todo)} resumed) in {wall:.1f} s wall with "
+                 f"{engine} engine, {workers} worker(s); {busy:.1f} s of validation")
+    payload: dict[str, Any] = {**header, "rows": rows, "wall_s": wall, "workers": workers, "engine": engine}
     if locate == "period-doubling":
         xs = [r[param] for r in rows]
         fitted = crossing(xs, [r["fitted_lowest"] for r in rows])
@@ -86,7 +143,7 @@ def run_sweep(name: str, param: str, values: list[str], assignments: Mapping[str
                      f"{analytic:.5f} from the analytic eigenvalues on the same grid")
     print("\n".join(lines))
     if json_path:
-        write_json(payload, json_path)
+        write_json(jsonable(payload), json_path)
     return 0 if all(r["passed"] for r in rows) else 1
 
 

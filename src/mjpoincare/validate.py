@@ -45,6 +45,10 @@ def run_validation(name: str, assignments: Mapping[str, str] | None = None, pres
     checks = [*evaluation.checks, stability_check(len(diverged), len(report.warnings))]
     timing = {"wall_s": wall, "rollout_wall_s": report.wall_s, "steps": float(report.steps),
               "steps_per_s": report.steps / wall, "rollout_steps_per_s": report.steps_per_s}
+    extras = dict(evaluation.extras)
+    if int(settings["diagnostics"]) and report.sensor_min.size >= len(sim_settings.DIAGNOSTIC_SENSORS):
+        extras["diagnostics"] = {"max_penetration_m": max(0.0, -float(report.sensor_min[0])),
+                                 "max_kinetic_energy_J": float(report.sensor_max[1])}
     return Result(scenario=scenario.name, preset=preset_name, seed=seed, params=params,
                   settings=sim_settings.as_json(settings), mujoco_version=mujoco.__version__, checks=checks,
-                  timing=timing, warnings=report.warnings, diverged=diverged, extras=evaluation.extras)
+                  timing=timing, warnings=report.warnings, diverged=diverged, extras=extras)

@@ -30,6 +30,30 @@ class Evaluation:
 
 
 @dataclass(frozen=True)
+class StressCase:
+    """One edge case of ``mjpoincare stress``: ``--set``-style ``assignments`` on top of the fast preset.
+
+    ``expect``: ``"run"`` (must run without crash or unreported NaN) or ``"refused"`` (outside the theory's
+    assumptions: the input check must refuse it with exit 2).
+    """
+
+    name: str
+    assignments: Mapping[str, str]
+    why: str
+    expect: str = "run"
+
+
+@dataclass(frozen=True)
+class Soak:
+    """A long run from the fixed point: one section coordinate per impact, and its analytic fixed-point value."""
+
+    samples: np.ndarray
+    analytic: float
+    label: str
+    rollout: RolloutReport
+
+
+@dataclass(frozen=True)
 class Scenario:
     """A validation scenario.
 
@@ -56,6 +80,10 @@ class Scenario:
         camera_elevation: render camera elevation, degrees (0: side view of a sagittal-plane model; -89: from
             above, for a system moving in the ground plane).
         default_preset: preset used when none is named.
+        stress_cases: the scenario's own edge cases for ``mjpoincare stress`` (extreme parameters); the
+            simulator-setting edges (timestep ladder, integrators, solvers, cones, contact softness) are generic.
+        soak: ``(params, settings, impacts) -> Soak``: ``impacts`` impacts from the fixed point (None: the scenario
+            has no limit cycle to soak on).
     """
 
     name: str
@@ -75,6 +103,8 @@ class Scenario:
     camera_distance: float = 3.0
     camera_elevation: float = 0.0
     default_preset: str = "fast"
+    stress_cases: tuple[StressCase, ...] = ()
+    soak: Callable[[Values, Values, int], Soak] | None = None
 
     def preset(self, name: str | None) -> tuple[str, Values]:
         """The preset's name and setting overrides (the default preset when ``name`` is None)."""
