@@ -35,3 +35,37 @@ def test_wheel_sweep_over_slope(tmp_path: Path, capsys: pytest.CaptureFixture[st
     assert all(abs(r["fitted_lowest"] - 0.5) < 0.02 for r in rows)  # beta^2 = 0.5 for 8 spokes at any slope
     assert "lowest Re" in capsys.readouterr().out
     assert main(["sweep", "rimless-wheel", "--param", "slope", "--values", "0.08,0.5"]) == 2  # checked first
+
+
+@pytest.mark.mujoco
+def test_parallel_sweep_resumes_from_its_results_file(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    out = tmp_path / "sweep.json"
+    args = ["sweep", "rimless-wheel", "--param", "slope", "--json", str(out)]
+    assert main([*args, "--values", "0.08,0.1", "--workers", "2"]) == 0
+    first = json.loads(out.read_text())
+    assert [r["slope"] for r in first["rows"]] == [0.08, 0.1] and first["workers"] == 2
+    capsys.readouterr()
+    assert main([*args, "--values", "0.08,0.1,0.12", "--resume"]) == 0
+    assert "1 points run (2 resumed)" in capsys.readouterr().out
+    rows = json.loads(out.read_text())["rows"]
+    assert [r["slope"] for r in rows] == [0.08, 0.1, 0.12]
+    assert rows[:2] == first["rows"]  # the finished points were not redone
+    assert main([*args, "--values", "0.08", "--resume", "--set", "spokes=10"]) == 2  # a different sweep's file
+
+
+@pytest.mark.mujoco
+def test_dask_engine_gives_the_same_rows(tmp_path: Path) -> None:
+    pytest.importorskip("dask.distributed")
+    local, dask = tmp_path / "local.json", tmp_path / "dask.json"
+    args = ["sweep", "slotted-skate", "--param", "Omega0", "--values", "0.1,0.2"]
+    assert main([*args, "--json", str(local)]) == 0
+    assert main([*args, "--json", str(dask), "--engine", "dask", "--workers", "2"]) == 0
+    strip = [{k: v for k, v in r.items() if k != "wall_s"} for r in json.loads(local.read_text())["rows"]]
+    assert [{k: v for k, v in r.items() if k != "wall_s"} for r in json.loads(dask.read_text())["rows"]] == strip
+
+
+def test_bad_engine_and_resume_without_file_are_refused() -> None:
+    base = ["sweep", "rimless-wheel", "--param", "slope", "--values", "0.08"]
+    assert main([*base, "--engine", "ray"]) == 2
+    assert main([*base, "--workers", "0"]) == 2
+    assert main([*base, "--resume"]) == 2

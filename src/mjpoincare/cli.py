@@ -1,4 +1,4 @@
-"""``mjpoincare list | validate | bench``: the command line."""
+"""``mjpoincare list | validate | bench | sweep | stress | render``: the command line."""
 
 from __future__ import annotations
 
@@ -69,6 +69,12 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
                      resume=args.resume)
 
 
+def _cmd_stress(args: argparse.Namespace) -> int:
+    from mjpoincare.stress import run_stress
+
+    return run_stress(args.scenario, args.json, soak=args.soak, workers=args.workers)
+
+
 def _cmd_render(args: argparse.Namespace) -> int:
     from mjpoincare.render import parse_size, render_frames, select_gl_backend, write_media
 
@@ -131,6 +137,14 @@ def build_parser() -> argparse.ArgumentParser:
                        "of --workers processes)")
     sweep.add_argument("--resume", action="store_true", help="skip the values the --json results file already holds")
     sweep.set_defaults(func=_cmd_sweep)
+
+    stress = sub.add_parser("stress", help="push settings and parameters to the edges: stable or not, largest "
+                            "stable timestep, soak drift")
+    stress.add_argument("scenario", nargs="*", help="scenario names (default: the default scenarios)")
+    stress.add_argument("--json", metavar="PATH|-", help="write the stress report as JSON (- for stdout)")
+    stress.add_argument("--soak", type=int, default=10_000, help="impacts in the soak from the fixed point (0: none)")
+    stress.add_argument("--workers", type=int, default=1, help="cases run at once (processes)")
+    stress.set_defaults(func=_cmd_stress)
 
     render = sub.add_parser("render", help="render a scenario off-screen to a video (.mp4, .gif) or still (.png)")
     render.add_argument("scenario", help="scenario name")

@@ -50,17 +50,23 @@ class RolloutReport:
     #: Smallest and largest value of each sensor over all recorded steps (empty when the model has none).
     sensor_min: np.ndarray = field(default_factory=lambda: np.zeros(0))
     sensor_max: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    #: Each sensor's largest value over the batch at the first recorded step (the scale of the initial states).
+    sensor_first: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
     def merge(self, other: RolloutReport) -> RolloutReport:
         """One report for two batches run one after the other."""
         return RolloutReport(self.steps + other.steps, self.wall_s + other.wall_s,
                              np.concatenate([self.diverged, other.diverged]), self.warnings + other.warnings,
-                             self.final_state, *_sensor_extremes(self, other.sensor_min, other.sensor_max))
+                             self.final_state, *_sensor_extremes(self, other.sensor_min, other.sensor_max),
+                             self.sensor_first if self.sensor_first.size else other.sensor_first)
 
     def record_sensors(self, sensordata: np.ndarray) -> None:
         """Fold a chunk's sensor readings (..., nsensordata) into the extremes (NaN rows ignored)."""
         if sensordata.shape[-1] == 0 or not np.isfinite(sensordata).any():
             return
+        if self.sensor_first.size == 0:
+            first = sensordata.reshape(-1, *sensordata.shape[-2:])[:, 0]
+            self.sensor_first = np.where(np.isnan(first), -np.inf, first).max(axis=0)
         flat = sensordata.reshape(-1, sensordata.shape[-1])
         nan = np.isnan(flat)
         self.sensor_min, self.sensor_max = _sensor_extremes(self, np.where(nan, np.inf, flat).min(axis=0),

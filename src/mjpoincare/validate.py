@@ -48,7 +48,8 @@ def run_validation(name: str, assignments: Mapping[str, str] | None = None, pres
     extras = dict(evaluation.extras)
     if int(settings["diagnostics"]) and report.sensor_min.size >= len(sim_settings.DIAGNOSTIC_SENSORS):
         extras["diagnostics"] = {"max_penetration_m": max(0.0, -float(report.sensor_min[0])),
-                                 "max_kinetic_energy_J": float(report.sensor_max[1])}
+                                 "max_kinetic_energy_J": float(report.sensor_max[1]),
+                                 "initial_kinetic_energy_J": float(report.sensor_first[1])}
     return Result(scenario=scenario.name, preset=preset_name, seed=seed, params=params,
                   settings=sim_settings.as_json(settings), mujoco_version=mujoco.__version__, checks=checks,
                   timing=timing, warnings=report.warnings, diverged=diverged, extras=extras)

@@ -32,8 +32,8 @@ from analysis.theory import compass_biped as theory
 from mjpoincare import settings as sim_settings
 from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
-from mjpoincare.scenarios.base import Evaluation, Scenario, Values
-from mjpoincare.simulate import Chunk, KeptRows, event_rollout, initial_states
+from mjpoincare.scenarios.base import Evaluation, Scenario, Soak, StressCase, Values
+from mjpoincare.simulate import Chunk, KeptRows, RolloutReport, event_rollout, initial_states
 
 PARAMS: tuple[Param, ...] = (
     Param("m_h", 10.0, "hip mass, kg", float, 0.0, 1e6, low_open=True),
@@ -261,18 +261,24 @@ def initial_section_states(bp: theory.CompassBiped, timestep: float) -> np.ndarr
     return out
 
 
-def _simulate(p: Values, s: Values) -> tuple[GaitController, object, theory.CompassBiped]:
-    bp = biped(p)
-    model = build(p, s)
-    starts = initial_section_states(bp, model.opt.timestep)
+def _run(model: mujoco.MjModel, bp: theory.CompassBiped, starts: np.ndarray, steps: int, s: Values
+         ) -> tuple[GaitController, RolloutReport]:
+    """Walk from the post-impact states ``starts`` for ``steps`` heel strikes, switching contacts at the events."""
     controller = GaitController(model, bp, len(starts), float(s["foot_radius"]))
     models = [copy.copy(model) for _ in starts]
     controller.configure(models)
     period = theory.step_period(bp, theory.fixed_point(bp))
-    nstep = math.ceil((STEPS + 0.5) * period / model.opt.timestep)
+    nstep = math.ceil((steps + 0.5) * period / model.opt.timestep)
     report = event_rollout(models, post_impact_states(model, bp, starts, float(s["foot_radius"])), nstep,
                            controller, threads=int(s["threads"]),
                            chunk_steps=max(10, round(CHUNK_SECONDS / model.opt.timestep)))
+    return controller, report
+
+
+def _simulate(p: Values, s: Values) -> tuple[GaitController, RolloutReport, theory.CompassBiped]:
+    bp = biped(p)
+    model = build(p, s)
+    controller, report = _run(model, bp, initial_section_states(bp, model.opt.timestep), STEPS, s)
     return controller, report, bp
 
 
@@ -400,6 +406,31 @@ def reference_bench(p: Values, rtol: float) -> dict[str, float]:
             "eigenvalues_error": float(np.max(np.abs(_match(lam, fit.eigenvalues) - lam)))}
 
 
+def soak(p: Values, s: Values, impacts: int) -> Soak:
+    """``impacts`` steps from the analytic fixed point: the stance leg's rate at each legs-parallel crossing."""
+    bp = biped(p)
+    x_star = theory.fixed_point(bp)
+    controller, report = _run(build(p, s), bp, x_star[None, :], impacts, s)
+    samples = np.array(controller.samples[0]).reshape(-1, 3)[:, 1]
+    return Soak(samples, float(theory.legs_parallel_state(bp, x_star)[0][1]),
+                "stance-leg rate at legs-parallel (rad/s)", report)
+
+
+STRESS_CASES = (
+    StressCase("Goswami walker", {"m_h": "2", "m_l": "1", "slope": "0.0524"}, "m_h/m = 2 on 3 degrees"),
+    StressCase("near period doubling", {"m_h": "2", "m_l": "1", "slope": "0.0755"},
+               "|lambda|max = 0.93: slow flip mode"),
+    StressCase("shallow slope", {"slope": "0.01"}, "slow, short steps"),
+    StressCase("friction at the bound", {"mu": "0.25"}, "just above the friction the gait needs"),
+    StressCase("light legs", {"m_l": "0.5"}, "m_h/m_l = 20"),
+    StressCase("heavy legs", {"m_h": "2", "m_l": "5"}, "m_h/m_l = 0.4"),
+    StressCase("unstable slope", {"m_h": "2", "m_l": "1", "slope": "0.08"}, "past the period doubling",
+               expect="refused"),
+    StressCase("negative mass", {"m_h": "-1"}, "masses must be positive", expect="refused"),
+    StressCase("too little friction", {"mu": "0.05"}, "below what the gait needs", expect="refused"),
+)
+
+
 def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
     """States of a clip from the analytic post-impact fixed point, with the gait's contact switching."""
     bp = biped(p)
@@ -428,4 +459,6 @@ COMPASS_BIPED = Scenario(
     track_body="hip",
     frame_tilt="slope",
     camera_distance=3.0,
+    stress_cases=STRESS_CASES,
+    soak=soak,
 )

@@ -32,7 +32,7 @@ from mjpoincare import settings as sim_settings
 from mjpoincare.mjlog import captured_mujoco_log
 from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
-from mjpoincare.scenarios.base import Evaluation, Scenario, Values
+from mjpoincare.scenarios.base import Evaluation, Scenario, Soak, StressCase, Values
 from mjpoincare.simulate import Chunk, RolloutReport, initial_states, rollout_batch
 
 PARAMS: tuple[Param, ...] = (
@@ -372,6 +372,30 @@ def reference_bench(p: Values, rtol: float) -> dict[str, float]:
             "eigenvalue_error": abs(complex(fit.eigenvalues[0]) - theory.rolling_multiplier(w))}
 
 
+def soak(p: Values, s: Values, impacts: int) -> Soak:
+    """``impacts`` steps from the rolling fixed point in one trajectory: the post-impact speed of each step."""
+    w = wheel(p)
+    star = theory.rolling_fixed_point(w)
+    rec, report = _simulate(build(p, s), w, np.array([star]), impacts * theory.step_period(w, star) + 0.5, s)
+    post = np.asarray(theory.post_impact_speed(w, w.slope, rec.mid.sequences(1)[0][:, 0]), float)
+    return Soak(post, star, "post-impact speed omega+ (rad/s)", report)
+
+
+STRESS_CASES = (
+    StressCase("slope near existence bound", {"slope": "0.070"}, "just above 003 eq 3.16 (0.0682 for n = 8)"),
+    StressCase("slope near no-flight bound", {"slope": "0.255"}, "just below the no-flight bound (0.2621)"),
+    StressCase("many spokes", {"spokes": "32", "slope": "0.05"}, "n = 32: short steps, 4x more impacts"),
+    StressCase("few spokes", {"spokes": "6", "slope": "0.2"}, "n = 6: hard impacts (beta^2 = 0.25)"),
+    StressCase("friction at the bound", {"mu": "0.42"}, "mu 1% above the required 0.4142 (002 eq 22-25)"),
+    StressCase("heavy hub", {"gyration": "0.9"}, "kappa = 0.81: slow multiplier beta^2 = 0.84"),
+    StressCase("long spokes", {"leg_length": "10", "slope": "0.1"}, "l = 10 m: slow steps, 10x the impact speed"),
+    StressCase("friction below bound", {"mu": "0.3"}, "stick-slip: outside this scenario's sticking theory",
+               expect="refused"),
+    StressCase("slope below existence", {"slope": "0.05"}, "no rolling gait exists (003 eq 3.16)", expect="refused"),
+    StressCase("two spokes", {"spokes": "2"}, "fewer than 3 spokes is not a wheel", expect="refused"),
+)
+
+
 def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
     """States of a clip that starts just after an impact, 20 % above the rolling fixed point's speed."""
     w = wheel(p)
@@ -397,4 +421,6 @@ RIMLESS_WHEEL = Scenario(
     track_body="hub",
     frame_tilt="slope",
     camera_distance=4.0,
+    stress_cases=STRESS_CASES,
+    soak=soak,
 )

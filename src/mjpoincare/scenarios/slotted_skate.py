@@ -29,7 +29,7 @@ from analysis.theory import slotted_skate as theory
 from mjpoincare import settings as sim_settings
 from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
-from mjpoincare.scenarios.base import Evaluation, Scenario, Values
+from mjpoincare.scenarios.base import Evaluation, Scenario, StressCase, Values
 from mjpoincare.simulate import Chunk, KeptRows, event_rollout, initial_states
 
 PARAMS: tuple[Param, ...] = (
@@ -387,6 +387,19 @@ def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> tuple[np.nd
     return kept.states(nstep), kept.tagged(nstep)[:, None, :]
 
 
+STRESS_CASES = (
+    StressCase("slow spin (P5)", {"Omega0": "0.001"}, "Fig 9: a thousand times smaller rotation"),
+    StressCase("fast spin", {"Omega0": "3"}, "rotation dominates the slot speed"),
+    StressCase("fast slide", {"V0": "20"}, "20x the slot speed: few steps per stance"),
+    StressCase("short slot", {"delta": "0.02"}, "100 impacts per unit length: near the smooth sleigh"),
+    StressCase("long slot", {"delta": "3"}, "long stances, large heading change per stance"),
+    StressCase("slot behind the mass centre", {"l0": "-2"}, "L0 < -Delta: the other stability region"),
+    StressCase("heavy skate", {"mass": "1000", "rho": "10"}, "scale: 1000 kg, rho = 10 m"),
+    StressCase("no slot motion", {"V0": "0"}, "never reaches a slot end", expect="refused"),
+    StressCase("zero-length slot", {"delta": "0"}, "delta must be > 0", expect="refused"),
+)
+
+
 SLOTTED_SKATE = Scenario(
     name="slotted-skate",
     summary="discrete Chaplygin sleigh: pegs as switched equality constraints; sigma4, energy loss, reversals",
@@ -404,6 +417,7 @@ SLOTTED_SKATE = Scenario(
     frame_tilt=None,
     camera_distance=4.0,
     camera_elevation=-89.0,
+    stress_cases=STRESS_CASES,
 )
 
 

@@ -1,0 +1,74 @@
+"""The stress command: case verdicts, the timestep ladder's summary, the soak, and a refused edge."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import pytest
+
+from mjpoincare import scenarios
+from mjpoincare.cli import main
+from mjpoincare.scenarios.base import StressCase
+from mjpoincare.stress import LADDER, generic_cases, largest_timesteps, run_case, soak_summary
+
+
+def test_generic_cases_cover_the_ladder_integrators_solvers_and_contact() -> None:
+    names = [c.name for c in generic_cases(scenarios.get("rimless-wheel"))]
+    assert [n for n in names if n.startswith("timestep")] == [f"timestep x{k}" for k in LADDER]
+    assert {"integrator euler", "integrator rk4", "solver cg", "solver pgs", "cone pyramidal", "stiff contact",
+            "soft contact"} <= set(names)
+
+
+def test_largest_timesteps_stop_at_the_first_failure() -> None:
+    verdicts = ["accurate", "accurate", "inaccurate", "diverged", "inaccurate", "inaccurate"]
+    rows = [{"case": f"timestep x{k}", "verdict": v} for k, v in zip(LADDER, verdicts, strict=True)]
+    assert largest_timesteps(rows, 1e-4) == pytest.approx((4e-4, 2e-4))
+
+
+def test_every_scenario_declares_edges_that_must_be_refused() -> None:
+    for name in scenarios.DEFAULT_SCENARIOS:
+        cases = scenarios.get(name).stress_cases
+        assert any(c.expect == "refused" for c in cases), name
+        assert any(c.expect == "run" for c in cases), name
+
+
+def test_refused_case_is_reported_not_raised() -> None:
+    row = run_case("rimless-wheel", StressCase("two spokes", {"spokes": "2"}, "", expect="refused"))
+    assert row["verdict"] == "refused" and "spokes" in row["message"]
+
+
+@pytest.mark.mujoco
+def test_case_runs_with_diagnostics() -> None:
+    row = run_case("slotted-skate", StressCase("rk4", {"integrator": "rk4"}, "integrator"))
+    assert row["verdict"] == "accurate"
+    assert row["max_penetration_m"] == 0.0  # contact is disabled in the skate: only the peg constraint acts
+    assert row["max_kinetic_energy_J"] == pytest.approx(0.5 * (1.0 + 1.5**2 * 0.1**2 * (1 + 1.0)), rel=0.1)
+
+
+@pytest.mark.mujoco
+def test_soak_of_the_wheel_stays_on_the_cycle() -> None:
+    summary = soak_summary("rimless-wheel", 40)
+    assert summary["impacts_seen"] >= 40 and summary["diverged"] == 0
+    assert summary["relative_error_last_tenth"] < 1e-2  # the fast preset's omega_post_impact tolerance
+    assert abs(summary["drift"]) < 1e-2 * summary["analytic"]
+    assert soak_summary("slotted-skate", 40) == {}  # no limit cycle to soak on
+
+
+def test_stress_cli_refuses_unknown_scenario(tmp_path: Path) -> None:
+    assert main(["stress", "no-such-scenario", "--soak", "0"]) == 2
+    assert not any(tmp_path.iterdir())
+
+
+def test_stress_json_is_strict(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """The report is written whole, as strict JSON (NaN becomes null)."""
+    from mjpoincare import stress
+
+    monkeypatch.setattr(stress, "generic_cases", lambda scenario: [])
+    out = tmp_path / "stress.json"
+    monkeypatch.setattr(stress, "LADDER", ())
+    assert main(["stress", "slotted-skate", "--soak", "0", "--json", str(out)]) == 0
+    report = json.loads(out.read_text())
+    assert {r["case"] for r in report["cases"]} == {c.name for c in scenarios.get("slotted-skate").stress_cases}
+    assert report["largest_stable_timestep"] is None or math.isnan(report["largest_stable_timestep"])
