@@ -30,3 +30,18 @@ def test_quick_bench_writes_table_plot_and_json(tmp_path: Path, capsys: pytest.C
     # refining the step (0.8 ms -> 0.4 ms, contact time constant 10 steps) reduces the error
     errors = [r["omega_post_impact_error"] for r in payload["rows"]]
     assert errors[1] < errors[0]
+
+
+def test_unskip_collisions_makes_every_geom_collide() -> None:
+    from mjpoincare.validate import resolve_inputs
+
+    scenario, _, params, settings = resolve_inputs("rimless-wheel", {"unskip": "collisions"}, None)
+    model = scenario.build(params, settings)
+    assert (model.geom_contype == 1).all() and (model.geom_conaffinity == 1).all()
+    scenario, _, params, settings = resolve_inputs("rimless-wheel", {}, None)
+    model = scenario.build(params, settings)
+    assert (model.geom_contype == 0).sum() > 0  # spokes and hub are filtered out by default
+    scenario, _, params, settings = resolve_inputs("slotted-skate", {"unskip": "contact"}, None)
+    import mujoco
+
+    assert not scenario.build(params, settings).opt.disableflags & int(mujoco.mjtDisableBit.mjDSBL_CONTACT)

@@ -44,6 +44,18 @@ SWEEP: tuple[tuple[str, dict[str, Value]], ...] = tuple(
                            ("foot r=2mm", {"solref_timeconst": 1e-3, "foot_radius": 2e-3}))]
 )
 QUICK: tuple[str, ...] = ("implicitfast dt=0.0008", "implicitfast dt=0.0004")
+#: What each scene skips, as (name, what is skipped, settings with the skip, settings without it). Each pair is
+#: validated (best wall time of two runs) to show the speed the skip buys and that the error did not move.
+SKIPS: tuple[tuple[str, str, dict[str, str], dict[str, str]], ...] = (
+    ("diagnostics off", "no sensors, no energy computation (nothing reads them)", {}, {"diagnostics": "1"}),
+    ("collision filtering", "contacts only between the feet and the ground", {}, {"unskip": "collisions"}),
+    ("contact disabled", "no contact detection where only equality constraints act", {}, {"unskip": "contact"}),
+    ("dense Jacobian", "dense constraint Jacobian for a few-dof model (vs sparse)", {"jacobian": "dense"},
+     {"jacobian": "sparse"}),
+    ("solver budget", "100 iterations at tolerance 1e-10 (vs 20 at 1e-8)", {},
+     {"iterations": "20", "tolerance": "1e-8"}),
+    ("2 rollout threads", "mujoco.rollout threads across initial states (vs 1)", {"threads": "2"}, {"threads": "1"}),
+)
 REFERENCE_RTOLS = (1e-3, 1e-5, 1e-7, 1e-9)
 
 
@@ -111,6 +123,43 @@ def run_bench(name: str, assignments: Mapping[str, str], output: str, json_path:
         json_path = json_path.format(scenario=name)
         write_json({"scenario": name, "mujoco_version": mujoco.__version__, "rows": rows, "raw_rollout": raw,
                     "reference": reference}, json_path)
+    return 0
+
+
+def _timed(name: str, assignments: Mapping[str, str], accuracy: tuple[str, ...]) -> dict[str, Any]:
+    runs = [run_validation(name, assignments, None) for _ in range(2)]
+    best = min(runs, key=lambda r: r.timing["wall_s"])
+    by_name = {c.name: c for c in best.checks}
+    return {"wall_s": best.timing["wall_s"], "steps_per_s": best.timing["steps_per_s"], "passed": best.passed,
+            "error": by_name[accuracy[0]].error}
+
+
+def run_skips(name: str, assignments: Mapping[str, str], json_path: str | None) -> int:
+    """Each skip of :data:`SKIPS` measured on scenario ``name``: speed and error with and without it."""
+    scenario = scenarios.get(name)
+    resolve_inputs(name, assignments, None)
+    _, _, params, settings = resolve_inputs(name, assignments, None)
+    contact_off = bool(scenario.build(params, settings).opt.disableflags & int(mujoco.mjtDisableBit.mjDSBL_CONTACT))
+    rows = []
+    for label, what, on, off in SKIPS:
+        if (label == "contact disabled") != contact_off and "unskip" in off:
+            continue  # only the scenes that skip contact detection entirely can undo it; the others filter pairs
+        with_skip = _timed(name, {**on, **assignments}, scenario.accuracy_checks)
+        without = _timed(name, {**off, **assignments}, scenario.accuracy_checks)
+        rows.append({"skip": label, "what": what, "with": with_skip, "without": without,
+                     "speedup": without["wall_s"] / with_skip["wall_s"]})
+        _progress(f"{label}: x{rows[-1]['speedup']:.2f}")
+    key = scenario.accuracy_checks[0]
+    lines = [f"{name}: what each skip buys (default preset, best of 2 validations; error = {key})",
+             "| skip | what | wall with / without (s) | speedup | error with | error without |",
+             "|---|---|---|---|---|---|"]
+    for r in rows:
+        lines.append(f"| {r['skip']} | {r['what']} | {r['with']['wall_s']:.2f} / {r['without']['wall_s']:.2f} | "
+                     f"x{r['speedup']:.2f} | {r['with']['error']:.3e} | {r['without']['error']:.3e} |")
+    print("\n".join(lines))
+    if json_path:
+        write_json({"scenario": name, "mujoco_version": mujoco.__version__, "skips": rows},
+                   json_path.format(scenario=name))
     return 0
 
 

@@ -51,8 +51,11 @@ def _cmd_validate(args: argparse.Namespace) -> int:
 
 
 def _cmd_bench(args: argparse.Namespace) -> int:
-    from mjpoincare.bench import run_bench
+    from mjpoincare.bench import run_bench, run_skips
 
+    if args.skips:
+        json_path = args.json if args.json != "renders/bench-{scenario}.json" else "renders/skips-{scenario}.json"
+        return run_skips(args.scenario, parse_assignments(args.set), json_path)
     return run_bench(args.scenario, parse_assignments(args.set), args.output, args.json, quick=args.quick)
 
 
@@ -117,6 +120,8 @@ def build_parser() -> argparse.ArgumentParser:
     bench.add_argument("--json", metavar="PATH|-", default="renders/bench-{scenario}.json",
                        help="bench table as JSON (the report's convergence plot reads the default path)")
     bench.add_argument("--quick", action="store_true", help="a small sweep (for tests)")
+    bench.add_argument("--skips", action="store_true", help="instead: what each skip (collision filtering, no "
+                       "sensors, contact off, solver budget, threads) buys in speed, and the error with and without")
     bench.set_defaults(func=_cmd_bench)
 
     sweep = sub.add_parser("sweep", help="validate over a list of values of one parameter")

@@ -2,11 +2,13 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from pathlib import Path
 
 import mujoco
 
-from mjpoincare.params import ParameterError
+from mjpoincare.params import ParameterError, Value
+from mjpoincare.settings import apply_unskip
 
 MODELS_DIR = Path(__file__).resolve().parents[2] / "models"
 
@@ -22,8 +24,11 @@ def load_spec(filename: str) -> mujoco.MjSpec:
         raise ParameterError(f"model {path.name} is malformed: {str(err).splitlines()[0]}") from None
 
 
-def compile_spec(spec: mujoco.MjSpec) -> mujoco.MjModel:
-    """Compile ``spec``; a compile error is reported as one line naming the model."""
+def compile_spec(spec: mujoco.MjSpec, settings: Mapping[str, Value] | None = None) -> mujoco.MjModel:
+    """Compile ``spec`` (after undoing the skip ``settings["unskip"]`` names, if any); a compile error is reported
+    as one line naming the model."""
+    if settings is not None:
+        apply_unskip(spec, settings)
     try:
         return spec.compile()
     except ValueError as err:

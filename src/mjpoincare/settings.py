@@ -49,6 +49,9 @@ SETTINGS: tuple[Param, ...] = (
     Param("solver", "newton", "constraint solver", str, choices=tuple(SOLVERS)),
     Param("jacobian", "auto", "constraint Jacobian storage", str, choices=tuple(JACOBIANS)),
     Param("threads", 2, "rollout threads", int, 1, 256),
+    Param("unskip", "none", "undo one of the scene's skips, to measure it (bench --skips): collisions = every geom "
+          "collides with every other (no filtering to the feet and the ground), contact = contact detection on where "
+          "only equality constraints act", str, choices=("none", "collisions", "contact")),
     Param("diagnostics", 0, "1: record the deepest penetration and the largest kinetic energy (adds 2 sensors "
           "and the energy computation; off unless asked, as nothing else reads them)", int, 0, 1),
 )
@@ -82,6 +85,16 @@ def apply_options(spec: mujoco.MjSpec, settings: Mapping[str, Value]) -> None:
         contact = spec.add_sensor(name=DIAGNOSTIC_SENSORS[0], type=mujoco.mjtSensor.mjSENS_CONTACT)
         contact.intprm[:3] = [_CONTACT_DIST, _REDUCE_MINDIST, 1]
         spec.add_sensor(name=DIAGNOSTIC_SENSORS[1], type=mujoco.mjtSensor.mjSENS_E_KINETIC)
+
+
+def apply_unskip(spec: mujoco.MjSpec, settings: Mapping[str, Value]) -> None:
+    """Undo the skip named by the ``unskip`` setting on a fully built ``spec`` (for measuring what it saves)."""
+    which = str(settings.get("unskip", "none"))
+    if which == "collisions":
+        for geom in spec.geoms:
+            geom.contype, geom.conaffinity = 1, 1
+    elif which == "contact":
+        spec.option.disableflags &= ~int(mujoco.mjtDisableBit.mjDSBL_CONTACT)
 
 
 def as_json(settings: Mapping[str, Value]) -> dict[str, object]:

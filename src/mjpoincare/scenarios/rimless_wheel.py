@@ -144,7 +144,7 @@ def build(p: Values, s: Values) -> mujoco.MjModel:
     floor.friction = [mu, 0, 0]
     floor.solref = sim_settings.solref(s)
     floor.solimp = sim_settings.solimp(s)
-    return compile_spec(spec)
+    return compile_spec(spec, s)
 
 
 def post_impact_states(model: mujoco.MjModel, w: theory.RimlessWheel, omega0: np.ndarray,

@@ -95,7 +95,7 @@ def build(p: Values, s: Values) -> mujoco.MjModel:
     slot = spec.equality("slot")
     slot.solref = sim_settings.solref(s)
     slot.solimp = sim_settings.solimp(s)
-    return compile_spec(spec)
+    return compile_spec(spec, s)
 
 
 def start_states(model: mujoco.MjModel, p: Values, V0: np.ndarray, Omega0: np.ndarray) -> np.ndarray:
