@@ -6,7 +6,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: validate test bench clean
+.PHONY: validate test bench gate clean
 
 $(STAMP): pyproject.toml
 	@$(PYTHON) -c 'import sys; sys.exit(0 if sys.version_info >= (3, 10) else "mjpoincare needs Python >= 3.10")'
@@ -25,5 +25,15 @@ test: $(STAMP)
 bench: $(STAMP)
 	$(BIN)/mjpoincare bench rimless-wheel
 
+# Gate a MuJoCo upgrade (or check an older one): a separate venv with that MuJoCo, the regression tests
+# (every scenario against its analytic values) and the default validation, saved as renders/gate-mujoco-V.json.
+gate:
+	@test -n "$(MUJOCO)" || { echo "usage: make gate MUJOCO=<version>   e.g. make gate MUJOCO=3.3.7"; exit 2; }
+	$(PYTHON) -m venv .venv-mujoco-$(MUJOCO)
+	.venv-mujoco-$(MUJOCO)/bin/python -m pip install --quiet --upgrade pip
+	.venv-mujoco-$(MUJOCO)/bin/python -m pip install --quiet -e ".[dev]" "mujoco==$(MUJOCO)"
+	.venv-mujoco-$(MUJOCO)/bin/python -m pytest -q -m mujoco
+	.venv-mujoco-$(MUJOCO)/bin/mjpoincare validate --json renders/gate-mujoco-$(MUJOCO).json
+
 clean:
-	rm -rf $(VENV) build *.egg-info
+	rm -rf $(VENV) .venv-mujoco-* build *.egg-info
