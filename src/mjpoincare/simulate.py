@@ -50,7 +50,8 @@ class RolloutReport:
     #: Smallest and largest value of each sensor over all recorded steps (empty when the model has none).
     sensor_min: np.ndarray = field(default_factory=lambda: np.zeros(0))
     sensor_max: np.ndarray = field(default_factory=lambda: np.zeros(0))
-    #: Each sensor's largest value over the batch at the first recorded step (the scale of the initial states).
+    #: Each sensor's largest value over the batch in the first two recorded steps (the scale of the initial states;
+    #: two because MuJoCo's energy sensors lag the state by one step).
     sensor_first: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
     def merge(self, other: RolloutReport) -> RolloutReport:
@@ -58,14 +59,16 @@ class RolloutReport:
         return RolloutReport(self.steps + other.steps, self.wall_s + other.wall_s,
                              np.concatenate([self.diverged, other.diverged]), self.warnings + other.warnings,
                              self.final_state, *_sensor_extremes(self, other.sensor_min, other.sensor_max),
-                             self.sensor_first if self.sensor_first.size else other.sensor_first)
+                             np.fmax(self.sensor_first, other.sensor_first)
+                             if self.sensor_first.size and other.sensor_first.size
+                             else (self.sensor_first if self.sensor_first.size else other.sensor_first))
 
     def record_sensors(self, sensordata: np.ndarray) -> None:
         """Fold a chunk's sensor readings (..., nsensordata) into the extremes (NaN rows ignored)."""
         if sensordata.shape[-1] == 0 or not np.isfinite(sensordata).any():
             return
         if self.sensor_first.size == 0:
-            first = sensordata.reshape(-1, *sensordata.shape[-2:])[:, 0]
+            first = sensordata.reshape(-1, *sensordata.shape[-2:])[:, :2].reshape(-1, sensordata.shape[-1])
             self.sensor_first = np.where(np.isnan(first), -np.inf, first).max(axis=0)
         flat = sensordata.reshape(-1, sensordata.shape[-1])
         nan = np.isnan(flat)
