@@ -1,0 +1,115 @@
+"""Regression: MuJoCo's 3D rimless wheel against Coleman, Chatterjee & Ruina (1997) (planar cycles, eqs 12-14;
+3D eigenvalues, Sec. 8.1 Table 2), in both impact modes.
+
+These run the real pipeline (rollouts, mid-stance sections, 5-D affine fit, checks) at the fast preset. The
+tolerances are the scenario's own (:data:`mjpoincare.scenarios.rimless_wheel_3d.TOLERANCES`); nothing here loosens
+them. Runtime: about 20 s on 2 cores.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+import mujoco
+import numpy as np
+import pytest
+
+from analysis.theory import rimless_wheel_3d as theory
+from mjpoincare.cli import main
+from mjpoincare.params import ParameterError
+from mjpoincare.scenarios import rimless_wheel_3d as rw3
+from mjpoincare.validate import resolve_inputs, run_validation
+
+pytestmark = pytest.mark.mujoco
+
+
+@pytest.fixture(scope="module")
+def contact() -> dict:
+    return run_validation("rimless-wheel-3d", {}, "fast").to_dict()
+
+
+@pytest.fixture(scope="module")
+def ideal() -> dict:
+    return run_validation("rimless-wheel-3d", {"impact": "ideal"}, "fast").to_dict()
+
+
+NAMES = {"pitch_rate", "bank", "heading_eigenvalue", "wobble_modulus", "wobble_angle", "lambda5", "lambda2",
+         "planar_pitch_rate", "planar_bank", "stable"}
+
+
+@pytest.mark.parametrize("mode", ["contact", "ideal"])
+def test_fast_preset_passes(mode: str, request: pytest.FixtureRequest) -> None:
+    """Table-2 case (n = 16, alpha = 0.125, psi = pi/10, J = 1/2): every check of both impact modes passes."""
+    result = request.getfixturevalue(mode)
+    assert result["params"]["impact"] == mode
+    assert {c["name"] for c in result["checks"]} == NAMES
+    failed = [c for c in result["checks"] if not c["passed"]]
+    assert not failed, failed
+    assert result["analytic"]["eigenvalues_named"]["wobble_angle"] == pytest.approx(0.39895, abs=1e-5)  # Table 2
+    json.dumps(result, allow_nan=False)
+
+
+def test_ideal_mode_isolates_the_integration(ideal: dict) -> None:
+    """Exact guard and impact law: the impacts land on theta = pi/n and the planar cycle stays on eqs 12-14."""
+    assert ideal["max_guard_error"] < 1e-9
+    by_name = {c["name"]: c for c in ideal["checks"]}
+    assert by_name["planar_bank"]["error"] < 1e-9  # a vertical wheel plane stays vertical (no impact adds bank)
+    assert abs(ideal["heading_drift"]["per_100_impacts_fit"]) < 1e-3
+
+
+def test_contact_mode_reports_heading_drift(contact: dict) -> None:
+    """The heading is neutral: its drift is reported (per 100 impacts), never compared with the start heading."""
+    drift = contact["heading_drift"]
+    assert math.isfinite(drift["per_100_impacts_fit"])
+    assert set(contact["heading_drift_per_100_impacts_planar"]) == {"0", "0.314159", "0.5"}
+    assert contact["heading_drift_per_100_impacts_planar"]["0"] == pytest.approx(0.0, abs=1e-9)  # symmetric
+
+
+@pytest.mark.parametrize(("assignments", "name"), [
+    ({"spokes": "2"}, "spokes"),
+    ({"J": "0"}, "J"),
+    ({"mu": "-1"}, "mu"),
+    ({"impact": "foo"}, "impact"),
+    ({"slope": "0.004"}, "slope"),  # below the existence threshold gamma_c = 0.005128 (001 eq 10)
+    ({"mu": "0.1"}, "mu"),  # below the impact impulse ratio 0.1366 the banked cycle needs
+    ({"heading": "1.6"}, "heading"),
+])
+def test_bad_input_names_the_parameter(assignments: dict[str, str], name: str) -> None:
+    with pytest.raises(ParameterError, match=rf"^{name}\b"):
+        resolve_inputs("rimless-wheel-3d", assignments, None)
+
+
+def test_ideal_mode_ignores_friction() -> None:
+    """The ideal mode's pivot holds whatever mu is; only the contact mode needs friction."""
+    resolve_inputs("rimless-wheel-3d", {"impact": "ideal", "mu": "0"}, None)
+
+
+def test_bad_input_exit_code(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["validate", "rimless-wheel-3d", "--set", "spokes=2"]) == 2
+    assert "spokes" in capsys.readouterr().err
+
+
+def test_model_file_and_rebuild() -> None:
+    """models/rimless_wheel_3d.xml loads on its own; the MjSpec rebuild sets spokes, inertia, slope and mode."""
+    model = mujoco.MjModel.from_xml_path(str(rw3.load_spec.__globals__["MODELS_DIR"] / "rimless_wheel_3d.xml"))
+    assert (model.nq, model.nv) == (7, 6)
+    _, _, params, settings = resolve_inputs("rimless-wheel-3d", {"spokes": "10", "slope": "0.2", "J": "1"}, None)
+    rebuilt = rw3.build(params, settings)
+    feet = [i for i in range(rebuilt.ngeom) if rebuilt.geom(i).name.startswith("foot")]
+    assert len(feet) == 10
+    np.testing.assert_allclose(rebuilt.body("wheel").inertia, [0.5, 1.0, 0.5])
+    np.testing.assert_allclose(rebuilt.opt.gravity, [9.81 * np.sin(0.2), 0, -9.81 * np.cos(0.2)])
+    ideal = rw3.build({**params, "impact": "ideal"}, settings)
+    assert (ideal.nq, ideal.nv, ideal.nmocap) == (4, 3, 1)
+
+
+def test_section_state_matches_the_theory() -> None:
+    """euler_section reads (psi, phi, rates) of R = Rz Rx Ry as the hybrid reference defines them."""
+    w = theory.RimlessWheel3D(16, 0.125, 0.5, math.pi / 10)
+    x = rw3.fit_starts(w, 2e-3)[3]
+    R = rw3.hybrid.pose(x[0], x[1], 0.1)
+    omega = rw3.hybrid.angular_velocity(x[0], x[1], x[2:])
+    theta, values = rw3.euler_section(rw3.matrix_to_quat(R), R.T @ omega)
+    assert float(theta) == pytest.approx(0.1, abs=1e-12)
+    np.testing.assert_allclose(values, x, atol=1e-12)
