@@ -10,7 +10,7 @@ from mjpoincare.scenarios.rimless_wheel_3d import RIMLESS_WHEEL_3D
 from mjpoincare.scenarios.slotted_skate import SLOTTED_SKATE
 
 REGISTRY: dict[str, Scenario] = {s.name: s for s in (RIMLESS_WHEEL, COMPASS_BIPED, SLOTTED_SKATE, RIMLESS_WHEEL_3D)}
-DEFAULT_SCENARIOS: tuple[str, ...] = ("rimless-wheel", "compass-biped", "slotted-skate")
+DEFAULT_SCENARIOS: tuple[str, ...] = ("rimless-wheel", "compass-biped", "slotted-skate", "rimless-wheel-3d")
 
 
 def get(name: str) -> Scenario:
