@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 from analysis.theory import rimless_wheel as theory
+from mjpoincare import scenarios
 from mjpoincare.cli import main
 from mjpoincare.scenarios import rimless_wheel as rw
 from mjpoincare.simulate import initial_states, rollout_batch
@@ -90,7 +91,8 @@ def test_json_file_written_whole(tmp_path: Path) -> None:
     target = tmp_path / "out" / "result.json"
     code = main(["validate", "--json", str(target)])
     payload = json.loads(target.read_text())
-    assert [r["scenario"] for r in payload] == ["rimless-wheel", "compass-biped", "slotted-skate"]
+    assert [r["scenario"] for r in payload] == list(scenarios.DEFAULT_SCENARIOS)
+    assert len(payload) >= 4  # every system: planar and 3D wheel, biped, skate
     assert code == (0 if all(r["passed"] for r in payload) else 1)
     assert [p.name for p in target.parent.iterdir()] == ["result.json"]
 
