@@ -62,6 +62,16 @@ def _cmd_bench(args: argparse.Namespace) -> int:
 def _cmd_sweep(args: argparse.Namespace) -> int:
     from mjpoincare.sweep import parse_values, run_regions, run_sweep
 
+    if args.scenario == "rimless-wheel-friction" and (args.grid or args.param == "mu"):
+        from mjpoincare.scenarios import rimless_wheel_friction as rwf
+
+        if args.grid:  # --grid theta_dot0=A:B:N,x_dot0=A:B:N: regions of attraction
+            return rwf.run_basin_map(args.grid, parse_assignments(args.set), args.preset, args.json,
+                                     args.output.replace("regions-", "basins-"), workers=max(args.workers, 2))
+        if not args.values:
+            raise ParameterError("sweep --param mu needs --values START:STOP:COUNT")
+        return rwf.run_mu_sweep(parse_values(args.values), parse_assignments(args.set), args.preset, args.json,
+                                resume=args.resume, workers=max(args.workers, 2))
     if args.grid:
         return run_regions(args.scenario, args.grid, parse_assignments(args.set), args.preset, args.json,
                            args.output)
@@ -129,7 +139,8 @@ def build_parser() -> argparse.ArgumentParser:
     sweep.add_argument("--param", help="parameter or setting to sweep, e.g. slope")
     sweep.add_argument("--values", help="v1,v2,... or START:STOP:COUNT")
     sweep.add_argument("--grid", help="slotted-skate stability regions: x=START:STOP:N,y=START:STOP:N with "
-                       "x = l0/delta and y = 1/delta^2 (the paper's Fig. 2 axes)")
+                       "x = l0/delta and y = 1/delta^2 (the paper's Fig. 2 axes); rimless-wheel-friction regions of "
+                       "attraction: theta_dot0=START:STOP:N,x_dot0=START:STOP:N")
     sweep.add_argument("-o", "--output", default="renders/regions-{scenario}.png", help="PNG of the region map")
     sweep.add_argument("--set", action="append", default=[], metavar="NAME=VALUE")
     sweep.add_argument("--preset", default=None)

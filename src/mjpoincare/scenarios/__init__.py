@@ -7,9 +7,11 @@ from mjpoincare.scenarios.base import Evaluation, Scenario
 from mjpoincare.scenarios.compass_biped import COMPASS_BIPED
 from mjpoincare.scenarios.rimless_wheel import RIMLESS_WHEEL
 from mjpoincare.scenarios.rimless_wheel_3d import RIMLESS_WHEEL_3D
+from mjpoincare.scenarios.rimless_wheel_friction import RIMLESS_WHEEL_FRICTION
 from mjpoincare.scenarios.slotted_skate import SLOTTED_SKATE
 
-REGISTRY: dict[str, Scenario] = {s.name: s for s in (RIMLESS_WHEEL, COMPASS_BIPED, SLOTTED_SKATE, RIMLESS_WHEEL_3D)}
+REGISTRY: dict[str, Scenario] = {s.name: s for s in (RIMLESS_WHEEL, COMPASS_BIPED, SLOTTED_SKATE, RIMLESS_WHEEL_3D,
+                                                    RIMLESS_WHEEL_FRICTION)}
 DEFAULT_SCENARIOS: tuple[str, ...] = ("rimless-wheel", "compass-biped", "slotted-skate", "rimless-wheel-3d")
 
 

@@ -148,17 +148,19 @@ def build(p: Values, s: Values) -> mujoco.MjModel:
 
 
 def post_impact_states(model: mujoco.MjModel, w: theory.RimlessWheel, omega0: np.ndarray,
-                       foot_radius: float) -> np.ndarray:
+                       foot_radius: float, slip: np.ndarray | float = 0.0) -> np.ndarray:
     """Initial states just after an impact (two feet on the ground) with post-impact speeds ``omega0``.
 
     As in the map's section (003 Sec. 3.2): omega0 > 0 pivots on the downhill foot (hinge angle
     -alpha), omega0 < 0 on the uphill foot (+alpha); the hub moves as rotation about the pivot.
+    ``slip`` (m/s, default 0: sticking) is the pivot's velocity along the slope, added to the hub's
+    (Gamus & Or's x_dot of the stance tip, for the stick-slip scenario).
     """
     a, l = w.alpha, w.leg_length
     psi = np.where(omega0 >= 0, -a, a)
     qpos = np.stack([np.zeros_like(omega0), np.full_like(omega0, (l - foot_radius) * math.cos(a) + foot_radius),
                      psi], axis=1)
-    qvel = np.stack([l * omega0 * np.cos(psi), -l * omega0 * np.sin(psi), omega0], axis=1)
+    qvel = np.stack([l * omega0 * np.cos(psi) + slip, -l * omega0 * np.sin(psi), omega0], axis=1)
     return initial_states(model, qpos, qvel)
 
 

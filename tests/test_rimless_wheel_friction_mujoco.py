@@ -1,0 +1,120 @@
+"""Regression: MuJoCo's rimless wheel with Coulomb friction against the stick-slip reference (Gamus & Or 2015,
+Sec. 3 and Appendix A; :mod:`analysis.theory.rimless_wheel_friction`).
+
+The checks and their tolerances are the scenario's own (:mod:`mjpoincare.scenarios.rimless_wheel_friction`); nothing
+here loosens them. The Type D+ test pins a measured MuJoCo limitation (a sliding foot lifts off), so that a change
+of it shows.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from mjpoincare.params import ParameterError
+from mjpoincare.scenarios import rimless_wheel_friction as rwf
+from mjpoincare.validate import resolve_inputs, run_validation
+
+pytestmark = pytest.mark.mujoco
+
+
+@pytest.fixture(scope="module")
+def type_b() -> dict:
+    return run_validation("rimless-wheel-friction", {}, "fast", seed=0).to_dict()
+
+
+def _checks(result: dict) -> dict[str, dict]:
+    return {c["name"]: c for c in result["checks"]}
+
+
+def test_default_type_b_passes(type_b: dict) -> None:
+    """mu = 0.3 (the paper's stick-slip case): Type B, slip onset, impact kind, multiplier, mid-stance rate."""
+    checks = _checks(type_b)
+    assert {"gait_type", "midstance_rate", "eigenvalue", "impact_kind", "phase_sequence", "slip_onset",
+            "stable"} <= set(checks)
+    failed = [c for c in type_b["checks"] if not c["passed"]]
+    assert not failed, failed
+    assert type_b["analytic"]["gait"] == "B"
+    assert all(s["simulated"] == s["reference"] == "B" for s in type_b["starts"])
+    json.dumps(type_b, allow_nan=False)
+
+
+def test_type_a_and_critical_friction() -> None:
+    """mu = 2: no slip (Type A); the measured force ratio along the stance gives mu_c (002 eq 23) within 2 %."""
+    result = run_validation("rimless-wheel-friction", {"mu": "2"}, "fast").to_dict()
+    checks = _checks(result)
+    assert result["analytic"]["gait"] == "A"
+    assert all(c["passed"] for c in result["checks"]), result["checks"]
+    assert checks["critical_friction"]["error"] <= 0.02
+
+
+def test_type_c_passes() -> None:
+    """mu = 0.24: slipping impact, slip -> stick -> slip (Type C), lambda_max within 0.02."""
+    result = run_validation("rimless-wheel-friction", {"mu": "0.24"}, "fast").to_dict()
+    assert result["analytic"]["gait"] == "C"
+    assert all(c["passed"] for c in result["checks"]), result["checks"]
+
+
+def test_type_d_plus_flight_is_reported() -> None:
+    """mu = 0.2 (Type D+): MuJoCo's sliding foot lifts off at normal speed ~ mu x_dot, and D+'s slip speed grows each
+    step, so every start flies within a few steps. The run must say so (gait_type fails with 'detached'), while the
+    steps before the flight are still D+ steps with the reference's mid-stance rate."""
+    result = run_validation("rimless-wheel-friction", {"mu": "0.2"}, "fast").to_dict()
+    checks = _checks(result)
+    assert not result["passed"]
+    assert not checks["gait_type"]["passed"]
+    assert {s["simulated"] for s in result["starts"]} == {"detached"}
+    assert {s["reference"] for s in result["starts"]} == {"D+"}
+    assert checks["midstance_rate"]["passed"]
+    assert any(step["kind"] == "D+" for step in result["steps"])
+
+
+@pytest.mark.parametrize(("assignments", "name"), [
+    ({"mu": "-1"}, "mu"),
+    ({"mu": "0.05"}, "mu"),
+    ({"kappa": "0"}, "kappa"),
+    ({"kappa": "1.5"}, "kappa"),
+    ({"slope": "0.3"}, "slope"),
+    ({"spokes": "2"}, "spokes"),
+])
+def test_bad_input_names_the_parameter(assignments: dict[str, str], name: str) -> None:
+    with pytest.raises(ParameterError, match=name):
+        resolve_inputs("rimless-wheel-friction", assignments, "fast")
+
+
+def test_type_edges() -> None:
+    edges = rwf.type_edges([0.1, 0.2, 0.3, 0.9, 1.0], ["D+", "C", "B", "B", "A"])
+    assert edges == pytest.approx({"D+/C": 0.15, "C/B": 0.25, "B/A": 0.95})
+
+
+def test_mu_sweep_batches_and_resumes(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """Two mu values in one rollout, then a resumed run that only simulates the new value."""
+    target = tmp_path / "sweep.json"
+    rwf.run_mu_sweep(["0.3", "1.1"], {}, "fast", str(target), workers=1)
+    first = json.loads(target.read_text())
+    assert [r["simulated"] for r in first["rows"]] == ["B", "A"]
+    assert all(r["eigenvalue_error"] <= 0.02 for r in first["rows"])
+    rwf.run_mu_sweep(["0.3", "1.1", "0.24"], {}, "fast", str(target), resume=True, workers=1)
+    out = capsys.readouterr().out
+    assert "1 mu values run" in out
+    rows = json.loads(target.read_text())["rows"]
+    assert [r["mu"] for r in rows] == [0.24, 0.3, 1.1]
+    assert rows[0]["simulated"] == "C"
+
+
+def test_basin_map_small(tmp_path: Path) -> None:
+    """An 8 x 5 map and the x_dot0 = 0 lines: the sticking starts inside the window converge, the slowest rolls back;
+    the PNG and JSON are written."""
+    png, js = tmp_path / "basins.png", tmp_path / "basins.json"
+    code = rwf.run_basin_map("theta_dot0=0.05:1.2:8,x_dot0=0:0.04:5", {}, "coarse", str(js), str(png), workers=1)
+    result = json.loads(js.read_text())
+    assert png.stat().st_size > 10_000
+    assert code in (0, 1)
+    line = result["lines"]["slip"]
+    assert line["simulated"][0] == line["reference"][0] == "backward"
+    assert all(s not in rwf.FAILURES for s in line["simulated"][1:6])
+    steps = np.array(line["simulated_steps"][1:6])
+    assert (steps > 0).all()
