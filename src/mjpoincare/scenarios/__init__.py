@@ -12,7 +12,8 @@ from mjpoincare.scenarios.slotted_skate import SLOTTED_SKATE
 
 REGISTRY: dict[str, Scenario] = {s.name: s for s in (RIMLESS_WHEEL, COMPASS_BIPED, SLOTTED_SKATE, RIMLESS_WHEEL_3D,
                                                     RIMLESS_WHEEL_FRICTION)}
-DEFAULT_SCENARIOS: tuple[str, ...] = ("rimless-wheel", "compass-biped", "slotted-skate", "rimless-wheel-3d")
+DEFAULT_SCENARIOS: tuple[str, ...] = ("rimless-wheel", "compass-biped", "slotted-skate", "rimless-wheel-3d",
+                                     "rimless-wheel-friction")
 
 
 def get(name: str) -> Scenario:
