@@ -61,6 +61,8 @@ def test_ideal_mode_isolates_the_integration(ideal: dict) -> None:
 def test_contact_mode_reports_heading_drift(contact: dict) -> None:
     """The heading is neutral: its drift is reported (per 100 impacts), never compared with the start heading."""
     drift = contact["heading_drift"]
+    reported = contact["reported"]["heading_drift_per_100_impacts"]  # also printed under the check table
+    assert reported["value"] == pytest.approx(drift["per_100_impacts_fit"]) and reported["unit"] == "rad"
     assert math.isfinite(drift["per_100_impacts_fit"])
     assert set(contact["heading_drift_per_100_impacts_planar"]) == {"0", "0.314159", "0.5"}
     assert contact["heading_drift_per_100_impacts_planar"]["0"] == pytest.approx(0.0, abs=1e-9)  # symmetric

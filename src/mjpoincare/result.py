@@ -65,6 +65,8 @@ class Result:
         t = self.timing
         lines.append(f"wall {t['wall_s']:.2f} s, {t['steps']:.3g} steps, {t['steps_per_s']:.3g} steps/s "
                      f"(MuJoCo alone {t['rollout_steps_per_s']:.3g} steps/s)")
+        for name, item in self.extras.get("reported", {}).items():  # figures a check table shows but does not judge
+            lines.append(f"reported {name}: {_fmt(float(item['value']))} {item['unit']} ({item['note']})")
         if self.diverged:
             lines.append(f"DIVERGED trajectories: {self.diverged}")
         lines.extend(f"mujoco warning: {w}" for w in self.warnings)

@@ -730,6 +730,9 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
             "note": "psi_k+1 - psi_k (rad) of the fitted map's cycle at psi = heading, which drifts along the family "
                     "of planar cycles (A x + b = x + c dx*/dpsi); the heading is neutral, so any bias per impact "
                     "accumulates: reported, never compared with the start heading"}
+        extras["reported"] = {"heading_drift_per_100_impacts": {
+            "value": 100.0 * fitted.drift, "unit": "rad",
+            "note": "fitted cycle's drift along the neutral heading family; reported, not judged"}}
         extras["return_map"] = _return_map_plot(w, sequences, unit, ref)
         try:
             floor: dict[str, object] = dict(reference_bench(p, hybrid.RTOL))
