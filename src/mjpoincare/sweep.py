@@ -84,7 +84,7 @@ def _point_assignments(assignments: Mapping[str, str], workers: int) -> dict[str
     return {**assignments, "threads": str(max(1, (os.cpu_count() or 1) // workers))}
 
 
-def _resumed_rows(json_path: str | None, header: dict[str, Any]) -> list[dict[str, Any]]:
+def resumed_rows(json_path: str | None, header: dict[str, Any]) -> list[dict[str, Any]]:
     """Rows of a previous run of the same sweep (same scenario, parameter, settings and preset)."""
     if not json_path or json_path == "-" or not Path(json_path).exists():
         return []
@@ -109,7 +109,7 @@ def run_sweep(name: str, param: str, values: list[str], assignments: Mapping[str
     for value in values:  # every input is checked before the first simulation
         resolve_inputs(name, {**point_set, param: value}, preset)
     header = {"scenario": name, "param": param, "assignments": dict(assignments), "preset": preset}
-    done = _resumed_rows(json_path, header) if resume else []
+    done = resumed_rows(json_path, header) if resume else []
     finished = {r["value"] for r in done}
     todo = [v for v in values if v not in finished]
     rows = [r for r in done if r["value"] in set(values)]

@@ -1001,14 +1001,11 @@ def run_mu_sweep(values: Sequence[str], assignments: Mapping[str, str], preset: 
     header = {"scenario": "rimless-wheel-friction", "param": "mu", "assignments": dict(assignments),
               "preset": preset_name}
     rows: list[dict[str, Any]] = []
-    if resume and json_path and json_path != "-" and Path(json_path).exists():
-        import json
+    if resume:
+        from mjpoincare.sweep import resumed_rows
 
-        previous = json.loads(Path(json_path).read_text())
-        if any(previous.get(k) != v for k, v in header.items()):
-            raise ParameterError(f"--resume: {json_path} holds a different sweep")
         rows = [{k: (math.nan if v is None else v) for k, v in r.items()}  # JSON null = NaN
-                for r in previous.get("rows", []) if r["mu"] in mus]
+                for r in resumed_rows(json_path, header) if r["mu"] in mus]
     done = {r["mu"] for r in rows}
     todo = [mu for mu in mus if mu not in done]
     start = time.perf_counter()
