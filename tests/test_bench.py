@@ -45,3 +45,18 @@ def test_unskip_collisions_makes_every_geom_collide() -> None:
     import mujoco
 
     assert not scenario.build(params, settings).opt.disableflags & int(mujoco.mjtDisableBit.mjDSBL_CONTACT)
+
+
+@pytest.mark.mujoco
+def test_scaling_reports_ceiling_and_speedup(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    out = tmp_path / "scaling.json"
+    assert main(["bench", "rimless-wheel", "--scaling", "--values", "0.1,0.15", "--repeats", "1",
+                 "--json", str(out)]) == 0
+    assert "machine ceiling" in capsys.readouterr().out
+    payload = json.loads(out.read_text())
+    assert payload["workers"] == 2 and payload["ceiling"] > 0 and payload["speedup"] > 0
+    assert payload["efficiency"] == pytest.approx(payload["speedup"] / payload["ceiling"])
+
+
+def test_scaling_refuses_one_worker() -> None:
+    assert main(["bench", "rimless-wheel", "--scaling", "--workers", "1"]) == 2

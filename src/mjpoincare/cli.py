@@ -53,6 +53,12 @@ def _cmd_validate(args: argparse.Namespace) -> int:
 def _cmd_bench(args: argparse.Namespace) -> int:
     from mjpoincare.bench import run_bench, run_skips
 
+    if args.scaling:
+        from mjpoincare.scaling import run_scaling
+
+        json_path = args.json if args.json != "renders/bench-{scenario}.json" else "renders/scaling-{scenario}.json"
+        return run_scaling(args.scenario, args.param, args.values, parse_assignments(args.set), json_path,
+                           workers=args.workers, repeats=args.repeats)
     if args.skips:
         json_path = args.json if args.json != "renders/bench-{scenario}.json" else "renders/skips-{scenario}.json"
         return run_skips(args.scenario, parse_assignments(args.set), json_path)
@@ -132,6 +138,12 @@ def build_parser() -> argparse.ArgumentParser:
     bench.add_argument("--quick", action="store_true", help="a small sweep (for tests)")
     bench.add_argument("--skips", action="store_true", help="instead: what each skip (collision filtering, no "
                        "sensors, contact off, solver budget, threads) buys in speed, and the error with and without")
+    bench.add_argument("--scaling", action="store_true", help="instead: a sweep's speedup from 1 to --workers "
+                       "processes beside the machine's ceiling for independent MuJoCo work (best of --repeats)")
+    bench.add_argument("--param", default="slope", help="--scaling: the swept parameter")
+    bench.add_argument("--values", default="0.08:0.2:16", help="--scaling: its values, v1,v2,... or START:STOP:N")
+    bench.add_argument("--workers", type=int, default=2, help="--scaling: processes to scale to")
+    bench.add_argument("--repeats", type=int, default=3, help="--scaling: best of this many runs of each")
     bench.set_defaults(func=_cmd_bench)
 
     sweep = sub.add_parser("sweep", help="validate over a list of values of one parameter")
