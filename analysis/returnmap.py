@@ -21,7 +21,7 @@ from scipy.optimize import linear_sum_assignment
 
 __all__ = ["ReturnMapFit", "convergence_ratio", "fit_return_map", "sample_pairs"]
 
-_SUPPORTED_DEGREES = (1, 2)
+_SUPPORTED_DEGREES = (1, 2, 3)
 _NEWTON_MAX_ITER = 60
 _NEWTON_STEP_TOL = 1e-12
 _TIE_RTOL = 1e-9
@@ -45,7 +45,7 @@ class ReturnMapFit:
         jacobian_std: ``(d, d)`` bootstrap standard deviation of ``jacobian``.
         residual_rms: ``(d,)`` root-mean-square one-step residual ``x_next - F(x)`` of the fit.
         n_pairs: number of pairs used.
-        degree: total polynomial degree of the fit (1 affine, 2 quadratic).
+        degree: total polynomial degree of the fit (1 affine, 2 quadratic, 3 cubic).
         condition: condition number of the centred and scaled regression matrix.
 
     The standard deviations are NaN when fewer than two bootstrap replicates were available.
@@ -229,7 +229,7 @@ def _fixed_point(model: _Scaled, degree: int, start: np.ndarray | None) -> np.nd
         if np.linalg.norm(step) <= _NEWTON_STEP_TOL * (1.0 + np.linalg.norm(z)):
             return z
     raise ValueError(
-        "Newton for the fixed point of the quadratic map did not converge from the affine "
+        "Newton for the fixed point of the polynomial map did not converge from the affine "
         "estimate; the fitted map may have no fixed point near the samples (try degree=1)"
     )
 
@@ -279,7 +279,7 @@ def fit_return_map(
     The regression uses all monomials of total degree ``<= degree`` in the coordinates
     ``z = (x - center) / scale`` (``scale`` = per-coordinate std of ``x``, 1 where that is zero),
     with ``z_next`` scaled the same way.  The fixed point solves ``(I - A) x* = b`` for an affine
-    fit; for a quadratic fit it is found by Newton's method on ``F(x) - x`` started from the
+    fit; for a quadratic or cubic fit it is found by Newton's method on ``F(x) - x`` started from the
     affine fit's fixed point.  Uncertainties come from a bootstrap over pairs (rows resampled with
     replacement, replicates whose regression is degenerate are skipped), fully determined by
     ``seed``.
@@ -287,7 +287,8 @@ def fit_return_map(
     Args:
         x: ``(N, d)`` or ``(N,)`` section states.
         x_next: same shape, the next crossing of each state (e.g. from :func:`sample_pairs`).
-        degree: 1 (affine) or 2 (quadratic).
+        degree: 1 (affine), 2 (quadratic) or 3 (cubic: when the samples spread far enough for the map's
+            cubic terms to bias the quadratic fit's Jacobian).
         bootstrap: number of bootstrap replicates (0 disables; the stds are then NaN).
         seed: seed of the bootstrap resampling.
         center: centring point ``(d,)``; defaults to the mean of ``x``.
@@ -333,7 +334,7 @@ def fit_return_map(
     coef, condition = _least_squares(phi, zs_next)
     model = _Scaled(coef, terms)
     start = None
-    if degree == 2:
+    if degree >= 2:
         affine = _Scaled(_least_squares(phi[:, : dim + 1], zs_next)[0], terms[: dim + 1])
         start = _fixed_point(affine, 1, None)
     z_star = _fixed_point(model, degree, start)

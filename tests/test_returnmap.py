@@ -178,6 +178,25 @@ def test_quadratic_2d_map_with_cross_terms_and_unstable_multiplier() -> None:
     assert np.abs(fit_return_map(x, quad_map(x), degree=1, bootstrap=0).jacobian - matrix).max() > 1e-2
 
 
+def test_cubic_3d_map_recovered_by_degree_3_and_biases_degree_2() -> None:
+    """A 3-D map with cubic terms and multipliers (-0.75, -0.41, 0.11), like the compass biped near its flip:
+    over a +-0.3 cloud the quadratic fit's Jacobian absorbs the cubic terms (error > 1e-2); the cubic fit is exact."""
+    matrix = conjugated(np.diag([-0.75, -0.41, 0.11]), seed=8)
+
+    def cubic_map(x: np.ndarray) -> np.ndarray:
+        dx = x - FIXED_3D
+        bend = np.stack([0.4 * dx[:, 0] ** 3 - 0.2 * dx[:, 1] * dx[:, 2], 0.3 * dx[:, 0] ** 2 * dx[:, 1],
+                         -0.5 * dx[:, 2] ** 3 + 0.1 * dx[:, 0] ** 2], axis=1)
+        return FIXED_3D + dx @ matrix.T + bend
+
+    x = cloud(FIXED_3D, 120, seed=9, spread=0.3)
+    cubic = fit_return_map(x, cubic_map(x), degree=3, bootstrap=10)
+    assert np.abs(cubic.fixed_point - FIXED_3D).max() < 1e-9
+    assert np.abs(cubic.jacobian - matrix).max() < 1e-9
+    assert np.sort(cubic.eigenvalues.real) == pytest.approx([-0.75, -0.41, 0.11], abs=1e-9)
+    assert np.abs(fit_return_map(x, cubic_map(x), degree=2, bootstrap=0).jacobian - matrix).max() > 1e-2
+
+
 @pytest.mark.parametrize("seed", range(5))
 def test_noisy_3d_estimate_within_bootstrap_error(seed: int) -> None:
     sigma = 0.01
@@ -298,7 +317,7 @@ def test_errors_degenerate_samples() -> None:
 def test_errors_bad_arguments_and_missing_fixed_point() -> None:
     x = np.linspace(-1.0, 1.0, 20)
     with pytest.raises(ValueError, match="degree"):
-        fit_return_map(x, x, degree=3)
+        fit_return_map(x, x, degree=4)
     with pytest.raises(ValueError, match="same shape"):
         fit_return_map(x, x[:-1])
     with pytest.raises(ValueError, match="did not converge"):

@@ -114,6 +114,28 @@ def test_eom_equals_lagrangian_of_point_masses(bp):
         assert cb.energy(bp, q, qd) == pytest.approx(kinetic(bp, x) + potential(bp, q), rel=1e-12)
 
 
+def test_constant_torques_power_and_gait():
+    """With the model's constant torques dE/dt = tau_ankle dtheta_st + tau_hip (dtheta_sw - dtheta_st), and the
+    gait continued from the passive one is a fixed point of the actuated map, shifted the way the ankle pushes."""
+    from dataclasses import replace
+
+    bp = replace(cb.kisa(), tau_ankle=0.5, tau_hip=0.2)
+    x = random_state()
+    qdd = cb.swing_dynamics(bp, x[:2], x[2:])
+    rate = np.concatenate([x[2:], qdd])
+
+    def energy_along(h: float) -> float:
+        y = x + h * rate
+        return kinetic(bp, y) + potential(bp, y[:2])
+
+    d_energy = (energy_along(1e-6) - energy_along(-1e-6)) / 2e-6
+    assert d_energy == pytest.approx(0.5 * x[2] + 0.2 * (x[3] - x[2]), abs=1e-6)
+    x_star = cb.fixed_point(bp)
+    assert cb.step(bp, x_star).x_plus_next == pytest.approx(x_star, abs=1e-9)
+    passive = cb.fixed_point(cb.kisa())
+    assert x_star[2] > passive[2]  # the ankle torque pushes the hip downhill: a faster stance leg
+
+
 def test_hip_torque_power():
     """dE/dt = tau (dtheta_sw - dtheta_st): the hip torque's power, B = (-1, 1) (003 eq 4.4)."""
     bp = cb.kisa()

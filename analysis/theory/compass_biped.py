@@ -12,6 +12,11 @@ mass l u(theta_st) - b u(theta_sw), swing foot l u(theta_st) - l u(theta_sw). Th
 counter-clockwise on the swing leg with work tau (theta_sw - theta_st), so B = (-1, 1). A state is
 x = (theta_st, theta_sw, dtheta_st, dtheta_sw).
 
+Actuation (for the actuated biped; 0 = the passive walker of 003): constant torques, ``tau_hip`` between the legs
+as in 003 eq 4.5 (generalised forces (-tau_hip, +tau_hip)) and ``tau_ankle``, the ground's torque on the stance leg,
+clockwise positive (generalised force (+tau_ankle, 0): it pushes the hip downhill). Both act in the EoM only; the
+impact law is unchanged (finite torques give no impulse).
+
 Heel strike (003 eq 4.6): theta_st + theta_sw = 2 gamma with theta_st > theta_sw (swing foot in front); the
 mid-stance crossing theta_st = theta_sw, where the swing foot scuffs, is ignored (003 Sec. 4.1: the swing leg
 "retracts" without moving its mass). At impact the legs are relabelled (003 eq 4.7) and
@@ -45,6 +50,7 @@ _REF_SLOPE = 0.04
 _REF_Z = (-0.2073985186, 1.0406442919 / math.sqrt(9.81), 0.4810330477 / math.sqrt(9.81))
 #: Largest slope increment of one continuation stage in :func:`fixed_point`.
 _CONT_STEP = 0.005
+_TORQUE_STEP = 0.05  # N m per continuation stage in the constant torques
 _FORCE_SAMPLES = 401
 
 
@@ -53,7 +59,8 @@ class CompassBiped:
     """Compass-gait biped parameters (003 Sec. 4.1, Fig. 15; defaults = 003 Fig. 18).
 
     ``m_h`` hip mass > 0 (kg), ``m_l`` leg point mass > 0 (kg), ``a`` foot-to-leg-mass and ``b`` leg-mass-to-hip
-    distances > 0 (m), ``slope`` gamma in (0, pi/2) rad, ``gravity`` g > 0 (m/s^2).
+    distances > 0 (m), ``slope`` gamma in (0, pi/2) rad, ``gravity`` g > 0 (m/s^2), constant ``tau_ankle`` and
+    ``tau_hip`` (N m; module docstring for their senses).
     """
 
     m_h: float = 10.0
@@ -62,6 +69,8 @@ class CompassBiped:
     b: float = 0.5
     slope: float = 0.04
     gravity: float = 9.81
+    tau_ankle: float = 0.0
+    tau_hip: float = 0.0
 
     @property
     def l(self) -> float:  # noqa: E743 (the papers' leg length)
@@ -135,22 +144,25 @@ def gravity_vector(bp: CompassBiped, q: ArrayLike) -> NDArray[np.float64]:
 
 
 def _qdd(bp: CompassBiped, th_st: float, th_sw: float, om_st: float, om_sw: float, tau: float) -> tuple[float, float]:
-    """Scalar solve of M qdd = G + B tau - C qd (003 eq 4.5) by the closed-form 2x2 inverse."""
+    """Scalar solve of M qdd = G + B (tau_hip + tau) + (tau_ankle, 0) - C qd (003 eq 4.5) by the closed-form 2x2
+    inverse (``tau`` is an extra hip torque on top of the model's constant ones)."""
     s, c = math.sin(th_st - th_sw), math.cos(th_st - th_sw)
     mbl = bp.m_l * bp.b * bp.l
     m11 = bp.m_l * bp.a**2 + (bp.m_h + bp.m_l) * bp.l**2
     m12 = -mbl * c
     m22 = bp.m_l * bp.b**2
     g = bp.gravity
-    r1 = g * math.sin(th_st) * (bp.m_l * bp.a + (bp.m_h + bp.m_l) * bp.l) - tau + mbl * s * om_sw**2
-    r2 = -g * bp.m_l * bp.b * math.sin(th_sw) + tau - mbl * s * om_st**2
+    hip = bp.tau_hip + tau
+    r1 = g * math.sin(th_st) * (bp.m_l * bp.a + (bp.m_h + bp.m_l) * bp.l) - hip + bp.tau_ankle + mbl * s * om_sw**2
+    r2 = -g * bp.m_l * bp.b * math.sin(th_sw) + hip - mbl * s * om_st**2
     det = m11 * m22 - m12 * m12
     return (m22 * r1 - m12 * r2) / det, (m11 * r2 - m12 * r1) / det
 
 
 def swing_dynamics(bp: CompassBiped, q: ArrayLike, qd: ArrayLike, tau_hip: float = 0.0) -> NDArray[np.float64]:
     """Accelerations qdd = M^-1 (G + B tau - C qd) of 003 eq 4.5 with B = (-1, 1) (tau > 0 counter-clockwise
-    on the swing leg); passive swing 003 eq 4.19 for tau_hip = 0."""
+    on the swing leg), tau = the model's tau_hip + ``tau_hip``, plus the model's ankle torque; passive swing 003
+    eq 4.19 when all torques are 0."""
     th_st, th_sw = np.asarray(q, dtype=float)
     om_st, om_sw = np.asarray(qd, dtype=float)
     return np.array(_qdd(bp, th_st, th_sw, om_st, om_sw, tau_hip))
@@ -324,8 +336,10 @@ def _solve_fixed(bp: CompassBiped, guess: NDArray[np.float64]) -> NDArray[np.flo
         except RuntimeError:
             return np.full(3, 1e3)
 
-    z, _, ier, msg = fsolve(gap, guess, full_output=True, xtol=1e-13)
-    if ier != 1 or np.max(np.abs(gap(z))) > 1e-9:
+    z, _, _, msg = fsolve(gap, guess, full_output=True, xtol=1e-13)
+    # judged by the residual: from a guess already at the root (continuation) hybrd stalls at the integration noise
+    # floor (~1e-12) and reports "not making good progress" although the gait is found
+    if np.max(np.abs(gap(z))) > 1e-9:
         raise ValueError(f"fixed-point shooting failed at slope {bp.slope!r}: {msg}")
     return z
 
@@ -341,23 +355,36 @@ def _continue(bp: CompassBiped, z0: NDArray[np.float64], slope0: float) -> NDArr
     return zs[-1]
 
 
+def _continue_torques(bp: CompassBiped, z0: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Continuation from the passive fixed point z0 of bp's geometry to bp's constant torques, stages of at most
+    ``_TORQUE_STEP`` N m, guesses extrapolated as in :func:`_continue`."""
+    stages = math.ceil(max(abs(bp.tau_ankle), abs(bp.tau_hip)) / _TORQUE_STEP)
+    zs = [np.asarray(z0, dtype=float)]
+    for frac in np.linspace(0.0, 1.0, stages + 1)[1:]:
+        guess = zs[-1] if len(zs) == 1 else 2.0 * zs[-1] - zs[-2]
+        zs.append(_solve_fixed(replace(bp, tau_ankle=frac * bp.tau_ankle, tau_hip=frac * bp.tau_hip), guess))
+    return zs[-1]
+
+
 @lru_cache(maxsize=256)
 def _fixed_point_cached(bp: CompassBiped, guess: tuple[float, float, float] | None) -> tuple[float, ...]:
     if guess is not None:
         return tuple(_solve_fixed(bp, np.array(guess)))
     rate = math.sqrt(bp.gravity / bp.l)
     ref_guess = np.array([_REF_Z[0], _REF_Z[1] * rate, _REF_Z[2] * rate])
-    ref = _solve_fixed(replace(bp, slope=_REF_SLOPE), ref_guess)
-    return tuple(_continue(bp, ref, _REF_SLOPE))
+    passive = replace(bp, tau_ankle=0.0, tau_hip=0.0)
+    ref = _solve_fixed(replace(passive, slope=_REF_SLOPE), ref_guess)
+    return tuple(_continue_torques(bp, _continue(passive, ref, _REF_SLOPE)))
 
 
 def fixed_point(bp: CompassBiped, guess: ArrayLike | None = None) -> NDArray[np.float64]:
-    """Passive period-1 gait x* = (theta_st+, theta_sw+, dtheta_st+, dtheta_sw+) just after the impact: a fixed point
-    of the Poincaré map 003 eq 4.18 with tau = 0 (003 eq 4.19), found by Newton shooting on the 3-D post-impact
-    section (:func:`return_map`), not by 003's grid search (Sec. 4.4.2).
+    """Period-1 gait x* = (theta_st+, theta_sw+, dtheta_st+, dtheta_sw+) just after the impact: a fixed point
+    of the Poincaré map 003 eq 4.18 (passive, 003 eq 4.19, unless bp has constant torques), found by Newton
+    shooting on the 3-D post-impact section (:func:`return_map`), not by 003's grid search (Sec. 4.4.2).
 
     ``guess``: a 3-vector z on the section or a 4-vector x. Default: the 003 Fig. 18 gait (slope 0.04, rates scaled
-    by sqrt(g/l)), solved for bp's masses and lengths and continued in the slope to bp.slope; this reaches the
+    by sqrt(g/l)), solved for bp's masses and lengths, continued in the slope to bp.slope, then in the torques from 0
+    to bp's (:func:`_continue_torques`); this reaches the
     stable (long-step) gait for m_h/m_l = 2, a = b (003 and Goswami et al. 1996/98) over slopes 0.005..0.0766.
     ValueError if the shooting does not converge.
     """
