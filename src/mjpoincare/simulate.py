@@ -116,12 +116,13 @@ def _warning_lines(datas: list[mujoco.MjData]) -> list[str]:
 
 def _native_chunk(pool: mj_rollout.Rollout, model: mujoco.MjModel | list[mujoco.MjModel],
                   datas: list[mujoco.MjData], current: np.ndarray, n: int, dt: float,
-                  report: RolloutReport) -> tuple[np.ndarray, np.ndarray]:
-    """Step ``current`` (B, nstate) ``n`` steps in MuJoCo; returns the raw states (B, n, nstate) and the
+                  report: RolloutReport, control: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Step ``current`` (B, nstate) ``n`` steps in MuJoCo (with ``control`` (B, n, nu) as ctrl, if given);
+    returns the raw states (B, n, nstate) and the
     chunk with its first row prepended, where rows from a divergence on (NaN, or MuJoCo's silent reset,
     seen as time not advancing by one step per step) are NaN and the trajectory is flagged in ``report``."""
     start = time.perf_counter()
-    states, sensordata = pool.rollout(model, datas, current, nstep=n)
+    states, sensordata = pool.rollout(model, datas, current, control, nstep=n)
     report.wall_s += time.perf_counter() - start
     report.steps += current.shape[0] * n
     full = np.concatenate([current[:, None, :], states], axis=1)
@@ -178,6 +179,7 @@ def event_rollout(
     *,
     threads: int = 2,
     chunk_steps: int = 200,
+    control: Callable[[np.ndarray], np.ndarray] | None = None,
 ) -> RolloutReport:
     """Batched rollout with a controller that acts at events, without Python between steps.
 
@@ -191,6 +193,12 @@ def event_rollout(
     state to continue from instead of row ``k`` (e.g. after a fractional step that lands exactly on
     the event, or a re-parametrisation of the state). Every trajectory is stepped until it has
     ``nstep`` kept steps. Steps discarded after an event are counted in ``steps`` (they cost time).
+
+    ``control`` (optional): called before each chunk with each trajectory's current time (B,); returns the
+    ctrl of every step of the chunk, (B, chunk_steps, nu), which ``mujoco.rollout`` applies natively (row k
+    acts on the step from recorded row k to k + 1). A time-varying feedforward (e.g. a reference trajectory in
+    the phase since the last event, which the controller tracks) thus needs no Python between steps; rows
+    after an event are discarded and the next chunk's control starts from the restart row.
     """
     batch = state0.shape[0]
     nq, nv = models[0].nq, models[0].nv
@@ -201,7 +209,8 @@ def event_rollout(
     dt = models[0].opt.timestep
     with captured_mujoco_log() as log, mj_rollout.Rollout(nthread=threads) as pool:
         while (kept < nstep).any():
-            states, full = _native_chunk(pool, models, datas, current, chunk_steps, dt, report)
+            ctrl = None if control is None else np.ascontiguousarray(control(current[:, 0]), dtype=float)
+            states, full = _native_chunk(pool, models, datas, current, chunk_steps, dt, report, ctrl)
             done = kept >= nstep
             full[done, 1:] = np.nan  # finished trajectories idle; nothing is sampled from them
             chunk = Chunk(time=full[:, :, 0], qpos=full[:, :, 1 : 1 + nq], qvel=full[:, :, 1 + nq : 1 + nq + nv])

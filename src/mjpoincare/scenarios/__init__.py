@@ -5,13 +5,14 @@ from __future__ import annotations
 from mjpoincare.params import ParameterError
 from mjpoincare.scenarios.base import Evaluation, Scenario
 from mjpoincare.scenarios.compass_biped import COMPASS_BIPED
+from mjpoincare.scenarios.compass_biped_friction import COMPASS_BIPED_FRICTION
 from mjpoincare.scenarios.rimless_wheel import RIMLESS_WHEEL
 from mjpoincare.scenarios.rimless_wheel_3d import RIMLESS_WHEEL_3D
 from mjpoincare.scenarios.rimless_wheel_friction import RIMLESS_WHEEL_FRICTION
 from mjpoincare.scenarios.slotted_skate import SLOTTED_SKATE
 
 REGISTRY: dict[str, Scenario] = {s.name: s for s in (RIMLESS_WHEEL, COMPASS_BIPED, SLOTTED_SKATE, RIMLESS_WHEEL_3D,
-                                                    RIMLESS_WHEEL_FRICTION)}
+                                                    RIMLESS_WHEEL_FRICTION, COMPASS_BIPED_FRICTION)}
 DEFAULT_SCENARIOS: tuple[str, ...] = ("rimless-wheel", "compass-biped", "slotted-skate", "rimless-wheel-3d",
                                      "rimless-wheel-friction")
 

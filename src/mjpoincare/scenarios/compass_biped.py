@@ -173,6 +173,8 @@ class GaitController:
         self._release: list[tuple[float, float, float] | None] = [None] * batch
         self.release_depth: list[float] = []
         self.release_speed: list[float] = []
+        #: swing-foot contact switch-on thresholds (x l); a scenario with low foot clearance may lower them
+        self.enable_ahead, self.enable_clear = ENABLE_AHEAD, ENABLE_CLEAR
 
     def configure(self, models: list[mujoco.MjModel]) -> None:
         """Initial contacts: leg 0 stands, leg 1 swings with its contact off; the torques act accordingly."""
@@ -211,8 +213,8 @@ class GaitController:
             strike = False
             if not self.swing_enabled[b]:
                 self._scuffed[b] |= bool(np.nanmin(h_sw[1:]) < 0.0)
-                ready = np.nonzero((x_sw[1:] > x_st[1:] + ENABLE_AHEAD * length)
-                                   & (h_sw[1:] > ENABLE_CLEAR * length))[0]
+                ready = np.nonzero((x_sw[1:] > x_st[1:] + self.enable_ahead * length)
+                                   & (h_sw[1:] > self.enable_clear * length))[0]
                 if ready.size:
                     restart[b] = int(ready[0]) + 1
                     models[b].geom_contype[self.feet[sw]] = 1

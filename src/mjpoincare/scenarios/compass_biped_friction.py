@@ -1,0 +1,594 @@
+"""Scenario ``compass-biped-friction``: the compass biped with Coulomb friction, passive and actuated (issue #7).
+
+Analytic reference: Gamus & Or (2015), seed 002, Sec. 4 (passive Gaits A, B on a 1 deg slope, eq 27, Figs
+4.1-4.2) and Sec. 5 (Gait I: constant torques, eq 28; Gait III: PD tracking with phase reset, eq 30; cost of
+transport eq 29); re-derived in :mod:`analysis.theory.compass_biped_friction` (reference card 002 Secs. 3-4, 7).
+
+MuJoCo side: the ``compass-biped`` model rebuilt with 002's parameters (l = 1.6 m, d = 0.8 m: a = b = 0.8 m,
+m = 4 kg, m_h = 2 kg, g = 9.8 m/s^2) by :func:`mjpoincare.scenarios.compass_biped.build`, and its contact
+protocol (swing foot off until ahead and clear, trailing foot released at heel strike). Angles: the stance hinge
+is 002's theta1, the swing hinge is -theta2 (002 eq 27: theta2 is the swing leg's hip->foot direction), so the
+paper's generalised forces map to hinge torques as stance = Q_theta1, swing = -Q_theta2:
+
+* Gait I (E_eff, Q = (-tau1 - tau2, tau2) = (2.19, 0.54) N m): ankle torque 1.65 N m on the stance hinge and hip
+  torque -0.54 N m on the tendon (stance hinge tau_ankle - tau_hip = 2.19, swing hinge tau_hip = -0.54).
+* Gait III (direct PD, eq 30): each ankle actuator gets gainprm[0] = 1 and biasprm = (0, -kp, -kd); the
+  reference term is ctrl, fed natively through :func:`mjpoincare.simulate.event_rollout`'s ``control``: stance
+  ctrl = kp theta1^r + kd theta1_dot^r, swing ctrl = -(kp theta2^r + kd theta2_dot^r), phi = time since the
+  trajectory's last heel strike (phase reset).
+
+Checks: the fixed point and multipliers of the return map on the legs-parallel section (hinge angles equal,
+mid-stance, away from the soft impact; fitted from perturbed starts), step length / period / speed and (actuated)
+the cost of transport with the actuator work integrated from the recorded rows; Gait A: the friction ratio
+|f_t/f_n| from the centre-of-mass acceleration (the only contact is the stance foot) against 002's mu_c; Gait B:
+the stance phases classified from the stance foot's tangential velocity.
+"""
+
+from __future__ import annotations
+
+import copy
+import itertools
+import math
+import time
+from functools import lru_cache
+
+import mujoco
+import numpy as np
+from scipy.optimize import brentq
+
+from analysis import checks
+from analysis.returnmap import fit_return_map, sample_pairs
+from analysis.theory import compass_biped_friction as theory
+from mjpoincare.params import Param, ParameterError
+from mjpoincare.scenarios import compass_biped as cb
+from mjpoincare.scenarios.base import Evaluation, Scenario, StressCase, Values
+from mjpoincare.simulate import Chunk, KeptRows, RolloutReport, event_rollout, initial_states
+
+GAITS = ("a", "b", "i", "iii")
+#: 002's friction per gait when ``mu`` = 0: A above mu_c (any mu >= 0.175 is the same gait), B 0.14 (Fig. 4.2a),
+#: I 0.2 (Fig. 5.1), III 0.2 (Fig. 5.2).
+PAPER_MU = {"a": 1.0, "b": 0.14, "i": 0.2, "iii": 0.2}
+LEVEL = {"a": False, "b": False, "i": True, "iii": True}
+
+PARAMS: tuple[Param, ...] = (
+    Param("gait", "a", "002 gait: a, b (passive, 1 deg slope), i (constant torques), iii (PD tracking Gait C)",
+          str, choices=GAITS),
+    Param("mu", 0.0, "Coulomb friction; 0 = the gait's paper value (A 1, B 0.14, I 0.2, III 0.2)", float, 0.0, 1e3),
+    Param("kp", 15.0, "Gait III PD stiffness, N m/rad (002 eq 30)", float, 0.0, 1e4),
+    Param("kd", 15.0, "Gait III PD damping, N m s/rad (002 eq 30)", float, 0.0, 1e4),
+)
+
+PRESETS: dict[str, dict[str, float | int | str]] = cb.PRESETS
+#: Same contact and step sizes as ``compass-biped``, hence its fixed-point and eigenvalue tolerances and reasons.
+#: friction_ratio: |f_t/f_n| is an acceleration ratio; the soft contact's creep and the 0.1 ms finite difference
+#: of the momentum make it good to ~1 % of mu_c (fast). cost/speed/length: per-step integrals over the settled
+#: gait, limited by the impact-onset jitter of the step grid (~1e-3 relative, fast).
+TOLERANCES: dict[str, dict[str, float]] = {
+    "accurate": {"fixed_point": 1e-3, "eigenvalues": 0.01, "step_period": 1e-3, "step_length": 1e-3,
+                 "speed": 1e-3, "cost_of_transport": 5e-3, "friction_ratio": 2e-3, "phase_time": 2e-3},
+    "fast": {"fixed_point": 5e-3, "eigenvalues": 0.03, "step_period": 5e-3, "step_length": 5e-3,
+             "speed": 5e-3, "cost_of_transport": 1e-2, "friction_ratio": 5e-3, "phase_time": 5e-3},
+}
+WHY = cb.WHY
+
+STEPS = 8  # heel strikes per trajectory
+STARTS = 16  # perturbed starts around the fixed point (plus the fixed point itself)
+PERTURBATION = 0.03  # as compass-biped: size x (timestep / 20 us)^(1/3), shrunk as |lambda|max -> 1
+SETTLE = 3  # steps of the unperturbed trajectory skipped before per-step averages
+ENABLE_AHEAD = 0.05  # swing-foot contact on once the foot is this far (x l) ahead of the stance foot ...
+ENABLE_CLEAR = 2e-4  # ... and this high (x l) above the ground (Gait III's swing foot clears only ~1 mm)
+RELEASE_SKIP = 5e-3  # s after heel strike excluded from force ratios and phase labels: the soft impact's transient
+V_SLIP = 5e-3  # m/s: stance foot tangential speed above which a row slips (rimless-wheel-friction's fast value)
+MERGE_PHASE_S = 2e-3  # phases shorter than this are merged into the previous one (stick-slip flicker at onsets)
+CHUNK_SECONDS = 0.05
+FIT_DEGREE = 3
+
+
+def gait_name(p: Values) -> str:
+    """The theory's gait name (A, B, I, III)."""
+    return str(p["gait"]).upper()
+
+
+def friction(p: Values) -> float:
+    """mu, with 0 meaning the gait's paper value."""
+    mu = float(p["mu"])
+    return PAPER_MU[str(p["gait"])] if mu == 0.0 else mu
+
+
+@lru_cache(maxsize=16)
+def _gait(name: str, mu: float, kp: float, kd: float) -> theory.Gait:
+    if name == "A":
+        # sticking throughout: the gait does not depend on mu >= its demand; Newton from the seed (002 Sec. 4.1)
+        gait = theory.paper_gait("A", math.inf)
+        demand = theory.critical_friction(gait.biped, gait.z)
+        if mu < max(demand.stance, demand.impulse):
+            raise ValueError(f"mu must be >= {demand.stance:.5f} (mu_c of Gait A, 002 Sec. 4.1; below it is Gait B)"
+                             f" (got {mu})")
+        bp = theory.FrictionBiped(mu=mu)
+        return theory.find_gait(bp, gait.z[:3], theory.PASSIVE)
+    if name == "III" and (kp, kd) != (15.0, 15.0):
+        bp = theory.FrictionBiped(slope=0.0, mu=mu)
+        base = theory.paper_gait("III", mu)
+        return theory.find_gait(bp, base.z, theory.PDTracking(theory.gait_c_reference(), kp, kd))
+    return theory.paper_gait(name, mu)
+
+
+def gait(p: Values) -> theory.Gait:
+    """The analytic gait (002 Secs. 4-5) for the scenario parameters."""
+    return _gait(gait_name(p), friction(p), float(p["kp"]), float(p["kd"]))
+
+
+def check_params(p: Values) -> None:
+    """Refuse parameters without the named, stable gait of 002 (continuation fails, wrong type, |lambda| >= 1)."""
+    name, mu = gait_name(p), friction(p)
+    if name != "III" and (float(p["kp"]), float(p["kd"])) != (15.0, 15.0):
+        raise ParameterError(f"kp, kd apply to gait=iii only (got gait={p['gait']})")
+    try:
+        g = gait(p)
+    except (ValueError, RuntimeError) as err:
+        raise ParameterError(f"mu={mu:g}: no Gait {name} of 002 ({str(err).splitlines()[0]})") from None
+    expected = {"A": "A", "B": "B", "I": "A", "III": "C"}[name]
+    if g.kind != expected:
+        raise ParameterError(f"mu={mu:g}: the gait found is of type {g.kind}, not Gait {name}'s {expected} "
+                             f"({theory.describe(g.record)}); mu_c of the A/B branch is 0.1749")
+    if g.spectral_radius >= 1.0:
+        raise ParameterError(f"mu={mu:g}: Gait {name} is unstable (|lambda|max = {g.spectral_radius:.3f} >= 1; "
+                             "B loses stability at mu = 0.1104, I at 0.1035)")
+
+
+def _torques(p: Values) -> tuple[float, float]:
+    """(tau_ankle, tau_hip) of the compass-biped model for Gait I: stance hinge = Q1 = tau_ankle - tau_hip,
+    swing hinge = -Q2 = tau_hip (002 eq 28 with E_eff)."""
+    if gait_name(p) != "I":
+        return 0.0, 0.0
+    q1, q2 = theory.ConstantTorque(*theory.GAIT_I_TORQUES).generalised_force(np.zeros(4), np.zeros(4), 0.0)
+    return q1 - q2, -q2
+
+
+def model_params(p: Values) -> dict[str, float]:
+    """compass-biped parameters for 002's biped (l = 1.6, d = 0.8, m = 4, m_h = 2, g = 9.8)."""
+    bp = gait(p).biped
+    tau_ankle, tau_hip = _torques(p)
+    return {"m_h": bp.m_h, "m_l": bp.m, "a": bp.d, "b": bp.b, "slope": bp.slope, "mu": friction(p),
+            "gravity": bp.g, "tau_ankle": tau_ankle, "tau_hip": tau_hip}
+
+
+def build(p: Values, s: Values) -> mujoco.MjModel:
+    """compass_biped.xml rebuilt with 002's parameters; Gait III's ankle actuators become PD servos on ctrl."""
+    model = cb.build(model_params(p), s)
+    if gait_name(p) == "III":
+        for i in (0, 1):
+            a = model.actuator(f"ankle{i}").id
+            model.actuator_gainprm[a, 0] = 1.0
+            model.actuator_biasprm[a, :3] = (0.0, -float(p["kp"]), -float(p["kd"]))
+    return model
+
+
+def post_impact_states(model: mujoco.MjModel, bp: theory.FrictionBiped, z: np.ndarray, foot_radius: float
+                       ) -> np.ndarray:
+    """MuJoCo states for 002 section states z = (theta*, theta1_dot+, theta2_dot+, x_dot+) (002 Sec. 4.2): leg 0
+    stands with its foot at the origin (sliding at x_dot+ after a slipping impact); leg 1, the swing leg, has its
+    foot on the ground behind it (theta1 = theta2 = -theta*; swing hinge = -theta2, rate -theta2_dot)."""
+    th, w1, w2, xd = z[:, 0], z[:, 1], z[:, 2], z[:, 3]
+    q_st, q_sw = -th, th  # theta1 = theta2 = -theta*; swing hinge = -theta2
+    lever = bp.l - foot_radius
+    qpos = np.stack([lever * np.sin(q_st), lever * np.cos(q_st) + foot_radius, q_st, q_sw], axis=1)
+    qvel = np.stack([xd + bp.l * w1 * np.cos(q_st), -bp.l * w1 * np.sin(q_st), w1, -w2], axis=1)
+    return initial_states(model, qpos, qvel)
+
+
+def legs_parallel(g: theory.Gait) -> tuple[np.ndarray, float]:
+    """Analytic legs-parallel state (theta1, theta1_dot, -theta2_dot) where theta1 + theta2 = 0 rises through 0
+    along the step from z* (the MuJoCo hinges are then equal), and the time of it after the impact."""
+    ref = theory.reference_trajectory(g.biped, g.z, g.actuation, samples=2001)
+    gap = ref.theta[:, 0] + ref.theta[:, 1]
+    i = int(np.nonzero((gap[:-1] < 0) & (gap[1:] >= 0))[0][0])
+    t = float(brentq(lambda s: sum(ref.evaluate(s)[:2]), ref.times[i], ref.times[i + 1], xtol=1e-13))
+    r = ref.evaluate(t)
+    return np.array([r[0], r[2], -r[3]]), t
+
+
+class FrictionGaitController(cb.GaitController):
+    """compass-biped's contact switching, plus per-step actuator work and feet, force ratios and stance-foot
+    velocities of trajectory 0, and (Gait III) the PD reference as native control."""
+
+    def __init__(self, model: mujoco.MjModel, g: theory.Gait, batch: int, foot_radius: float,
+                 actuated: tuple[float, float], pd: tuple[float, float] | None) -> None:
+        bp = g.biped
+        shim = cb.theory.CompassBiped(m_h=bp.m_h, m_l=bp.m, a=bp.d, b=bp.b, slope=0.0, gravity=bp.g,
+                                      tau_ankle=actuated[0], tau_hip=actuated[1])
+        super().__init__(model, shim, batch, foot_radius)
+        self.fb, self.pd, self.dt = bp, pd, model.opt.timestep
+        self.ref = theory.gait_c_reference() if pd is not None else None
+        self.last_strike = np.zeros(batch)
+        self.work = np.zeros(batch)
+        self.step_work: list[list[float]] = [[] for _ in range(batch)]
+        self.rows0: list[np.ndarray] = []  # trajectory 0: (time, stance, qpos, qvel) of kept rows
+        self.nu = model.nu
+        self.enable_ahead, self.enable_clear = ENABLE_AHEAD, ENABLE_CLEAR
+
+    def configure(self, models: list[mujoco.MjModel]) -> None:
+        """As compass-biped, but Gait III's PD bias stays on both ankles (the stance leg is chosen by ctrl)."""
+        if self.pd is None:
+            super().configure(models)
+            return
+        for m in models:
+            m.geom_contype[self.feet[0]] = 1
+            m.geom_contype[self.feet[1]] = 0
+
+    def _actuate(self, model: mujoco.MjModel, stance: int) -> None:
+        if self.pd is None:
+            super()._actuate(model, stance)
+
+    def control(self, t0: np.ndarray, steps: int) -> np.ndarray:
+        """ctrl (B, steps, nu): Gait III's reference term kp theta^r + kd theta_dot^r per hinge (002 eq 30)."""
+        out = np.zeros((t0.size, steps, self.nu))
+        if self.pd is None or self.ref is None:
+            return out
+        kp, kd = self.pd
+        phase = (t0 - self.last_strike)[:, None] + self.dt * np.arange(steps)[None, :]
+        th1, th2, w1, w2 = _reference(self.ref, np.nan_to_num(phase))
+        rows = np.arange(t0.size)
+        st = self.stance
+        out[rows, :, self.ankles[0]] = np.where((st == 0)[:, None], kp * th1 + kd * w1, -(kp * th2 + kd * w2))
+        out[rows, :, self.ankles[1]] = np.where((st == 1)[:, None], kp * th1 + kd * w1, -(kp * th2 + kd * w2))
+        return out
+
+    def __call__(self, chunk: Chunk, models: list[mujoco.MjModel]) -> np.ndarray:
+        stance_before = self.stance.copy()
+        strikes_before = [len(s) for s in self.strikes]
+        restart = super().__call__(chunk, models)
+        for b in range(chunk.time.shape[0]):
+            if np.isnan(chunk.time[b, 1]):
+                continue
+            k = int(restart[b])
+            st = int(stance_before[b])
+            self.work[b] += self._work(chunk, b, st, k)
+            if b == 0:
+                self.rows0.append(np.column_stack([chunk.time[0, 1 : k + 1], np.full(k, st), chunk.qpos[0, 1 : k + 1],
+                                                   chunk.qvel[0, 1 : k + 1]]))
+            if len(self.strikes[b]) > strikes_before[b]:
+                self.step_work[b].append(self.work[b])
+                self.work[b] = 0.0
+                self.last_strike[b] = self.strikes[b][-1][0]
+        return restart
+
+    def _work(self, chunk: Chunk, b: int, st: int, k: int) -> float:
+        """Actuator work sum(actuator force . actuator velocity) dt over rows 0..k-1 (002 eq 29), from the
+        recorded hinge rates: constant torques (tau_ankle - tau_hip) on the stance hinge and tau_hip on the swing
+        hinge; Gait III: the PD force with the same reference as the control."""
+        qd = chunk.qvel[b, :k]
+        sw = 1 - st
+        if self.pd is None:
+            ta, th = self.bp.tau_ankle, self.bp.tau_hip
+            power = (ta - th) * qd[:, 2 + st] + th * qd[:, 2 + sw]
+        else:
+            kp, kd = self.pd
+            q = chunk.qpos[b, :k]
+            phase = chunk.time[b, :k] - self.last_strike[b]
+            r1, r2, w1, w2 = _reference(self.ref, phase)  # type: ignore[arg-type]
+            f_st = kp * (r1 - q[:, 2 + st]) + kd * (w1 - qd[:, 2 + st])
+            f_sw = kp * (-r2 - q[:, 2 + sw]) + kd * (-w2 - qd[:, 2 + sw])
+            power = f_st * qd[:, 2 + st] + f_sw * qd[:, 2 + sw]
+        return float(np.sum(power) * self.dt)
+
+
+def _reference(ref: theory.ReferenceTrajectory, phase: np.ndarray) -> tuple[np.ndarray, ...]:
+    """Vectorised :meth:`ReferenceTrajectory.evaluate` (cubic Hermite, linear continuation past the end)."""
+    t = ref.times
+    ph = np.clip(phase, t[0], None)
+    i = np.clip(np.searchsorted(t, ph, side="right") - 1, 0, len(t) - 2)
+    h = t[i + 1] - t[i]
+    s = np.clip((ph - t[i]) / h, 0.0, 1.0)
+    s2, s3 = s * s, s * s * s
+    h00, h10, h01, h11 = 2 * s3 - 3 * s2 + 1, (s3 - 2 * s2 + s) * h, -2 * s3 + 3 * s2, (s3 - s2) * h
+    out = []
+    for j in (0, 1):
+        out.append(h00 * ref.theta[i, j] + h10 * ref.theta_dot[i, j] + h01 * ref.theta[i + 1, j]
+                   + h11 * ref.theta_dot[i + 1, j])
+    for j in (0, 1):
+        w = (h00 * ref.theta_dot[i, j] + h10 * ref.theta_ddot[i, j] + h01 * ref.theta_dot[i + 1, j]
+             + h11 * ref.theta_ddot[i + 1, j])
+        out.append(w)
+    past = np.maximum(phase - t[-1], 0.0)
+    out[0] = np.where(past > 0, ref.theta[-1, 0] + ref.theta_dot[-1, 0] * past, out[0])
+    out[1] = np.where(past > 0, ref.theta[-1, 1] + ref.theta_dot[-1, 1] * past, out[1])
+    out[2] = np.where(past > 0, ref.theta_dot[-1, 0], out[2])
+    out[3] = np.where(past > 0, ref.theta_dot[-1, 1], out[3])
+    return tuple(out)
+
+
+def initial_section_states(g: theory.Gait, timestep: float) -> np.ndarray:
+    """z* and STARTS offsets (seed 0) on (theta*, theta1_dot+, theta2_dot+) as compass-biped: theta* by a tenth of
+    the size, the rates by the size (x_dot+ kept at z*)."""
+    margin = 1.0 - g.spectral_radius
+    size = PERTURBATION * (timestep / 2e-5) ** (1.0 / 3.0) * min(1.0, max(1.0 / 3.0, margin / 0.4))
+    directions = np.random.default_rng(0).normal(size=(STARTS, 3))
+    directions /= np.linalg.norm(directions, axis=1, keepdims=True)
+    out = np.repeat(g.z[None, :], STARTS + 1, axis=0)
+    out[1:, 0] += 0.1 * size * directions[:, 0]
+    out[1:, 1] += size * directions[:, 1]
+    out[1:, 2] += size * directions[:, 2]
+    return out
+
+
+def _run(p: Values, s: Values, model: mujoco.MjModel, starts: np.ndarray, steps: int,
+         wrap: bool = False) -> tuple[FrictionGaitController, RolloutReport, KeptRows | None]:
+    g = gait(p)
+    pd = (float(p["kp"]), float(p["kd"])) if gait_name(p) == "III" else None
+    radius = float(s["foot_radius"])
+    controller = FrictionGaitController(model, g, len(starts), radius, _torques(p), pd)
+    models = [copy.copy(model) for _ in starts]
+    controller.configure(models)
+    chunk = max(10, round(CHUNK_SECONDS / model.opt.timestep))
+    nstep = math.ceil((steps + 0.5) * g.record.period / model.opt.timestep)
+    kept = KeptRows(controller) if wrap else None
+    report = event_rollout(models, post_impact_states(model, g.biped, starts, radius), nstep,
+                           kept if kept is not None else controller, threads=int(s["threads"]), chunk_steps=chunk,
+                           control=(lambda t0: controller.control(t0, chunk)) if pd is not None else None)
+    return controller, report, kept
+
+
+def _regress_at(y_star: np.ndarray, ys: np.ndarray, values: np.ndarray) -> float:
+    design = np.column_stack([np.ones(len(ys)), ys - y_star])
+    coef, *_ = np.linalg.lstsq(design, values, rcond=None)
+    return float(coef[0])
+
+
+def _step_data(c: FrictionGaitController) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Per legs-parallel sample k followed by a heel strike: y_k, time to the next sample, the length of the step
+    the swing ends and the actuator work over that step (heel strike to heel strike)."""
+    ys, dts, lengths, works = [], [], [], []
+    for b in range(len(c.samples)):
+        strike_t = np.array([t for t, _ in c.strikes[b]])
+        feet = np.array([0.0, *(x for _, x in c.strikes[b])])
+        for k in range(len(c.samples[b]) - 1):
+            j = int(np.searchsorted(strike_t, c.sample_times[b][k]))
+            if 1 <= j < len(strike_t) and j < len(c.step_work[b]):
+                ys.append(c.samples[b][k])
+                dts.append(c.sample_times[b][k + 1] - c.sample_times[b][k])
+                lengths.append(feet[j + 1] - feet[j])
+                works.append(c.step_work[b][j])  # work from strike j-1 to strike j (the step with this crossing)
+    return np.array(ys), np.array(dts), np.array(lengths), np.array(works)
+
+
+def _stance_rows(c: FrictionGaitController, bp: theory.FrictionBiped, radius: float
+                 ) -> list[dict[str, np.ndarray]]:
+    """Trajectory 0 split into stances (heel strike to heel strike): phase t, stance-foot tangential velocity and
+    height, and |f_t/f_n| from the momentum rate (f = dP/dt - M g, the stance foot the only contact)."""
+    rows = np.concatenate(c.rows0)
+    t, st = rows[:, 0], rows[:, 1].astype(int)
+    qpos, qvel = rows[:, 2:6], rows[:, 6:10]
+    idx = np.arange(len(t))
+    q_st, qd_st = qpos[idx, 2 + st], qvel[idx, 2 + st]
+    lever = bp.l - radius
+    v_t = qvel[:, 0] - bp.l * qd_st * np.cos(q_st)  # rolling contact point of the stance foot sphere
+    height = qpos[:, 1] - lever * np.cos(q_st) - radius
+    m, mh, b = bp.m, bp.m_h, bp.b
+    total = 2 * m + mh
+    px = total * qvel[:, 0] - m * b * (qvel[:, 2] * np.cos(qpos[:, 2]) + qvel[:, 3] * np.cos(qpos[:, 3]))
+    pz = total * qvel[:, 1] + m * b * (qvel[:, 2] * np.sin(qpos[:, 2]) + qvel[:, 3] * np.sin(qpos[:, 3]))
+    fx = np.gradient(px, t) - total * bp.g * math.sin(bp.slope)
+    fz = np.gradient(pz, t) + total * bp.g * math.cos(bp.slope)
+    strikes = [0.0, *(s for s, _ in c.strikes[0])]
+    out = []
+    for t0, t1 in itertools.pairwise(strikes):
+        sel = (t > t0) & (t < t1)
+        out.append({"t": t[sel] - t0, "v_t": v_t[sel], "height": height[sel], "ratio": fx[sel] / fz[sel],
+                    "f_n": fz[sel], "x": qpos[sel, 0] - lever * np.sin(q_st[sel])})
+    return out
+
+
+def _phases(stance: dict[str, np.ndarray], dt: float) -> list[tuple[str, float]]:
+    """Stance phases (stick / slip+ / slip-) and start times from the stance foot's tangential velocity (rows
+    within RELEASE_SKIP of either heel strike dropped), flicker shorter than MERGE_PHASE_S merged."""
+    t, v = stance["t"], stance["v_t"]
+    keep = (t > RELEASE_SKIP) & (t < t[-1] - RELEASE_SKIP)
+    t, v = t[keep], v[keep]
+    labels = np.where(v > V_SLIP, "slip+", np.where(v < -V_SLIP, "slip-", "stick"))
+    runs: list[list] = []
+    for i, lab in enumerate(labels):
+        if runs and runs[-1][0] == lab:
+            runs[-1][2] = i
+        else:
+            runs.append([lab, i, i])
+    merged: list[list] = []
+    for lab, i0, i1 in runs:
+        if merged and ((i1 - i0 + 1) * dt < MERGE_PHASE_S or merged[-1][0] == lab):
+            merged[-1][2] = i1
+        else:
+            merged.append([lab, i0, i1])
+    return [(str(lab), float(t[i0])) for lab, i0, _ in merged]
+
+
+def _match(reference: np.ndarray, values: np.ndarray) -> np.ndarray:
+    from scipy.optimize import linear_sum_assignment
+
+    cost = np.abs(reference[:, None] - values[None, :])
+    _, cols = linear_sum_assignment(cost)
+    return values[cols]
+
+
+def _analytic_ratio(g: theory.Gait, t: np.ndarray) -> np.ndarray:
+    """f_t/f_n of the analytic step at phases ``t`` (stick phases: foot fixed; from the point masses' accelerations
+    of the reference trajectory, 002 eq 27)."""
+    bp = g.biped
+    ref = theory.reference_trajectory(bp, g.z, g.actuation, samples=2001)
+    r1, r2, w1, w2 = _reference(ref, t)
+    a1 = np.interp(t, ref.times, ref.theta_ddot[:, 0])
+    a2 = np.interp(t, ref.times, ref.theta_ddot[:, 1])
+    s1, c1, s2, c2 = np.sin(r1), np.cos(r1), np.sin(r2), np.cos(r2)
+    hip = np.stack([bp.l * (c1 * a1 - s1 * w1**2), bp.l * (-s1 * a1 - c1 * w1**2)])
+    swing = hip + bp.b * np.stack([c2 * a2 - s2 * w2**2, s2 * a2 + c2 * w2**2])
+    acc = bp.m_h * hip + bp.m * (bp.d / bp.l) * hip + bp.m * swing
+    total = bp.total_mass
+    fx = acc[0] - total * bp.g * math.sin(bp.slope)
+    fz = acc[1] + total * bp.g * math.cos(bp.slope)
+    return fx / fz
+
+
+def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
+    """Simulate perturbed gaits, fit the legs-parallel return map, and check it and the gait's friction, phases
+    and cost against 002 (via :mod:`analysis.theory.compass_biped_friction`)."""
+    g = gait(p)
+    name = gait_name(p)
+    model = build(p, s)
+    tol = TOLERANCES.get(preset, TOLERANCES["fast"])
+    why = WHY.get(preset, WHY["fast"])
+    c, report, _ = _run(p, s, model, initial_section_states(g, model.opt.timestep), STEPS)
+    out: list[checks.Check] = []
+    extras: dict[str, object] = {"gait": name, "mu": friction(p), "analytic_pattern": theory.describe(g.record)}
+    y_star_th, _ = legs_parallel(g)
+    lam = g.eigenvalues[np.argsort(-np.abs(g.eigenvalues))][:3]
+    try:
+        x, x_next = sample_pairs([np.array(v) for v in c.samples])
+        fit = fit_return_map(x, x_next, degree=FIT_DEGREE, seed=seed)
+    except ValueError as err:
+        out.append(checks.absolute("fixed_point", y_star_th, math.nan, tol["fixed_point"], "rad, rad/s",
+                                   f"no return map: {err}"))
+        return Evaluation(out, report, extras)
+    y_star = fit.fixed_point
+    out.append(checks.Check("fixed_point", y_star_th, y_star, float(np.max(np.abs(y_star - y_star_th))),
+                            tol["fixed_point"], "max-abs", "rad, rad/s",
+                            "legs-parallel state (theta1, theta1_dot, -theta2_dot), 002 eq 27 frame, of the fitted "
+                            "map vs the analytic step from z*; " + why))
+    matched = _match(lam, fit.eigenvalues)
+    out.append(checks.Check("eigenvalues", lam, matched, float(np.max(np.abs(matched - lam))), tol["eigenvalues"],
+                            "max-abs", "", "the 3 largest multipliers of 002's post-impact map (Newton + finite "
+                            "differences) vs the cubic fit of the MuJoCo legs-parallel samples; " + why))
+    ys, dts, lengths, works = _step_data(c)
+    rec = g.record
+    period_sim = _regress_at(y_star, ys, dts) if len(dts) > 4 else math.nan
+    length_sim = _regress_at(y_star, ys, lengths) if len(lengths) > 4 else math.nan
+    out.append(checks.relative("step_period", rec.period, period_sim, tol["step_period"], "s",
+                               "time between legs-parallel crossings, regressed at the fitted fixed point"))
+    out.append(checks.relative("step_length", rec.step_length, length_sim, tol["step_length"], "m",
+                               "distance between successive stance feet (002 S), regressed at the fitted fixed point"))
+    out.append(checks.relative("speed", theory.average_speed(rec), length_sim / period_sim, tol["speed"], "m/s",
+                               "average speed S/T (002 Sec. 5)"))
+    if name in ("I", "III"):
+        work_sim = _regress_at(y_star, ys, works) if len(works) > 4 else math.nan
+        cmt = work_sim / (g.biped.total_mass * g.biped.g * length_sim)
+        out.append(checks.relative("cost_of_transport", theory.cost_of_transport(g.biped, rec), cmt,
+                                   tol["cost_of_transport"], "", "c_mt = W/(M_tot g S) (002 eq 29), W = sum "
+                                   "of actuator force x hinge rate x dt over the recorded rows of a step, regressed at "
+                                   "the fitted fixed point"))
+        extras["actuator_work"] = {"analytic": rec.actuator_work, "simulated": work_sim}
+    stances = _stance_rows(c, g.biped, float(s["foot_radius"]))[SETTLE:]
+    dt = model.opt.timestep
+    if name == "A":
+        demand = theory.critical_friction(g.biped, g.z)
+        # 002's mu_c is reached at t = 0+ (just after the impact); MuJoCo's soft impact hides the first ms, so both
+        # ratios are compared on the same window [RELEASE_SKIP, T - RELEASE_SKIP] and the measured one extrapolated
+        # to 0+ by a quadratic fit over its first 50 ms
+        measured, early = [], []
+        for st in stances:
+            sel = (st["t"] > RELEASE_SKIP) & (st["t"] < st["t"][-1] - RELEASE_SKIP)
+            measured.append(float(np.max(np.abs(st["ratio"][sel]))))
+            first = sel & (st["t"] < RELEASE_SKIP + 0.05)
+            early.append(float(abs(np.polyval(np.polyfit(st["t"][first], st["ratio"][first], 2), 0.0))))
+        t_grid = np.linspace(RELEASE_SKIP, rec.period - RELEASE_SKIP, 2000)
+        window_th = float(np.max(np.abs(_analytic_ratio(g, t_grid))))
+        out.append(checks.relative("friction_ratio_window", window_th, float(np.mean(measured)),
+                                   tol["friction_ratio"], "", "max |f_t/f_n| over the stance minus 5 ms at each end, "
+                                   "MuJoCo momentum rate vs the analytic stick-phase forces"))
+        out.append(checks.relative("critical_friction", demand.stance, float(np.mean(early)), tol["friction_ratio"],
+                                   "", "mu_c = max |f_t/f_n| (002 Sec. 4.1, at t = 0+): the measured ratio's "
+                                   "quadratic fit over 5-55 ms extrapolated to t = 0"))
+        extras["critical_friction"] = {"analytic": demand._asdict(), "measured_window": measured,
+                                       "measured_extrapolated": early}
+    if stances:
+        patterns = [_phases(st, dt) for st in stances]
+        slip = [float(st["x"][-1] - st["x"][0]) for st in stances]
+        lift = [float(np.max(st["height"][(st["t"] > RELEASE_SKIP) & (st["t"] < st["t"][-1] - RELEASE_SKIP)]))
+                for st in stances]
+        expected = list(rec.phases)
+        seq_ok = [[lab for lab, _ in pat] == expected for pat in patterns]
+        out.append(checks.Check("phase_sequence", 0.0, float(len(seq_ok) - sum(seq_ok)),
+                                float(len(seq_ok) - sum(seq_ok)), 0.0, "count", "",
+                                f"settled steps whose stance phases differ from 002's {' -> '.join(expected)} "
+                                f"(labels: stance foot speed > {V_SLIP} m/s)"))
+        if len(expected) > 1 and all(seq_ok):
+            times_sim = np.mean([[t0 for _, t0 in pat] for pat in patterns], axis=0)[1:]
+            times_th = np.array(rec.phase_times[1:])
+            out.append(checks.Check("phase_times", times_th, times_sim, float(np.max(np.abs(times_sim - times_th))),
+                                    tol["phase_time"], "max-abs", "s", "stance phase switch times after the impact "
+                                    "(slip -> stick at the speed threshold, so biased late by ~V_SLIP/|a_t|)"))
+        extras["phases"] = {"analytic": list(zip(rec.phases, rec.phase_times, strict=True)),
+                            "measured": patterns, "slip_distance_analytic": rec.slip_distance,
+                            "slip_distance_measured": slip, "max_stance_foot_height": lift}
+    extras["fit"] = fit.to_dict()
+    extras["early_contacts"] = int(c.early_contacts.sum())
+    extras["analytic"] = {"z": g.z, "eigenvalues": g.eigenvalues, "legs_parallel": y_star_th}
+    grid = np.linspace(float(x[:, 0].min()), float(x[:, 0].max()), 2)
+    extras["return_map"] = {"label": "legs-parallel angle theta1 (rad)", "x": x[:, 0], "x_next": x_next[:, 0],
+                            "analytic_x": grid, "analytic_y": np.full_like(grid, np.nan), "analytic_eigenvalues": lam}
+    return Evaluation(out, report, extras)
+
+
+def probe(p: Values, s: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
+    """Model and initial states of the gait batch (contacts fixed: the raw-rate reference)."""
+    g = gait(p)
+    model = build(p, s)
+    starts = post_impact_states(model, g.biped, initial_section_states(g, model.opt.timestep), float(s["foot_radius"]))
+    return model, [(starts, math.ceil((STEPS + 0.5) * g.record.period / model.opt.timestep))]
+
+
+def reference_bench(p: Values, rtol: float) -> dict[str, float]:
+    """The analytic map (its own rtol 1e-11; ``rtol`` is not used) over the fast preset's starts and steps, through
+    the same fit."""
+    g = gait(p)
+    start = time.perf_counter()
+    y_star, _ = legs_parallel(g)
+    sequences = []
+    for z in initial_section_states(g, float(PRESETS["fast"]["timestep"]))[:6]:
+        seq = []
+        for _ in range(STEPS):
+            gz = theory.Gait(g.biped, g.actuation, z, g.jacobian, g.eigenvalues, g.record, g.kind)
+            seq.append(legs_parallel(gz)[0])
+            z = theory.return_map(g.biped, z, g.actuation)
+        sequences.append(np.array(seq))
+    fit = fit_return_map(*sample_pairs(sequences), degree=FIT_DEGREE)
+    lam = g.eigenvalues[np.argsort(-np.abs(g.eigenvalues))][:3]
+    return {"rtol": rtol, "wall_s": time.perf_counter() - start,
+            "fixed_point_error": float(np.max(np.abs(fit.fixed_point - y_star))),
+            "eigenvalues_error": float(np.max(np.abs(_match(lam, fit.eigenvalues) - lam)))}
+
+
+def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
+    """States of a clip from the analytic fixed point, with the gait's contact switching and actuation."""
+    g = gait(p)
+    steps = math.ceil(nstep * model.opt.timestep / g.record.period)
+    _, _, kept = _run(p, s, model, g.z[None, :], steps, wrap=True)
+    assert kept is not None
+    return kept.states(nstep)
+
+
+STRESS_CASES = (
+    StressCase("Gait A at mu_c", {"gait": "a", "mu": "0.176"}, "just above 002's mu_c = 0.1749"),
+    StressCase("Gait B near stability loss", {"gait": "b", "mu": "0.115"}, "|lambda|max -> 1 at mu = 0.1104"),
+    StressCase("Gait I low friction", {"gait": "i", "mu": "0.12"}, "close to its stability loss at 0.1035"),
+    StressCase("Gait A below mu_c", {"gait": "a", "mu": "0.15"}, "that is Gait B", expect="refused"),
+    StressCase("Gait B unstable", {"gait": "b", "mu": "0.1"}, "past the stability loss", expect="refused"),
+    StressCase("negative friction", {"mu": "-0.1"}, "mu must be >= 0", expect="refused"),
+    StressCase("unknown gait", {"gait": "c"}, "Gait C is unstable; not offered", expect="refused"),
+)
+
+
+COMPASS_BIPED_FRICTION = Scenario(
+    name="compass-biped-friction",
+    summary="compass biped with Coulomb friction (002): Gaits A/B (slope), I/III (actuated, level ground)",
+    source="Gamus & Or 2015 Secs. 4-5 (eqs 27-30, Figs 4.1-5.2); reference card 002 Secs. 3, 7",
+    params=PARAMS,
+    presets=PRESETS,
+    check_params=check_params,
+    build=build,
+    evaluate=evaluate,
+    accuracy_checks=("eigenvalues", "fixed_point", "step_length"),
+    probe=probe,
+    reference_bench=reference_bench,
+    clip=clip,
+    track_body="hip",
+    camera_distance=3.5,
+    stress_cases=STRESS_CASES,
+)

@@ -1,0 +1,87 @@
+"""Regression: MuJoCo's compass biped with Coulomb friction against Gamus & Or (2015) Secs. 4-5 (seed 002).
+
+Gaits A (passive, 1 deg, mu = 1), I (constant torques, level ground, mu = 0.2), III (PD tracking of Gait C with
+phase reset, fed as native control, level ground, mu = 0.2) and B (passive, mu = 0.14, slip+ -> stick -> slip-),
+fast preset, the scenario's own tolerances. The checks MuJoCo misses are asserted as strict xfails with the
+measured error, never with a loosened tolerance.
+"""
+
+from __future__ import annotations
+
+from functools import cache
+
+import pytest
+
+from analysis.checks import Check
+from mjpoincare.cli import main
+from mjpoincare.result import Result
+from mjpoincare.validate import run_validation
+
+pytestmark = pytest.mark.mujoco
+
+
+@cache
+def _run(gait: str) -> Result:
+    return run_validation("compass-biped-friction", {"gait": gait}, "fast")
+
+
+def _checks(gait: str) -> dict[str, Check]:
+    return {c.name: c for c in _run(gait).checks}
+
+
+def test_gait_a_fixed_point_eigenvalues_and_critical_friction() -> None:
+    """Gait A: fixed point, multipliers, step, and mu_c = 0.174918 from MuJoCo's momentum rate (002 Sec. 4.1)."""
+    result = _run("a")
+    assert result.passed, result.table()
+    assert abs(_checks("a")["critical_friction"].analytic - 0.174918) < 1e-6
+
+
+def test_gait_i_cost_of_transport_speed_and_eigenvalues() -> None:
+    """Gait I (E_eff torques as tau_ankle = 1.65, tau_hip = -0.54 N m): c_mt 0.01747, v 0.6342, |lambda|max 0.7148
+    (002 Sec. 5, eq 29)."""
+    result = _run("i")
+    assert result.passed, result.table()
+    by_name = _checks("i")
+    assert abs(by_name["cost_of_transport"].analytic - 0.01747) < 1e-4
+    assert abs(by_name["speed"].analytic - 0.6342) < 1e-4
+
+
+@pytest.mark.parametrize("gait", ["iii", "b"])
+def test_gait_step_and_phases(gait: str) -> None:
+    """Gaits III and B: fixed point, step period, length, speed, phase sequence (and III's cost) within tolerance."""
+    by_name = _checks(gait)
+    names = ["fixed_point", "step_period", "step_length", "speed", "phase_sequence"]
+    names += ["cost_of_transport", "phase_times"] if gait == "iii" else []
+    for name in names:
+        assert by_name[name].passed, _run(gait).table()
+
+
+@pytest.mark.xfail(strict=True, reason="measured: smallest multiplier 0.052 vs 0.087 (error 0.035 > 0.03, fast)")
+def test_gait_iii_eigenvalues() -> None:
+    """Gait III's 3 largest multipliers (-0.567, 0.313, 0.087; the 4th ~0 is invisible on the legs-parallel
+    section where the foot sticks)."""
+    assert _checks("iii")["eigenvalues"].passed, _run("iii").table()
+
+
+@pytest.mark.xfail(strict=True, reason="measured: the cubic fit gives real multipliers (-0.82, 1.04, -0.17) vs "
+                   "0.346 +- 0.744j, 0.338: the B return map in MuJoCo is not fitted (open)")
+def test_gait_b_eigenvalues() -> None:
+    """Gait B's multipliers (|lambda|max 0.8206, 002 Sec. 4.2)."""
+    assert _checks("b")["eigenvalues"].passed, _run("b").table()
+
+
+@pytest.mark.xfail(strict=True, reason="measured: the stick -> slip- switch comes 10 ms late (0.7304 vs 0.7202 s)")
+def test_gait_b_phase_times() -> None:
+    """Gait B's phase switch times (slip+ -> stick 0.0894 s, stick -> slip- 0.7202 s)."""
+    assert _checks("b")["phase_times"].passed, _run("b").table()
+
+
+@pytest.mark.parametrize(
+    ("assignment", "needle"),
+    [("mu=-0.1", "mu must be in [0, 1000]"), ("gait=c", "gait must be one of a, b, i, iii"),
+     ("mu=0.15", "mu must be >= 0.17492"), ("kp=3", "kp, kd apply to gait=iii only")],
+)
+def test_bad_input(assignment: str, needle: str, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["validate", "compass-biped-friction", "--set", assignment]) == 2
+    err = capsys.readouterr().err
+    assert needle in err and err.count("\n") == 1, err
