@@ -157,7 +157,8 @@ def build_parser() -> argparse.ArgumentParser:
     sweep.add_argument("--set", action="append", default=[], metavar="NAME=VALUE")
     sweep.add_argument("--preset", default=None)
     sweep.add_argument("--json", metavar="PATH|-", help="write the sweep table as JSON")
-    sweep.add_argument("--locate", choices=("period-doubling",), help="locate where the lowest eigenvalue hits -1")
+    sweep.add_argument("--locate", choices=("period-doubling", "stability-loss"),
+                       help="locate where the lowest eigenvalue hits -1 (period-doubling) or |lambda|max hits 1")
     sweep.add_argument("--workers", type=int, default=1, help="values validated at once (processes; default 1)")
     sweep.add_argument("--engine", default="local", help="local (process pool) or dask (pip install "
                        "'mjpoincare[dask]')")

@@ -3,7 +3,9 @@
 Each value is a full validation. The table lists, per value, every check's error and the fitted
 and analytic eigenvalue of smallest real part; ``--locate period-doubling`` estimates where that
 eigenvalue reaches -1 from the simulated values (linear interpolation between the two values that
-bracket -1, or extrapolation from the last two), beside the same estimate from the analytic values.
+bracket -1, or extrapolation from the last two), beside the same estimate from the analytic values;
+``--locate stability-loss`` likewise where the largest eigenvalue modulus |lambda|max reaches 1 (a stability loss
+through a complex pair or a real multiplier, e.g. Gait B and I of Gamus & Or 2015 Sec. 4.2/5 against mu).
 
 Scale-out. The values are independent: ``--workers N`` validates N of them at once in separate
 processes (each with ``threads`` = cores / N unless ``--set threads=`` says otherwise), and
@@ -53,6 +55,11 @@ def _lowest(values: Sequence[Any]) -> float:
     return min(reals)
 
 
+def _largest_modulus(values: Sequence[Any]) -> float:
+    """|lambda|max of eigenvalues given as [re, im] pairs or numbers."""
+    return max(math.hypot(*v) if isinstance(v, list) else abs(float(v)) for v in values)
+
+
 def crossing(xs: Sequence[float], ys: Sequence[float], level: float = -1.0) -> float:
     """Where the piecewise-linear curve (xs, ys) reaches ``level``: interpolated inside a bracket, else
     extrapolated from the last two points (NaN when the slope is zero)."""
@@ -74,6 +81,8 @@ def sweep_point(name: str, param: str, value: str, assignments: Mapping[str, str
             "errors": {c["name"]: c["error"] for c in result["checks"]},
             "fitted_lowest": _lowest(result["fit"]["eigenvalues"]) if "fit" in result else math.nan,
             "analytic_lowest": _lowest(analytic) if analytic is not None else math.nan,
+            "fitted_max_modulus": _largest_modulus(result["fit"]["eigenvalues"]) if "fit" in result else math.nan,
+            "analytic_max_modulus": _largest_modulus(analytic) if analytic is not None else math.nan,
             "wall_s": result["timing"]["wall_s"]}
 
 
@@ -124,11 +133,11 @@ def run_sweep(name: str, param: str, values: list[str], assignments: Mapping[str
                   f"({row['wall_s']:.1f} s)", file=sys.stderr)
     wall = time.perf_counter() - start
     rows.sort(key=lambda r: values.index(r["value"]))
-    names = list(rows[0]["errors"])
+    names = list(dict.fromkeys(n for r in rows for n in r["errors"]))  # rows may carry different checks
     lines = [f"| {param} | " + " | ".join(f"{n} error" for n in names) + " | lowest Re λ fitted | analytic |",
              "|" + "---|" * (3 + len(names))]
     for r in rows:
-        errs = " | ".join("—" if r["errors"][n] is None else f"{r['errors'][n]:.2e}" for n in names)
+        errs = " | ".join("—" if r["errors"].get(n) is None else f"{r['errors'][n]:.2e}" for n in names)
         lines.append(f"| {r[param]:g} | {errs} | {r['fitted_lowest']:.4f} | {r['analytic_lowest']:.4f} |")
     busy = sum(r["wall_s"] for r in rows if r["value"] in todo)
     lines.append(f"\n{len(todo)} points run ({len(values) - len(todo)} resumed) in {wall:.1f} s wall with "
@@ -141,6 +150,15 @@ def run_sweep(name: str, param: str, values: list[str], assignments: Mapping[str
         payload["period_doubling"] = {"fitted": fitted, "analytic_same_grid": analytic}
         lines.append(f"\nfirst period doubling (lowest eigenvalue = -1): {param} = {fitted:.5f} from the simulation, "
                      f"{analytic:.5f} from the analytic eigenvalues on the same grid")
+    if locate == "stability-loss":
+        xs = [r[param] for r in rows]
+        fitted = crossing(xs, [r["fitted_max_modulus"] for r in rows], level=1.0)
+        analytic = crossing(xs, [r["analytic_max_modulus"] for r in rows], level=1.0)
+        payload["stability_loss"] = {"fitted": fitted, "analytic_same_grid": analytic}
+        lines.append(f"\nstability loss (|lambda|max = 1): {param} = {fitted:.5f} from the simulation, {analytic:.5f} "
+                     "from the analytic eigenvalues on the same grid")
+        lines += [f"  {r[param]:g}: |lambda|max fitted {r['fitted_max_modulus']:.4f}, analytic "
+                  f"{r['analytic_max_modulus']:.4f}" for r in rows]
     print("\n".join(lines))
     if json_path:
         write_json(jsonable(payload), json_path)

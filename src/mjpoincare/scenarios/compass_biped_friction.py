@@ -44,16 +44,22 @@ from mjpoincare.scenarios import compass_biped as cb
 from mjpoincare.scenarios.base import Evaluation, Scenario, StressCase, Values
 from mjpoincare.simulate import Chunk, KeptRows, RolloutReport, event_rollout, initial_states
 
-GAITS = ("a", "b", "i", "iii")
+GAITS = ("a", "b", "c", "i", "ii", "iii")
 #: 002's friction per gait when ``mu`` = 0: A above mu_c (any mu >= 0.175 is the same gait), B 0.14 (Fig. 4.2a),
-#: I 0.2 (Fig. 5.1), III 0.2 (Fig. 5.2).
-PAPER_MU = {"a": 1.0, "b": 0.14, "i": 0.2, "iii": 0.2}
-LEVEL = {"a": False, "b": False, "i": True, "iii": True}
+#: C 0.2 (Fig. 4.2b, the less unstable end of its branch: |lambda|max 1.53 vs 1.82 at 0.14), I 0.2 (Fig. 5.1),
+#: II 0.2 (Sec. 5), III 0.2 (Fig. 5.2).
+PAPER_MU = {"a": 1.0, "b": 0.14, "c": 0.2, "i": 0.2, "ii": 0.2, "iii": 0.2}
+#: 002 types of each named gait (classify: A stick throughout, B sticking impact with slip, C slipping impact);
+#: Gait I, like the passive A/B branch, slips during the stance below its mu_c (type B from mu ~0.17 down).
+KIND = {"A": ("A",), "B": ("B",), "C": ("C",), "I": ("A", "B"), "II": ("C",), "III": ("C",)}
+#: Gaits 002 reports unstable (C: Sec. 4.2; II: Sec. 5); B and I past their stability loss are refused.
+UNSTABLE = ("C", "II")
 
 PARAMS: tuple[Param, ...] = (
-    Param("gait", "a", "002 gait: a, b (passive, 1 deg slope), i (constant torques), iii (PD tracking Gait C)",
-          str, choices=GAITS),
-    Param("mu", 0.0, "Coulomb friction; 0 = the gait's paper value (A 1, B 0.14, I 0.2, III 0.2)", float, 0.0, 1e3),
+    Param("gait", "a", "002 gait: a, b, c (passive, 1 deg slope; c unstable), i, ii (constant torques; ii unstable),"
+          " iii (PD tracking Gait C)", str, choices=GAITS),
+    Param("mu", 0.0, "Coulomb friction; 0 = the gait's paper value (A 1, B 0.14, C 0.2, I 0.2, II 0.2, III 0.2)",
+          float, 0.0, 1e3),
     Param("kp", 15.0, "Gait III PD stiffness, N m/rad (002 eq 30)", float, 0.0, 1e4),
     Param("kd", 15.0, "Gait III PD damping, N m s/rad (002 eq 30)", float, 0.0, 1e4),
 )
@@ -75,6 +81,12 @@ STEPS = 8  # heel strikes per trajectory
 STARTS = 16  # perturbed starts around the fixed point (plus the fixed point itself)
 PERTURBATION = 0.03  # as compass-biped: size x (timestep / 20 us)^(1/3), shrunk as |lambda|max -> 1
 SETTLE = 3  # steps of the unperturbed trajectory skipped before per-step averages
+#: Unstable gaits (|lambda|max > 1): the map is fitted from the first UNSTABLE_STEPS steps only, before the
+#: perturbations grow out of the linear range (x 1.53^2 = 2.3 for Gait C), from more starts and a quadratic fit
+#: (2 pairs per start: 64 pairs for the 10 coefficients per coordinate; a cubic has 20)
+UNSTABLE_STEPS = 2
+UNSTABLE_STARTS = 32
+UNSTABLE_DEGREE = 2
 ENABLE_AHEAD = 0.05  # swing-foot contact on once the foot is this far (x l) ahead of the stance foot ...
 ENABLE_CLEAR = 2e-4  # ... and this high (x l) above the ground (Gait III's swing foot clears only ~1 mm)
 RELEASE_SKIP = 5e-3  # s after heel strike excluded from force ratios and phase labels: the soft impact's transient
@@ -119,7 +131,8 @@ def gait(p: Values) -> theory.Gait:
 
 
 def check_params(p: Values) -> None:
-    """Refuse parameters without the named, stable gait of 002 (continuation fails, wrong type, |lambda| >= 1)."""
+    """Refuse parameters without the named gait of 002 (continuation fails, or a gait of another type). Unstable
+    gaits (C, II; B and I past their stability loss) are accepted: they are fitted over a short horizon."""
     name, mu = gait_name(p), friction(p)
     if name != "III" and (float(p["kp"]), float(p["kd"])) != (15.0, 15.0):
         raise ParameterError(f"kp, kd apply to gait=iii only (got gait={p['gait']})")
@@ -127,21 +140,19 @@ def check_params(p: Values) -> None:
         g = gait(p)
     except (ValueError, RuntimeError) as err:
         raise ParameterError(f"mu={mu:g}: no Gait {name} of 002 ({str(err).splitlines()[0]})") from None
-    expected = {"A": "A", "B": "B", "I": "A", "III": "C"}[name]
-    if g.kind != expected:
-        raise ParameterError(f"mu={mu:g}: the gait found is of type {g.kind}, not Gait {name}'s {expected} "
+    expected = KIND[name]
+    if g.kind not in expected:
+        raise ParameterError(f"mu={mu:g}: the gait found is of type {g.kind}, not Gait {name}'s {'/'.join(expected)} "
                              f"({theory.describe(g.record)}); mu_c of the A/B branch is 0.1749")
-    if g.spectral_radius >= 1.0:
-        raise ParameterError(f"mu={mu:g}: Gait {name} is unstable (|lambda|max = {g.spectral_radius:.3f} >= 1; "
-                             "B loses stability at mu = 0.1104, I at 0.1035)")
 
 
 def _torques(p: Values) -> tuple[float, float]:
-    """(tau_ankle, tau_hip) of the compass-biped model for Gait I: stance hinge = Q1 = tau_ankle - tau_hip,
-    swing hinge = -Q2 = tau_hip (002 eq 28 with E_eff)."""
-    if gait_name(p) != "I":
+    """(tau_ankle, tau_hip) of the compass-biped model for Gaits I and II: stance hinge = Q1 = tau_ankle - tau_hip,
+    swing hinge = -Q2 = tau_hip (002 eq 28 with E_eff; II: Q = (0.57, 0.12), tau_ankle 0.45, tau_hip -0.12)."""
+    act = gait(p).actuation
+    if gait_name(p) not in ("I", "II") or not isinstance(act, theory.ConstantTorque):
         return 0.0, 0.0
-    q1, q2 = theory.ConstantTorque(*theory.GAIT_I_TORQUES).generalised_force(np.zeros(4), np.zeros(4), 0.0)
+    q1, q2 = act.generalised_force(np.zeros(4), np.zeros(4), 0.0)
     return q1 - q2, -q2
 
 
@@ -298,14 +309,47 @@ def _reference(ref: theory.ReferenceTrajectory, phase: np.ndarray) -> tuple[np.n
     return tuple(out)
 
 
+def unstable(g: theory.Gait) -> bool:
+    """|lambda|max >= 1: fitted over UNSTABLE_STEPS steps only."""
+    return g.spectral_radius >= 1.0
+
+
+def design(g: theory.Gait) -> tuple[int, int, int]:
+    """(heel strikes per trajectory, fit degree, settled steps skipped) for the gait: STEPS, FIT_DEGREE, SETTLE, or
+    for an unstable gait UNSTABLE_STEPS, UNSTABLE_DEGREE and 1 (the first stance starts from the injected state)."""
+    return (UNSTABLE_STEPS, UNSTABLE_DEGREE, 1) if unstable(g) else (STEPS, FIT_DEGREE, SETTLE)
+
+
+def impact_border(g: theory.Gait) -> float:
+    """Perturbation size (rate offsets; theta* by a tenth) at which a start can reach the border of a sticking
+    impact, |F~_t/F~_n| = mu (002 eqs 37-40): (mu - |sigma~|)/|grad sigma~ . diag(0.1, 1, 1)|, the gradient by
+    central differences of the exact step; inf for a slipping impact. Across it the map switches to the slipping-
+    impact branch (a kink, 002 Sec. 4.2), which no polynomial fit spans: Gait B at mu = 0.14 has |sigma~| = 0.126,
+    grad (16.0, -3.35, -0.44), so the border is 0.0037 away (0.0139/3.74) while the compass-biped size is 0.023."""
+    if g.record.impact != "sticking" or math.isinf(g.biped.mu):
+        return math.inf
+    grad = np.zeros(3)
+    for i in range(3):
+        dz = np.zeros(4)
+        dz[i] = 1e-6
+        up, down = (theory.step(g.biped, g.z + sign * dz, g.actuation).impulse_ratio for sign in (1.0, -1.0))
+        grad[i] = (up - down) / 2e-6
+    return float((g.biped.mu - abs(g.record.impulse_ratio)) / np.linalg.norm(grad * np.array([0.1, 1.0, 1.0])))
+
+
 def initial_section_states(g: theory.Gait, timestep: float) -> np.ndarray:
-    """z* and STARTS offsets (seed 0) on (theta*, theta1_dot+, theta2_dot+) as compass-biped: theta* by a tenth of
-    the size, the rates by the size (x_dot+ kept at z*)."""
+    """z* and offsets (seed 0) on (theta*, theta1_dot+, theta2_dot+) as compass-biped: theta* by a tenth of
+    the size, the rates by the size (x_dot+ kept at z*); for a type-B gait (sticking impact, slip in the stance) the
+    size no larger than :func:`impact_border` (all starts on the fixed point's impact branch); STARTS of them,
+    UNSTABLE_STARTS for an unstable gait."""
     margin = 1.0 - g.spectral_radius
     size = PERTURBATION * (timestep / 2e-5) ** (1.0 / 3.0) * min(1.0, max(1.0 / 3.0, margin / 0.4))
-    directions = np.random.default_rng(0).normal(size=(STARTS, 3))
+    if g.kind == "B":  # measured: half of Gait B's compass-biped-size starts left the gait (issue #7 task 1)
+        size = min(size, impact_border(g))
+    starts = UNSTABLE_STARTS if unstable(g) else STARTS
+    directions = np.random.default_rng(0).normal(size=(starts, 3))
     directions /= np.linalg.norm(directions, axis=1, keepdims=True)
-    out = np.repeat(g.z[None, :], STARTS + 1, axis=0)
+    out = np.repeat(g.z[None, :], starts + 1, axis=0)
     out[1:, 0] += 0.1 * size * directions[:, 0]
     out[1:, 1] += size * directions[:, 1]
     out[1:, 2] += size * directions[:, 2]
@@ -379,6 +423,14 @@ def _stance_rows(c: FrictionGaitController, bp: theory.FrictionBiped, radius: fl
     return out
 
 
+def _impact_velocity(stance: dict[str, np.ndarray]) -> float:
+    """The stance foot's tangential velocity just after the heel strike (002's x_dot+, Sec. 4.2: 0 for a sticking
+    impact): a line through v_t over [RELEASE_SKIP, 2 RELEASE_SKIP] (past the soft impact) extrapolated to t = 0."""
+    t, v = stance["t"], stance["v_t"]
+    sel = (t >= RELEASE_SKIP) & (t <= 2 * RELEASE_SKIP)
+    return float(np.polyval(np.polyfit(t[sel], v[sel], 1), 0.0))
+
+
 def _phases(stance: dict[str, np.ndarray], dt: float) -> list[tuple[str, float]]:
     """Stance phases (stick / slip+ / slip-) and start times from the stance foot's tangential velocity (rows
     within RELEASE_SKIP of either heel strike dropped), flicker shorter than MERGE_PHASE_S merged."""
@@ -435,14 +487,15 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     model = build(p, s)
     tol = TOLERANCES.get(preset, TOLERANCES["fast"])
     why = WHY.get(preset, WHY["fast"])
-    c, report, _ = _run(p, s, model, initial_section_states(g, model.opt.timestep), STEPS)
+    steps, degree, settle = design(g)
+    c, report, _ = _run(p, s, model, initial_section_states(g, model.opt.timestep), steps)
     out: list[checks.Check] = []
     extras: dict[str, object] = {"gait": name, "mu": friction(p), "analytic_pattern": theory.describe(g.record)}
     y_star_th, _ = legs_parallel(g)
     lam = g.eigenvalues[np.argsort(-np.abs(g.eigenvalues))][:3]
     try:
         x, x_next = sample_pairs([np.array(v) for v in c.samples])
-        fit = fit_return_map(x, x_next, degree=FIT_DEGREE, seed=seed)
+        fit = fit_return_map(x, x_next, degree=degree, seed=seed)
     except ValueError as err:
         out.append(checks.absolute("fixed_point", y_star_th, math.nan, tol["fixed_point"], "rad, rad/s",
                                    f"no return map: {err}"))
@@ -466,7 +519,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
                                "distance between successive stance feet (002 S), regressed at the fitted fixed point"))
     out.append(checks.relative("speed", theory.average_speed(rec), length_sim / period_sim, tol["speed"], "m/s",
                                "average speed S/T (002 Sec. 5)"))
-    if name in ("I", "III"):
+    if name in ("I", "II", "III"):
         work_sim = _regress_at(y_star, ys, works) if len(works) > 4 else math.nan
         cmt = work_sim / (g.biped.total_mass * g.biped.g * length_sim)
         out.append(checks.relative("cost_of_transport", theory.cost_of_transport(g.biped, rec), cmt,
@@ -474,7 +527,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
                                    "of actuator force x hinge rate x dt over the recorded rows of a step, regressed at "
                                    "the fitted fixed point"))
         extras["actuator_work"] = {"analytic": rec.actuator_work, "simulated": work_sim}
-    stances = _stance_rows(c, g.biped, float(s["foot_radius"]))[SETTLE:]
+    stances = _stance_rows(c, g.biped, float(s["foot_radius"]))[settle:]
     dt = model.opt.timestep
     if name == "A":
         demand = theory.critical_friction(g.biped, g.z)
@@ -514,6 +567,14 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
             out.append(checks.Check("phase_times", times_th, times_sim, float(np.max(np.abs(times_sim - times_th))),
                                     tol["phase_time"], "max-abs", "s", "stance phase switch times after the impact "
                                     "(slip -> stick at the speed threshold, so biased late by ~V_SLIP/|a_t|)"))
+        v_impact = [_impact_velocity(st) for st in stances]
+        kinds = ["slipping" if abs(v) > V_SLIP else "sticking" for v in v_impact]
+        wrong = float(sum(k != rec.impact for k in kinds))
+        out.append(checks.Check("impact_kind", 0.0, wrong, wrong, 0.0, "count", "",
+                                f"settled heel strikes whose kind differs from 002's {rec.impact} impact (slipping: "
+                                f"the new stance foot's speed extrapolated to 0+ above {V_SLIP} m/s)"))
+        extras["impact"] = {"analytic": rec.impact, "x_dot_plus_analytic": float(g.z[3]), "measured": kinds,
+                            "x_dot_plus_measured": v_impact}
         extras["phases"] = {"analytic": list(zip(rec.phases, rec.phase_times, strict=True)),
                             "measured": patterns, "slip_distance_analytic": rec.slip_distance,
                             "slip_distance_measured": slip, "max_stance_foot_height": lift}
@@ -531,7 +592,7 @@ def probe(p: Values, s: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, 
     g = gait(p)
     model = build(p, s)
     starts = post_impact_states(model, g.biped, initial_section_states(g, model.opt.timestep), float(s["foot_radius"]))
-    return model, [(starts, math.ceil((STEPS + 0.5) * g.record.period / model.opt.timestep))]
+    return model, [(starts, math.ceil((design(g)[0] + 0.5) * g.record.period / model.opt.timestep))]
 
 
 def reference_bench(p: Values, rtol: float) -> dict[str, float]:
@@ -543,12 +604,12 @@ def reference_bench(p: Values, rtol: float) -> dict[str, float]:
     sequences = []
     for z in initial_section_states(g, float(PRESETS["fast"]["timestep"]))[:6]:
         seq = []
-        for _ in range(STEPS):
+        for _ in range(design(g)[0]):
             gz = theory.Gait(g.biped, g.actuation, z, g.jacobian, g.eigenvalues, g.record, g.kind)
             seq.append(legs_parallel(gz)[0])
             z = theory.return_map(g.biped, z, g.actuation)
         sequences.append(np.array(seq))
-    fit = fit_return_map(*sample_pairs(sequences), degree=FIT_DEGREE)
+    fit = fit_return_map(*sample_pairs(sequences), degree=design(g)[1])
     lam = g.eigenvalues[np.argsort(-np.abs(g.eigenvalues))][:3]
     return {"rtol": rtol, "wall_s": time.perf_counter() - start,
             "fixed_point_error": float(np.max(np.abs(fit.fixed_point - y_star))),
@@ -569,15 +630,15 @@ STRESS_CASES = (
     StressCase("Gait B near stability loss", {"gait": "b", "mu": "0.115"}, "|lambda|max -> 1 at mu = 0.1104"),
     StressCase("Gait I low friction", {"gait": "i", "mu": "0.12"}, "close to its stability loss at 0.1035"),
     StressCase("Gait A below mu_c", {"gait": "a", "mu": "0.15"}, "that is Gait B", expect="refused"),
-    StressCase("Gait B unstable", {"gait": "b", "mu": "0.1"}, "past the stability loss", expect="refused"),
+    StressCase("Gait B unstable", {"gait": "b", "mu": "0.1"}, "past the stability loss: 2-step fit"),
     StressCase("negative friction", {"mu": "-0.1"}, "mu must be >= 0", expect="refused"),
-    StressCase("unknown gait", {"gait": "c"}, "Gait C is unstable; not offered", expect="refused"),
+    StressCase("unknown gait", {"gait": "d"}, "002 has no Gait D for the compass biped", expect="refused"),
 )
 
 
 COMPASS_BIPED_FRICTION = Scenario(
     name="compass-biped-friction",
-    summary="compass biped with Coulomb friction (002): Gaits A/B (slope), I/III (actuated, level ground)",
+    summary="compass biped with Coulomb friction (002): Gaits A/B/C (slope), I/II/III (actuated, level ground)",
     source="Gamus & Or 2015 Secs. 4-5 (eqs 27-30, Figs 4.1-5.2); reference card 002 Secs. 3, 7",
     params=PARAMS,
     presets=PRESETS,
