@@ -65,9 +65,9 @@ def test_gait_iii_eigenvalues() -> None:
     assert _checks("iii")["eigenvalues"].passed, _run("iii").table()
 
 
-@pytest.mark.xfail(strict=True, reason="measured: 0.30 +- 0.70j, 0.33 vs 0.346 +- 0.744j, 0.338 (error ~0.06; "
-                   "accurate preset 0.38 +- 0.75j, 0.28): MuJoCo's one-step map differs from the exact map by an "
-                   "affine term (slopes 0.04-0.33) plus 2e-4..8e-4 scatter that the 5x smaller step does not shrink")
+@pytest.mark.xfail(strict=True, reason="measured: 0.20 +- 0.80j, 0.43 vs 0.346 +- 0.744j, 0.338 (error 0.151, fast; "
+                   "0.047 accurate, 0.103 at 10 us / 0.1 ms contact): MuJoCo's one-step map differs from the exact "
+                   "map by an affine term (slopes 0.04-0.33) plus 2e-4..8e-4 scatter that refinement does not shrink")
 def test_gait_b_eigenvalues() -> None:
     """Gait B's multipliers (|lambda|max 0.8206, 002 Sec. 4.2), starts inside the sticking-impact border."""
     assert _checks("b")["eigenvalues"].passed, _run("b").table()
