@@ -107,6 +107,7 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import brentq, minimize_scalar
 
 from analysis.theory import stick_slip as ss
+from analysis.theory.shooting import central_jacobian, chord_newton
 
 Vector = NDArray[np.float64]
 Matrix = NDArray[np.float64]
@@ -835,7 +836,7 @@ def search_gaits(bp: FrictionBiped, thetas: Sequence[float], rates1: Sequence[fl
 
     found: list[Vector] = []
     for _, p in scored[:candidates]:
-        p_star = _newton(gap, p)
+        p_star = chord_newton(gap, p, tol=NEWTON_TOL)
         if p_star is None:
             continue
         z, _ = impact_from_pre(bp, np.append(p_star, 0.0), actuation)
@@ -845,51 +846,6 @@ def search_gaits(bp: FrictionBiped, thetas: Sequence[float], rates1: Sequence[fl
 
 
 # --- fixed points and eigenvalues -----------------------------------------------------------------------------
-
-
-def _jacobian(fun: Callable[[Vector], Vector], z: Vector, h: float) -> Matrix:
-    """Central-difference Jacobian of ``fun`` at z with absolute step h (see FD_STEP)."""
-    n = z.size
-    jac = np.empty((n, n))
-    for j in range(n):
-        e = np.zeros(n)
-        e[j] = h
-        jac[:, j] = (fun(z + e) - fun(z - e)) / (2.0 * h)
-    return jac
-
-
-def _newton(fun: Callable[[Vector], Vector], z0: Vector, h: float = 1e-7, tol: float = NEWTON_TOL,
-            max_iter: int = 30, jac0: Matrix | None = None) -> Vector | None:
-    """Newton on F(z) = P(z) - z with a central-difference Jacobian (or ``jac0`` of F to start with), reused while
-    the residual shrinks tenfold per step (chord steps); a step into a failing map is halved (up to 6 times). None
-    if it does not converge."""
-    z = np.asarray(z0, dtype=float).copy()
-    r = fun(z)
-    jac = jac0
-    for _ in range(max_iter):
-        if not np.all(np.isfinite(r)):
-            return None
-        if np.max(np.abs(r)) < tol:
-            return z
-        if jac is None:
-            jac = _jacobian(fun, z, h)
-            if not np.all(np.isfinite(jac)):
-                return None
-        try:
-            dz = np.linalg.solve(jac, -r)
-        except np.linalg.LinAlgError:
-            return None
-        for _half in range(6):
-            r_new = fun(z + dz)
-            if np.all(np.isfinite(r_new)):
-                break
-            dz = 0.5 * dz
-        else:
-            return None
-        if not np.max(np.abs(r_new)) < 0.1 * np.max(np.abs(r)):
-            jac = None
-        z, r = z + dz, r_new
-    return z if np.max(np.abs(r)) < tol else None
 
 
 def _gap(bp: FrictionBiped, actuation: Actuation | None, dim: int, kind: str | None) -> Callable[[Vector], Vector]:
@@ -917,7 +873,7 @@ def fixed_point(bp: FrictionBiped, guess: ArrayLike, actuation: Actuation | None
         raise ValueError(f"guess must have 3 or 4 components (got {g.size})")
     kind = "sticking" if g.size == 3 else "slipping"
     jac0 = None if jacobian is None else np.asarray(jacobian, dtype=float) - np.eye(g.size)
-    z = _newton(_gap(bp, actuation, g.size, kind), g, jac0=jac0)
+    z = chord_newton(_gap(bp, actuation, g.size, kind), g, tol=NEWTON_TOL, jac0=jac0)
     if z is None:
         raise ValueError(f"fixed-point shooting from {g!r} did not converge to a {kind}-impact gait (mu = {bp.mu!r})")
     out = np.zeros(4)
@@ -939,7 +895,7 @@ def map_jacobian(bp: FrictionBiped, z_star: ArrayLike, actuation: Actuation | No
     if rec.failure is not None:
         raise ValueError(f"the step from {z!r} fails ({rec.failure})")
     dim = 3 if rec.impact == "sticking" else 4
-    return _jacobian(lambda v: return_map(bp, v, actuation), z[:dim], h)
+    return central_jacobian(lambda v: return_map(bp, v, actuation), z[:dim], h)
 
 
 def eigenvalues(bp: FrictionBiped, z_star: ArrayLike, actuation: Actuation | None = None,

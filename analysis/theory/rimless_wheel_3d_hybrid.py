@@ -42,6 +42,7 @@ from analysis.theory.rimless_wheel_3d import (
     planar_pitch_rate,
     validate,
 )
+from analysis.theory.shooting import central_jacobian
 
 RTOL = 1e-12
 ATOL = 1e-12
@@ -384,20 +385,10 @@ def planar_fixed_point(w: RimlessWheel3D) -> Vector:
     return np.array([w.heading, planar_bank(w.slope, w.heading), 0.0, 0.0, planar_pitch_rate(w)])
 
 
-def _central_jacobian(f: Callable[[Vector], Vector], x: Vector, h: float) -> Matrix:
-    n = x.size
-    jac = np.empty((n, n))
-    for j in range(n):
-        dx = np.zeros(n)
-        dx[j] = h
-        jac[:, j] = (f(x + dx) - f(x - dx)) / (2.0 * h)
-    return jac
-
-
 def jacobian(w: RimlessWheel3D, h: float = 1e-6) -> Matrix:
     """5x5 Jacobian of :func:`step` at :func:`planar_fixed_point` by central differences (001 Appendix J_f = B D E,
     here numerically). Truncation O(h^2) ~ 1e-12, round-off ~ 1e-12/h ~ 1e-6 at most."""
-    return _central_jacobian(lambda x: step(w, x)[0], planar_fixed_point(w), h)
+    return central_jacobian(lambda x: step(w, x)[0], planar_fixed_point(w), h)
 
 
 # --- the mid-stance map ----------------------------------------------------------------------------------------
@@ -432,7 +423,7 @@ def midstance_map(w: RimlessWheel3D, x: ArrayLike) -> tuple[Vector, float]:
 
 def midstance_jacobian(w: RimlessWheel3D, h: float = 1e-6) -> Matrix:
     """5x5 Jacobian of :func:`midstance_map` at :func:`midstance_fixed_point` (central differences)."""
-    return _central_jacobian(lambda x: midstance_map(w, x)[0], midstance_fixed_point(w), h)
+    return central_jacobian(lambda x: midstance_map(w, x)[0], midstance_fixed_point(w), h)
 
 
 # --- eigenvalues -----------------------------------------------------------------------------------------------

@@ -68,6 +68,7 @@ from scipy.optimize import brentq, minimize_scalar
 
 from analysis.theory import rimless_wheel as rw
 from analysis.theory import stick_slip as ss
+from analysis.theory.shooting import central_jacobian, chord_newton
 
 RTOL = 1e-11
 ATOL = 1e-12
@@ -864,46 +865,6 @@ def _derivative(fun: Callable[[float], float], x: float, h: float) -> float:
     return (mid - down) / h
 
 
-def _newton_2d(fun: Callable[[NDArray[np.float64]], NDArray[np.float64]], z0: NDArray[np.float64],
-               h: float = 1e-7, tol: float = 1e-12) -> NDArray[np.float64] | None:
-    """Chord-Newton on F(z) = P(z) - z: central-difference Jacobian, recomputed only when the residual stops
-    shrinking tenfold per step; None if it does not converge."""
-    z = np.asarray(z0, dtype=float)
-    r = fun(z)
-    jac: NDArray[np.float64] | None = None
-    for _ in range(40):
-        if not np.all(np.isfinite(r)):
-            return None
-        if jac is None:
-            jac = _map_jacobian(fun, z, h)
-            if not np.all(np.isfinite(jac)):
-                return None
-        try:
-            dz = np.linalg.solve(jac, -r)
-        except np.linalg.LinAlgError:
-            return None
-        z = z + dz
-        r_new = fun(z)
-        if np.max(np.abs(dz)) < tol:
-            return z if np.all(np.isfinite(r_new)) else None
-        if not np.max(np.abs(r_new)) < 0.1 * np.max(np.abs(r)):
-            jac = None
-        r = r_new
-    return None
-
-
-def _map_jacobian(fun: Callable[[NDArray[np.float64]], NDArray[np.float64]], z: NDArray[np.float64],
-                  h: float) -> NDArray[np.float64]:
-    """Central-difference Jacobian of ``fun`` at z (relative steps h)."""
-    n = z.size
-    jac = np.empty((n, n))
-    for j in range(n):
-        e = np.zeros(n)
-        e[j] = h * max(1.0, abs(z[j]))
-        jac[:, j] = (fun(z + e) - fun(z - e)) / (2 * e[j])
-    return jac
-
-
 def _gait_from(w: FrictionWheel, z: NDArray[np.float64], x_dot: float, kind: str, eig: NDArray[np.complex128]) -> Gait:
     rec = step(w, (float(z[0]), x_dot))
     label = classify_record(rec)
@@ -965,7 +926,8 @@ def _c_post(w: FrictionWheel, z: NDArray[np.float64]) -> NDArray[np.float64]:
 
 def _c_fixed_point(w: FrictionWheel, z0: NDArray[np.float64]) -> NDArray[np.float64] | None:
     """Type C fixed point by chord-Newton from z0, None unless it converges to a Type C step."""
-    z_star = _newton_2d(lambda v: _c_post(w, v) - v, z0)
+    z_star = chord_newton(lambda v: _c_post(w, v) - v, z0, tol=1e-14, step_tol=1e-12, max_iter=40,
+                          relative_step=True, halvings=0)
     if z_star is None or not z_star[1] > 0 or classify_record(step(w, tuple(z_star))) != "C":
         return None
     return z_star
@@ -991,7 +953,7 @@ def _find_c(w: FrictionWheel, guess: Sequence[float] | None) -> Gait | None:
     z_star = _c_fixed_point(w, z)
     if z_star is None:
         return None
-    eig = np.linalg.eigvals(_map_jacobian(post, z_star, 1e-6))
+    eig = np.linalg.eigvals(central_jacobian(post, z_star, 1e-6, relative=True))
     eig = eig[np.argsort(-np.abs(eig))]
     return _gait_from(w, z_star, float(z_star[1]), "C", eig.astype(complex))
 
