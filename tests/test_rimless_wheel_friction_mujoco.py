@@ -15,7 +15,8 @@ import numpy as np
 import pytest
 
 from mjpoincare.params import ParameterError
-from mjpoincare.scenarios import rimless_wheel_friction as rwf
+from mjpoincare.scenarios import rimless_wheel_friction_basins as basins
+from mjpoincare.scenarios import rimless_wheel_friction_sweep as mu_sweep
 from mjpoincare.validate import resolve_inputs, run_validation
 
 pytestmark = pytest.mark.mujoco
@@ -86,18 +87,18 @@ def test_bad_input_names_the_parameter(assignments: dict[str, str], name: str) -
 
 
 def test_type_edges() -> None:
-    edges = rwf.type_edges([0.1, 0.2, 0.3, 0.9, 1.0], ["D+", "C", "B", "B", "A"])
+    edges = mu_sweep.type_edges([0.1, 0.2, 0.3, 0.9, 1.0], ["D+", "C", "B", "B", "A"])
     assert edges == pytest.approx({"D+/C": 0.15, "C/B": 0.25, "B/A": 0.95})
 
 
 def test_mu_sweep_batches_and_resumes(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     """Two mu values in one rollout, then a resumed run that only simulates the new value."""
     target = tmp_path / "sweep.json"
-    rwf.run_mu_sweep(["0.3", "1.1"], {}, "fast", str(target), workers=1)
+    mu_sweep.run_mu_sweep(["0.3", "1.1"], {}, "fast", str(target), workers=1)
     first = json.loads(target.read_text())
     assert [r["simulated"] for r in first["rows"]] == ["B", "A"]
     assert all(r["eigenvalue_error"] <= 0.02 for r in first["rows"])
-    rwf.run_mu_sweep(["0.3", "1.1", "0.24"], {}, "fast", str(target), resume=True, workers=1)
+    mu_sweep.run_mu_sweep(["0.3", "1.1", "0.24"], {}, "fast", str(target), resume=True, workers=1)
     out = capsys.readouterr().out
     assert "1 mu values run" in out
     rows = json.loads(target.read_text())["rows"]
@@ -109,12 +110,12 @@ def test_basin_map_small(tmp_path: Path) -> None:
     """An 8 x 5 map and the x_dot0 = 0 lines: the sticking starts inside the window converge, the slowest rolls back;
     the PNG and JSON are written."""
     png, js = tmp_path / "basins.png", tmp_path / "basins.json"
-    code = rwf.run_basin_map("theta_dot0=0.05:1.2:8,x_dot0=0:0.04:5", {}, "coarse", str(js), str(png), workers=1)
+    code = basins.run_basin_map("theta_dot0=0.05:1.2:8,x_dot0=0:0.04:5", {}, "coarse", str(js), str(png), workers=1)
     result = json.loads(js.read_text())
     assert png.stat().st_size > 10_000
     assert code in (0, 1)
     line = result["lines"]["slip"]
     assert line["simulated"][0] == line["reference"][0] == "backward"
-    assert all(s not in rwf.FAILURES for s in line["simulated"][1:6])
+    assert all(s not in basins.FAILURES for s in line["simulated"][1:6])
     steps = np.array(line["simulated_steps"][1:6])
     assert (steps > 0).all()

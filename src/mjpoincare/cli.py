@@ -69,14 +69,15 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
     from mjpoincare.sweep import parse_values, run_regions, run_sweep
 
     if args.scenario == "rimless-wheel-friction" and (args.grid or args.param == "mu"):
-        from mjpoincare.scenarios import rimless_wheel_friction as rwf
+        from mjpoincare.scenarios import rimless_wheel_friction_basins as basins
+        from mjpoincare.scenarios import rimless_wheel_friction_sweep as mu_sweep
 
         if args.grid:  # --grid theta_dot0=A:B:N,x_dot0=A:B:N: regions of attraction
-            return rwf.run_basin_map(args.grid, parse_assignments(args.set), args.preset, args.json,
+            return basins.run_basin_map(args.grid, parse_assignments(args.set), args.preset, args.json,
                                      args.output.replace("regions-", "basins-"), workers=max(args.workers, 2))
         if not args.values:
             raise ParameterError("sweep --param mu needs --values START:STOP:COUNT")
-        return rwf.run_mu_sweep(parse_values(args.values), parse_assignments(args.set), args.preset, args.json,
+        return mu_sweep.run_mu_sweep(parse_values(args.values), parse_assignments(args.set), args.preset, args.json,
                                 resume=args.resume, workers=max(args.workers, 2))
     if args.grid:
         return run_regions(args.scenario, args.grid, parse_assignments(args.set), args.preset, args.json,

@@ -27,32 +27,29 @@ Measurement, all vectorised on the recorded states (no Python between MuJoCo ste
   ``v_thr`` or the impulse ratio over the window is on the cone's edge.
 
 All rates are reported nondimensionally (002's units, m = l = 1, omega_c = sqrt(g/(l(1+kappa))) = 1).
+The friction sweep and the regions of attraction are in :mod:`mjpoincare.scenarios.rimless_wheel_friction_sweep`
+and :mod:`mjpoincare.scenarios.rimless_wheel_friction_basins`; they reuse this module's measurement.
 """
 
 from __future__ import annotations
 
 import copy
 import math
-import os
-import sys
 import time
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import lru_cache
-from pathlib import Path
 from typing import Any
 
 import mujoco
 import numpy as np
 
 from analysis import checks
-from analysis.checks import jsonable
 from analysis.returnmap import fit_return_map, sample_pairs
 from analysis.sections import level_crossings, wrap_phase
 from analysis.theory import rimless_wheel_friction as theory
 from mjpoincare.mjlog import captured_mujoco_log
 from mjpoincare.params import Param, ParameterError
-from mjpoincare.result import write_json
 from mjpoincare.scenarios import rimless_wheel as rw
 from mjpoincare.scenarios.base import Evaluation, Scenario, Soak, StressCase, Values
 from mjpoincare.simulate import Chunk, RolloutReport, event_rollout
@@ -157,12 +154,12 @@ def rigid_params(p: Values) -> dict[str, float | int]:
 
 
 @lru_cache(maxsize=64)
-def _attractors(w: theory.FrictionWheel) -> tuple[theory.Gait, ...]:
+def attractors(w: theory.FrictionWheel) -> tuple[theory.Gait, ...]:
     return theory.attractors(w)
 
 
 @lru_cache(maxsize=16)
-def _boundaries(kappa: float, spokes: int, slope: float) -> theory.GaitBoundaries:
+def cached_boundaries(kappa: float, spokes: int, slope: float) -> theory.GaitBoundaries:
     return theory.gait_boundaries(kappa, spokes, slope)
 
 
@@ -180,8 +177,8 @@ def check_params(p: Values) -> None:
         raise ParameterError(
             f"kappa must be in [{low:g}, 1] (got {w.kappa:g}): slipping needs hub inertia (002 eq 42: f_n = "
             f"kappa (...)/D vanishes at kappa = 0) and MuJoCo's pitch joint needs it (see rimless-wheel)")
-    if not _attractors(w):
-        edges = _boundaries(w.kappa, w.spokes, w.slope)
+    if not attractors(w):
+        edges = cached_boundaries(w.kappa, w.spokes, w.slope)
         if math.isfinite(edges.d_lower) and w.mu < edges.d_lower:
             raise ParameterError(
                 f"mu must be >= {edges.d_lower:.4f} for spokes={w.spokes}, kappa={w.kappa:g}, slope={w.slope:g} (got "
@@ -614,7 +611,7 @@ def steps_to_converge(mid_rate: np.ndarray, kinds: np.ndarray, final_kind: str, 
 
 def reference_gait(w: theory.FrictionWheel) -> theory.Gait:
     """The stable gait this mu settles on (002 Sec. 3.3; at most one of A, B, C, D+ per mu for the paper set)."""
-    gaits = _attractors(w)
+    gaits = attractors(w)
     if not gaits:
         raise ParameterError(f"mu={w.mu:g} has no stable gait of types A-D+")
     return gaits[0]
@@ -694,27 +691,27 @@ def run_batch(p: Values, s: Values, preset: str, starts: np.ndarray, steps: int,
     model = build(p, s)
     mu_all = np.full(len(starts), float(p["mu"])) if mus is None else np.asarray(mus, float)
     models = [model] * len(starts) if mus is None else [with_friction(model, float(m)) for m in mu_all]
-    period = _period_seconds(p, mu_all)
+    period = period_seconds(p, mu_all)
     rec = simulate(models, start_states(model, p, s, starts), steps * period + extra, int(s["threads"]))
     cls = classifier(mu_all, s, preset, len(starts))
     rows = row_signals(rec, p, s, cls, np.asarray(model.opt.gravity))
     return rows, step_table(rows, cls, steps + 2), cls, rec.report
 
 
-def _period_seconds(p: Values, mus: np.ndarray) -> float:
+def period_seconds(p: Values, mus: np.ndarray) -> float:
     """Longest gait period over the friction values (s), at least the sticking gait's, for sizing the runs."""
     base = dict(p)
     periods = []
     for mu in np.unique(mus):
         w = friction_wheel({**base, "mu": float(mu)})
-        gaits = _attractors(w)
+        gaits = attractors(w)
         periods.append(max([g.period for g in gaits], default=0.0))
     rigid = theory.find_gait(friction_wheel({**base, "mu": math.inf}), "A")
     periods.append(rigid.period if rigid is not None else 1.0)
     return max(periods) / rate_unit(p)
 
 
-def _fit(steps: Steps, mask: np.ndarray, kind: str, seed: int) -> tuple[Any, np.ndarray, np.ndarray]:
+def fit_steps(steps: Steps, mask: np.ndarray, kind: str, seed: int) -> tuple[Any, np.ndarray, np.ndarray]:
     """Quadratic fit of the mid-stance map from consecutive samples of the fitting trajectories, using only pairs
     whose two steps are of the gait's type (a perturbed start may pass through another type first, e.g. D- on the
     way to C, where the mid-stance map is not a function of theta_dot alone) and that precede any failure."""
@@ -760,7 +757,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
                       f"{[r.outcome for r in refs]}"))
     extras: dict[str, Any] = {}
     try:
-        fit, x, x_next = _fit(steps, fit_mask, gait.kind, seed)
+        fit, x, x_next = fit_steps(steps, fit_mask, gait.kind, seed)
         mid_sim, lam_sim = float(fit.fixed_point[0]), float(np.real(fit.eigenvalues[0]))  # 1-D map: real
         extras["fit"] = fit.to_dict()
         grid = np.linspace(float(x.min()), float(x.max()), 40)
@@ -866,487 +863,6 @@ def _step_report(rows: Rows, steps: Steps, cls: Classifier, b: int, ref: Referen
     return table
 
 
-# --- friction sweep (002 Sec. 3.3, Fig. 3.5) ---------------------------------------------------------------------
-
-SWEEP_OFFSETS = FIT_OFFSETS  # theta_dot0 offsets per mu: the middle start classifies, all fit lambda
-SWEEP_STEPS = 20
-SWEEP_BATCH = 12  # mu values per rollout (memory: every row of the batch is kept)
-
-
-def sweep_reference(p: Values, mu: float) -> dict[str, Any]:
-    """The reference at one mu: the stable gait (type, post-impact start, multiplier, mid-stance rate) and the type
-    :func:`theory.settle` reaches from the simulation's middle start (the gait's start, or eq 16's sticking fixed point
-    where no gait exists)."""
-    w = friction_wheel({**p, "mu": mu})
-    gaits = _attractors(w)
-    if gaits:
-        gait = gaits[0]
-        start = gait_start(gait)
-        lam = complex(gait.eigenvalues[np.argmax(np.abs(gait.eigenvalues))])
-        row = {"gait": gait.kind, "eigenvalue": lam.real, "midstance_rate": gait.midstance_rate}
-    else:
-        start = (theory.sticking_fixed_point(w), 0.0)
-        row = {"gait": "", "eigenvalue": math.nan, "midstance_rate": math.nan}
-    settled = theory.settle(w, start, max_steps=300, tol=1e-9)
-    return {"mu": mu, "start": list(start), "reference": settled.outcome, **row}
-
-
-def _sweep_reference_job(p: dict[str, Any], mus: list[float]) -> list[dict[str, Any]]:
-    return [sweep_reference(p, mu) for mu in mus]
-
-
-def sweep_batch(p: Values, s: Values, preset: str, refs: list[dict[str, Any]], seed: int = 0) -> list[dict[str, Any]]:
-    """Simulate every mu of ``refs`` in ONE rollout (a model per trajectory, SWEEP_OFFSETS starts per mu) and
-    classify: settled type, the type of the last step before a failure, the fitted multiplier of the gait."""
-    n = len(SWEEP_OFFSETS)
-    starts = np.array([[r["start"][0] * (1 + d), r["start"][1]] for r in refs for d in SWEEP_OFFSETS])
-    mus = np.repeat([r["mu"] for r in refs], n)
-    steps_n = D_SIM_STEPS if all(r["gait"].startswith("D") for r in refs) else SWEEP_STEPS
-    rows, steps, _cls, report = run_batch(p, s, preset, starts, steps_n, mus=mus)
-    out = []
-    for i, ref in enumerate(refs):
-        middle = i * n + n // 2
-        sim = outcome(steps, middle)
-        before = _type_before_failure(steps, middle)
-        lam = math.nan
-        if ref["gait"]:
-            try:
-                fit, _, _ = _fit(steps, np.isin(np.arange(len(starts)), range(i * n, (i + 1) * n)), ref["gait"], seed)
-                lam = float(np.real(fit.eigenvalues[0]))
-            except ValueError:
-                lam = math.nan
-        ratio = math.nan
-        if sim == "A":  # the force ratio the A gait needs along its stance: MuJoCo's mu_c (002 eq 23)
-            phi = math.pi / int(p["spokes"])
-            pooled = settled_rows(rows, steps, range(i * n, (i + 1) * n), "A")
-            ratio = critical_ratio(*ratio_profile(rows, pooled, phi), phi)
-        out.append({**ref, "simulated": sim, "simulated_before_failure": before, "critical_ratio": ratio,
-                    "simulated_velocity_only": outcome(steps, middle, velocity_only=True),
-                    "agree": sim == ref["reference"], "eigenvalue_simulated": lam,
-                    "eigenvalue_error": abs(lam - ref["eigenvalue"]) if ref["gait"] else math.nan,
-                    "diverged": int(report.diverged[i * n : (i + 1) * n].sum()), "warnings": report.warnings})
-    return out
-
-
-def _type_before_failure(steps: Steps, b: int) -> str:
-    done = np.nonzero(steps.complete[b])[0]
-    if steps.failure[b]:
-        done = done[done < steps.failure_step[b]]
-    return str(steps.kind[b, done[-1]]) if done.size else str(steps.failure[b])
-
-
-def type_edges(mus: Sequence[float], types: Sequence[str]) -> dict[str, float]:
-    """Where the type changes along increasing mu: ``"X/Y"`` -> the midpoint between the last mu of type X and the
-    first of type Y (only between neighbouring grid points)."""
-    order = np.argsort(mus)
-    m = [float(mus[i]) for i in order]
-    ty = [types[i] for i in order]
-    edges: dict[str, float] = {}
-    for k in range(len(m) - 1):
-        if ty[k] != ty[k + 1]:
-            edges.setdefault(f"{ty[k]}/{ty[k + 1]}", 0.5 * (m[k] + m[k + 1]))
-    return edges
-
-
-def sweep_summary(rows: list[dict[str, Any]], boundaries: theory.GaitBoundaries) -> dict[str, Any]:
-    """Agreement, the located type edges against the reference's (gait_boundaries), eigenvalue errors per type."""
-    mus = [r["mu"] for r in rows]
-    reference = {"A/B (mu_c)": boundaries.ab, "B/C": boundaries.bc, "C/D+": boundaries.d_sign,
-                 "D+/backward": boundaries.d_lower}
-    names = {"A/B (mu_c)": ("B", "A"), "B/C": ("C", "B"), "C/D+": ("D+", "C"), "D+/backward": ("backward", "D+")}
-
-    def locate(types: list[str]) -> dict[str, float]:
-        found = type_edges(mus, types)
-        return {k: found.get(f"{lo}/{hi}", math.nan) for k, (lo, hi) in names.items()}
-
-    sim_edges = locate([r["simulated"] for r in rows])
-    before_edges = locate([r["simulated_before_failure"] for r in rows])
-    ref_edges_grid = locate([r["reference"] for r in rows])
-    eig: dict[str, float] = {}
-    for r in rows:
-        if r["gait"] and math.isfinite(r["eigenvalue_error"]):
-            eig[r["gait"]] = max(eig.get(r["gait"], 0.0), r["eigenvalue_error"])
-    ratios = [r["critical_ratio"] for r in rows if math.isfinite(r.get("critical_ratio", math.nan))]
-    mu_c_ratio = float(np.median(ratios)) if ratios else math.nan
-    agree = sum(r["agree"] for r in rows)
-    agree_before = sum(r["simulated_before_failure"] == r["reference"] for r in rows)
-    return {"points": len(rows), "agreement": agree / len(rows), "agreement_before_failure": agree_before / len(rows),
-            "disagreements": [{"mu": r["mu"], "reference": r["reference"], "simulated": r["simulated"],
-                               "before_failure": r["simulated_before_failure"]} for r in rows if not r["agree"]],
-            "edges_reference": reference, "edges_reference_on_grid": ref_edges_grid, "edges_simulated": sim_edges,
-            "edges_simulated_before_failure": before_edges,
-            "edge_errors": {k: abs(sim_edges[k] - v) for k, v in reference.items()},
-            "mu_c_relative_error": abs(sim_edges["A/B (mu_c)"] - boundaries.ab) / boundaries.ab,
-            "mu_c_force_ratio": mu_c_ratio, "mu_c_force_ratio_points": len(ratios),
-            "mu_c_force_ratio_relative_error": abs(mu_c_ratio - boundaries.ab) / boundaries.ab,
-            "max_eigenvalue_error_per_type": eig}
-
-
-def run_mu_sweep(values: Sequence[str], assignments: Mapping[str, str], preset: str | None, json_path: str | None,
-                 *, resume: bool = False, workers: int = 2) -> int:
-    """``mjpoincare sweep rimless-wheel-friction --param mu --values START:STOP:COUNT``: the settled gait type over mu,
-    batched (SWEEP_BATCH mu values per rollout, a model per trajectory), against the reference; progress on stderr,
-    each finished batch written to ``json_path`` (whole), ``resume`` skips the mu values that file holds. Prints the
-    agreement, the located edges (mu_c = A/B) and the eigenvalue errors; exit 0 when the agreement is >= 95 %, every
-    edge within 0.02 and every eigenvalue within 0.02, else 1."""
-    from mjpoincare.parallel import run_jobs
-    from mjpoincare.validate import resolve_inputs
-
-    _, preset_name, p, s = resolve_inputs("rimless-wheel-friction", {k: v for k, v in assignments.items()
-                                                                      if k != "mu"}, preset)
-    mus = [float(v) for v in values]
-    for mu in mus:
-        if not 0.0 <= mu <= 1e3:
-            raise ParameterError(f"mu must be in [0, 1000] (got {mu})")
-    header = {"scenario": "rimless-wheel-friction", "param": "mu", "assignments": dict(assignments),
-              "preset": preset_name}
-    rows: list[dict[str, Any]] = []
-    if resume:
-        from mjpoincare.sweep import resumed_rows
-
-        rows = [{k: (math.nan if v is None else v) for k, v in r.items()}  # JSON null = NaN
-                for r in resumed_rows(json_path, header) if r["mu"] in mus]
-    done = {r["mu"] for r in rows}
-    todo = [mu for mu in mus if mu not in done]
-    start = time.perf_counter()
-    parts = max(1, min(workers, len(todo)))
-    chunks = [todo[i::parts] for i in range(parts)]  # interleaved: the D range costs more
-    refs = [r for part in run_jobs(_sweep_reference_job, [(dict(p), c) for c in chunks], workers=workers)
-            for r in part]
-    refs.sort(key=lambda r: r["mu"])
-    ref_wall = time.perf_counter() - start
-    tty = sys.stderr.isatty() and not os.environ.get("CI")
-    for k in range(0, len(refs), SWEEP_BATCH):
-        batch = refs[k : k + SWEEP_BATCH]
-        rows += sweep_batch(p, s, preset_name, batch)
-        if json_path and json_path != "-":
-            write_json(jsonable({**header, "rows": sorted(rows, key=lambda r: r["mu"])}), json_path)
-        if tty:
-            print(f"[{len(rows)}/{len(mus)}] mu {batch[0]['mu']:.4g}..{batch[-1]['mu']:.4g} "
-                  f"({time.perf_counter() - start:.0f} s)", file=sys.stderr)
-    rows.sort(key=lambda r: r["mu"])
-    w = friction_wheel(p)
-    summary = sweep_summary(rows, _boundaries(w.kappa, w.spokes, w.slope))
-    wall = time.perf_counter() - start
-    print(sweep_table(rows, summary, wall, ref_wall, len(todo)))
-    if json_path:
-        write_json(jsonable({**header, "rows": rows, "summary": summary, "wall_s": wall}), json_path)
-    ok = (summary["agreement"] >= 0.95 and all(e <= 0.02 for e in summary["edge_errors"].values() if math.isfinite(e))
-          and all(e <= 0.02 for e in summary["max_eigenvalue_error_per_type"].values()))
-    return 0 if ok else 1
-
-
-def sweep_table(rows: list[dict[str, Any]], summary: dict[str, Any], wall: float, ref_wall: float, run: int) -> str:
-    """The sweep as a table a person reads, with the summary lines."""
-    lines = ["| mu | reference | simulated | before failure | lambda ref | lambda sim |", "|---|---|---|---|---|---|"]
-    for r in rows:
-        lines.append(f"| {r['mu']:.4g} | {r['reference']} | {r['simulated']}{'' if r['agree'] else ' (!)'} | "
-                     f"{r['simulated_before_failure']} | {r['eigenvalue']:.4f} | {r['eigenvalue_simulated']:.4f} |")
-    lines.append(f"\nagreement {summary['agreement']:.1%} of {summary['points']} "
-                 f"({summary['agreement_before_failure']:.1%} counting the type before a flight)")
-    for name, ref in summary["edges_reference"].items():
-        lines.append(f"edge {name}: simulated {summary['edges_simulated'][name]:.4f}, reference {ref:.4f} "
-                     f"(error {summary['edge_errors'][name]:.4f}; before failure "
-                     f"{summary['edges_simulated_before_failure'][name]:.4f})")
-    edge = summary["edges_simulated"]["A/B (mu_c)"]
-    lines.append(f"mu_c: A/B type edge {edge:.4f} ({summary['mu_c_relative_error']:.2%} off); max |f_t/f_n| along the "
-                 f"simulated A gaits (eq 23, median of {summary['mu_c_force_ratio_points']}) "
-                 f"{summary['mu_c_force_ratio']:.4f} ({summary['mu_c_force_ratio_relative_error']:.2%} off); "
-                 f"reference {summary['edges_reference']['A/B (mu_c)']:.6f}")
-    lines.append("largest eigenvalue error per type: " + ", ".join(
-        f"{k} {v:.4f}" for k, v in summary["max_eigenvalue_error_per_type"].items()))
-    lines.append(f"{run} mu values run in {wall:.1f} s ({ref_wall:.1f} s of reference)")
-    return "\n".join(lines)
-
-
-# --- regions of attraction (002 Sec. 3.4, eq 26, Fig. 3.8) --------------------------------------------------------
-
-BASIN_STEPS = 4  # steps per trajectory of the 2-D map: label = a failure, else the type of the last complete step
-CONVERGE_STEPS = 30  # steps along the theta_dot0 lines, for the convergence counts
-CONVERGE_TOL = 0.01  # converged: mid-stance theta_dot within 1 % of its last value and every step of the final type
-BASIN_CHUNK = 250  # trajectories per rollout (every row of a rollout is kept for the analysis)
-REFERENCE_STRIDE = 4  # the reference map is evaluated on every 4th grid point in each direction
-FAILURES = ("backward", "detached", "painleve", "impact", "chatter", "unsettled", "")
-
-
-def reference_steps(w: theory.FrictionWheel, start: Sequence[float], n: int) -> tuple[str, np.ndarray, np.ndarray]:
-    """``n`` steps of the reference (:func:`theory.step`) from the post-impact state ``start``: (label, mid-stance
-    rates, types); label = the failure, else the type of the last step."""
-    z: tuple[float, float] | None = (float(start[0]), float(start[1]))
-    mids, kinds = [], []
-    label = ""
-    for _ in range(n):
-        rec = theory.step(w, z)  # type: ignore[arg-type]
-        if rec.failure is not None:
-            label = rec.failure
-            break
-        mids.append(rec.midstance[0])
-        kinds.append(theory.classify_record(rec) or "")
-        label = kinds[-1]
-        z = rec.post
-    return label, np.array(mids), np.array(kinds, dtype=str)
-
-
-def _basin_reference_job(p: dict[str, Any], mu: float, theta_dot0: list[float], x_dot0: float, n: int,
-                         eventual: bool) -> list[dict[str, Any]]:
-    w = friction_wheel({**p, "mu": mu})
-    out = []
-    for th in theta_dot0:
-        label, mids, kinds = reference_steps(w, (th, x_dot0), n)
-        row: dict[str, Any] = {"mu": mu, "theta_dot0": th, "x_dot0": x_dot0, "label": label,
-                               "converge_steps": steps_to_converge(mids, kinds, label, CONVERGE_TOL)}
-        if eventual:
-            lab, st = theory.basin_outcome(w, th, x_dot0)
-            row["eventual"], row["eventual_steps"] = str(lab), int(st)
-        out.append(row)
-    return out
-
-
-def simulate_starts(p: Values, s: Values, preset: str, starts: np.ndarray, nsteps: int, mu: float
-                    ) -> tuple[list[str], list[int], list[np.ndarray], RolloutReport]:
-    """Simulate ``starts`` in rollouts of BASIN_CHUNK trajectories (sorted by theta_dot0, so that only the slowest
-    chunk waits for a slow first step); per start: the label (failure, else the type of the last complete step), the
-    steps to converge (CONVERGE_TOL) and the mid-stance rates."""
-    order = np.argsort(starts[:, 0], kind="stable")
-    labels: list[str] = [""] * len(starts)
-    conv: list[int] = [-1] * len(starts)
-    mids: list[np.ndarray] = [np.zeros(0)] * len(starts)
-    total = RolloutReport()
-    for k in range(0, len(starts), BASIN_CHUNK):
-        idx = order[k : k + BASIN_CHUNK]
-        part = starts[idx]
-        extra = _first_step_seconds({**p, "mu": mu}, part)
-        _rows, steps, _cls, report = run_batch({**p, "mu": mu}, s, preset, part, nsteps, extra=extra)
-        total = report if not total.steps else total.merge(report)
-        for b, i in enumerate(idx):
-            label = outcome(steps, b)
-            done = np.nonzero(steps.complete[b])[0]
-            rate, kinds = steps.mid_rate[b, done], steps.kind[b, done]
-            labels[i], mids[i] = label, rate
-            conv[i] = steps_to_converge(rate, kinds, label, CONVERGE_TOL) if label not in FAILURES else -1
-    return labels, conv, mids, total
-
-
-def _first_step_seconds(p: Values, starts: np.ndarray) -> float:
-    """Extra time for a slow first step (a start near the backward edge crawls over the top), from the reference's
-    first step of the slowest start that does not roll back, at most 1 s."""
-    w = friction_wheel(p)
-    period = _period_seconds(p, np.array([w.mu]))
-    for th, xd in starts[np.argsort(starts[:, 0])]:
-        rec = theory.step(w, (float(th), float(xd)))
-        if rec.failure != "backward":
-            return float(np.clip(rec.duration / rate_unit(p) - period, 0.0, 1.0))
-    return 0.0
-
-
-def basin_map(p: Values, s: Values, preset: str, theta_dot0: np.ndarray, x_dot0: np.ndarray, *,
-              workers: int = 2) -> dict[str, Any]:
-    """Regions of attraction (002 Sec. 3.4, eq 26, Fig. 3.8) from simulation, against the reference.
-
-    * The map: every (theta_dot0, x_dot0) post-impact start at the scenario's mu, BASIN_STEPS steps, batched
-      (BASIN_CHUNK trajectories per rollout); the reference on every REFERENCE_STRIDE-th point: the label after the
-      same steps and the eventual outcome (:func:`theory.basin_outcome`), run in ``workers`` processes.
-    * The lines: theta_dot0 alone (x_dot0 = 0) at mu and at MU_NO_SLIP (no slip along the gait: the paper's
-      unbounded friction), CONVERGE_STEPS steps: the window edges and the steps to converge, simulated and reference.
-    """
-    from mjpoincare.parallel import run_jobs
-
-    mu = float(p["mu"])
-    start = time.perf_counter()
-    grid = np.array([(th, xd) for xd in x_dot0 for th in theta_dot0])
-    labels, _, _, report = simulate_starts(p, s, preset, grid, BASIN_STEPS, mu)
-    sim_map = np.array(labels, dtype=object).reshape(len(x_dot0), len(theta_dot0)).astype(str)
-    map_wall = time.perf_counter() - start
-    line = np.column_stack([theta_dot0, np.zeros_like(theta_dot0)])
-    lines: dict[str, Any] = {}
-    for name, m in (("slip", mu), ("no_slip", MU_NO_SLIP)):
-        lab, conv, _, rep = simulate_starts(p, s, preset, line, CONVERGE_STEPS, m)
-        report = report.merge(rep)
-        lines[name] = {"mu": m, "simulated": lab, "simulated_steps": conv}
-    sim_wall = time.perf_counter() - start
-    ref_th = theta_dot0[::REFERENCE_STRIDE]
-    ref_xd = x_dot0[::REFERENCE_STRIDE]
-    jobs: list[tuple[Any, ...]] = [(dict(p), mu, list(map(float, ref_th)), float(xd), BASIN_STEPS, True)
-                                   for xd in ref_xd]
-    jobs += [(dict(p), m, [float(th)], 0.0, CONVERGE_STEPS, False) for m in (mu, MU_NO_SLIP) for th in theta_dot0]
-    results = list(run_jobs(_basin_reference_job, jobs, workers=workers))
-    ref_rows = [r for part in results for r in part if "eventual" in r]
-    line_rows = {(round(r["theta_dot0"], 12), r["mu"]): r for part in results for r in part if "eventual" not in r}
-    ref_wall = time.perf_counter() - start - sim_wall
-    ref_label = np.full((len(ref_xd), len(ref_th)), "", dtype=object)
-    ref_eventual = np.full((len(ref_xd), len(ref_th)), "", dtype=object)
-    for r in ref_rows:
-        i = int(np.argmin(np.abs(ref_xd - r["x_dot0"])))
-        j = int(np.argmin(np.abs(ref_th - r["theta_dot0"])))
-        ref_label[i, j], ref_eventual[i, j] = r["label"], r["eventual"]
-    for name, m in (("slip", mu), ("no_slip", MU_NO_SLIP)):
-        rows = [line_rows.get((round(float(th), 12), m), {}) for th in theta_dot0]
-        lines[name]["reference"] = [r.get("label", "") for r in rows]
-        lines[name]["reference_steps"] = [r.get("converge_steps", -1) for r in rows]
-    sub = sim_map[::REFERENCE_STRIDE, ::REFERENCE_STRIDE]
-    inside_sim = ~np.isin(sub, FAILURES)
-    inside_ref = ~np.isin(ref_eventual.astype(str), FAILURES)
-    result = {"mu": mu, "theta_dot0": theta_dot0, "x_dot0": x_dot0, "simulated": sim_map,
-              "reference_theta_dot0": ref_th, "reference_x_dot0": ref_xd,
-              "reference_after_steps": ref_label.astype(str),
-              "reference_eventual": ref_eventual.astype(str), "lines": lines,
-              "type_disagreement": float(np.mean(sub != ref_label.astype(str))),
-              "region_disagreement": float(np.mean(inside_sim != inside_ref)),
-              "region_disagreement_by_x_dot0": np.mean(inside_sim != inside_ref, axis=1),
-              "windows": _windows(p, theta_dot0, lines), "steps": float(report.steps),
-              "rollout_wall_s": report.wall_s, "map_wall_s": map_wall, "simulation_wall_s": sim_wall,
-              "reference_wall_s": ref_wall, "wall_s": time.perf_counter() - start,
-              "diverged": int(report.diverged.sum()), "warnings": report.warnings}
-    result["convergence"] = _convergence_summary(lines)
-    return result
-
-
-def _windows(p: Values, theta_dot0: np.ndarray, lines: dict[str, Any]) -> dict[str, Any]:
-    """Attraction windows in theta_dot0 (x_dot0 = 0): reference (:func:`theory.attraction_window`, eq 26 for
-    mu = inf) and simulated (the outermost converging starts of each line)."""
-    rigid = friction_wheel({**p, "mu": math.inf})
-    out: dict[str, Any] = {"eq26_unbounded": list(theory.attraction_window_rigid(rigid))}
-    for name, line in lines.items():
-        w = friction_wheel({**p, "mu": line["mu"]})
-        inside = np.array([lab not in FAILURES for lab in line["simulated"]])
-        centre = int(np.argmin(np.abs(theta_dot0 - gait_start(reference_gait(w))[0])))
-        sim = [math.nan, math.nan]
-        if inside[centre]:  # the unbroken run of converging starts around the gait's own speed
-            lo = centre
-            while lo > 0 and inside[lo - 1]:
-                lo -= 1
-            hi = centre
-            while hi < inside.size - 1 and inside[hi + 1]:
-                hi += 1
-            sim = [float(theta_dot0[lo]), float(theta_dot0[hi])]
-        out[name] = {"mu": line["mu"], "reference": list(theory.attraction_window(w, tol=1e-6)), "simulated": sim,
-                     "simulated_outside_converging": [float(x) for x, ok in zip(theta_dot0, inside, strict=True)
-                                                      if ok and not sim[0] <= x <= sim[1]]}
-    return out
-
-
-def _convergence_summary(lines: dict[str, Any]) -> dict[str, Any]:
-    out = {}
-    for name, line in lines.items():
-        sim = np.array(line["simulated_steps"], float)
-        ref = np.array(line["reference_steps"], float)
-        both = (sim >= 0) & (ref >= 0)
-        inside_sim = np.array([lab not in FAILURES for lab in line["simulated"]])
-        inside_ref = np.array([lab not in FAILURES for lab in line["reference"]])
-        out[name] = {"mu": line["mu"], "points": int(both.sum()),
-                     "region_disagreement": float(np.mean(inside_sim != inside_ref)),
-                     "median_steps_simulated": float(np.median(sim[both])) if both.any() else math.nan,
-                     "median_steps_reference": float(np.median(ref[both])) if both.any() else math.nan,
-                     "mean_abs_difference": float(np.mean(np.abs(sim[both] - ref[both]))) if both.any() else math.nan}
-    return out
-
-
-BASIN_COLORS = {"A": "#4c9be8", "B": "#6cc36c", "C": "#f2c14e", "D+": "#e8864c", "D-": "#c77dd6",
-                "backward": "#9e9e9e", "detached": "#d9534f", "": "#ffffff"}
-
-
-def plot_basins(result: dict[str, Any], path: str) -> None:
-    """The map (simulated labels) over the reference's eventual-outcome boundaries, and the convergence lines."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    from matplotlib.colors import ListedColormap
-
-    names = list(BASIN_COLORS)
-    th, xd = np.asarray(result["theta_dot0"]), np.asarray(result["x_dot0"])
-    sim = np.asarray(result["simulated"])
-    codes = np.vectorize(lambda s: names.index(s) if s in names else names.index(""))(sim)
-    fig, (ax, bx) = plt.subplots(1, 2, figsize=(13, 5))
-    ax.pcolormesh(th, xd, codes, cmap=ListedColormap(list(BASIN_COLORS.values())), vmin=-0.5,
-                  vmax=len(names) - 0.5, shading="nearest")
-    rth, rxd = np.asarray(result["reference_theta_dot0"]), np.asarray(result["reference_x_dot0"])
-    ev = np.asarray(result["reference_eventual"])
-    inside = (~np.isin(ev, FAILURES)).astype(float)
-    back = (ev == "backward").astype(float)
-    if min(ev.shape) >= 2:  # a contour needs a 2 x 2 reference grid at least
-        if 0 < inside.mean() < 1:
-            ax.contour(rth, rxd, inside, levels=[0.5], colors="k", linewidths=1.5)
-        if 0 < back.mean() < 1:
-            ax.contour(rth, rxd, back, levels=[0.5], colors="k", linestyles="--", linewidths=1.0)
-    after = np.asarray(result["reference_after_steps"])
-    sub = sim[:: REFERENCE_STRIDE, :: REFERENCE_STRIDE]
-    yy, xx = np.nonzero(sub != after)
-    ax.plot(rth[xx], rxd[yy], "kx", ms=3)
-    ax.set_xlabel("post-impact theta_dot0 (nondimensional)")
-    ax.set_ylabel("post-impact slip speed x_dot0 (nondimensional)")
-    ax.set_title(f"mu = {result['mu']:g}: simulated outcome after {BASIN_STEPS} steps\nblack: reference region of "
-                 "attraction (solid), backward roll (dashed); x: type differs from the reference", fontsize=8)
-    handles = [plt.Rectangle((0, 0), 1, 1, color=c) for k, c in BASIN_COLORS.items() if k]
-    ax.legend(handles, [k for k in BASIN_COLORS if k], fontsize=7, loc="upper right")
-    for name, style in (("slip", "tab:green"), ("no_slip", "tab:blue")):
-        line = result["lines"][name]
-        sim_steps = np.array(line["simulated_steps"], float)
-        ref_steps = np.array(line["reference_steps"], float)
-        bx.plot(th[sim_steps >= 0], sim_steps[sim_steps >= 0], "o", ms=3, color=style,
-                label=f"MuJoCo, mu = {line['mu']:g}")
-        bx.plot(th[ref_steps >= 0], ref_steps[ref_steps >= 0], "-", color=style,
-                label=f"reference, mu = {line['mu']:g}")
-    lo, hi = result["windows"]["eq26_unbounded"]
-    bx.axvline(lo, color="k", ls=":", lw=1)
-    bx.axvline(hi, color="k", ls=":", lw=1, label="eq 26 window (mu = inf)")
-    for name, style in (("slip", "tab:green"), ("no_slip", "tab:blue")):
-        for edge in result["windows"][name]["reference"]:
-            if math.isfinite(edge):
-                bx.axvline(edge, color=style, ls="--", lw=1)
-    bx.set_xlabel("theta_dot0 (x_dot0 = 0)")
-    bx.set_ylabel(f"steps to converge (mid-stance rate within {CONVERGE_TOL:.0%})")
-    bx.set_title("steps to converge with slip (mu finite) and without (mu = 10), x_dot0 = 0\n"
-                 "dashed: reference windows (Fig. 3.8a)", fontsize=8)
-    bx.legend(fontsize=7)
-    fig.tight_layout()
-    Path(path).parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-
-
-def run_basin_map(grid: str, assignments: Mapping[str, str], preset: str | None, json_path: str | None,
-                  output: str, *, workers: int = 2) -> int:
-    """``mjpoincare sweep rimless-wheel-friction --grid theta_dot0=0.02:1.3:100,x_dot0=0:0.3:100``: the basin map,
-    its PNG (``output``) and JSON; prints the disagreements, windows and convergence. Exit 0 when the simulated region
-    of attraction differs from the reference on at most 5 % of the reference points."""
-    from mjpoincare.sweep import parse_values
-    from mjpoincare.validate import resolve_inputs
-
-    axes: dict[str, np.ndarray] = {}
-    for part in grid.split(","):
-        name, _, spec = part.partition("=")
-        axes[name.strip()] = np.array([float(v) for v in parse_values(spec)])
-    if set(axes) != {"theta_dot0", "x_dot0"} or min(a.size for a in axes.values()) < 2:
-        raise ParameterError(f"--grid expects theta_dot0=START:STOP:N,x_dot0=START:STOP:N with N >= 2 (got {grid!r})")
-    if axes["theta_dot0"].min() <= 0 or axes["x_dot0"].min() < 0:
-        raise ParameterError(f"--grid needs theta_dot0 > 0 and x_dot0 >= 0 (got {grid!r})")
-    _, preset_name, p, s = resolve_inputs("rimless-wheel-friction", assignments, preset)
-    result = basin_map(p, s, preset_name, axes["theta_dot0"], axes["x_dot0"], workers=workers)
-    target = output.format(scenario="rimless-wheel-friction")
-    plot_basins(result, target)
-    w = result["windows"]
-    c = result["convergence"]
-    print(f"rimless-wheel-friction basins, mu = {result['mu']:g}: {axes['theta_dot0'].size}x{axes['x_dot0'].size} "
-          f"map in {result['map_wall_s']:.1f} s ({result['steps']:.3g} steps in all, {result['rollout_wall_s']:.1f} s "
-          f"in MuJoCo), reference {result['reference_wall_s']:.1f} s, total {result['wall_s']:.1f} s")
-    print(f"  region of attraction differs on {result['region_disagreement']:.1%} of the reference points, the type "
-          f"after {BASIN_STEPS} steps on {result['type_disagreement']:.1%}; by x_dot0: " + ", ".join(
-              f"{x:.3g}: {d:.0%}" for x, d in zip(result["reference_x_dot0"], result["region_disagreement_by_x_dot0"],
-                                                   strict=True)))
-    for name in ("slip", "no_slip"):
-        print(f"  mu = {w[name]['mu']:g}: window simulated {w[name]['simulated'][0]:.4f}..{w[name]['simulated'][1]:.4f}"
-              f", reference {w[name]['reference'][0]:.4f}..{w[name]['reference'][1]:.4f} (region differs on "
-              f"{c[name]['region_disagreement']:.1%} of the line); steps to converge (median over "
-              f"{c[name]['points']}) simulated {c[name]['median_steps_simulated']:.1f}, reference "
-              f"{c[name]['median_steps_reference']:.1f}, mean |difference| {c[name]['mean_abs_difference']:.2f}")
-    print(f"  eq 26 (mu = inf): {w['eq26_unbounded'][0]:.4f}..{w['eq26_unbounded'][1]:.4f}; wrote {target}")
-    if json_path:
-        write_json(jsonable({"scenario": "rimless-wheel-friction", "params": dict(p), "preset": preset_name,
-                             **result}), json_path)
-    return 0 if result["region_disagreement"] <= 0.05 and result["diverged"] == 0 else 1
-
-
 # --- probe, reference bench, render clip, soak ----------------------------------------------------------------------
 
 
@@ -1356,7 +872,7 @@ def probe(p: Values, s: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, 
     gait = reference_gait(w)
     starts, _ = fit_starts(gait, w)
     model = build(p, s)
-    nstep = math.ceil(SIM_STEPS * _period_seconds(p, np.array([w.mu])) / model.opt.timestep)
+    nstep = math.ceil(SIM_STEPS * period_seconds(p, np.array([w.mu])) / model.opt.timestep)
     return model, [(start_states(model, p, s, starts), nstep)]
 
 
@@ -1403,7 +919,7 @@ def soak(p: Values, s: Values, impacts: int) -> Soak:
     w = friction_wheel(p)
     gait = reference_gait(w)
     model = build(p, s)
-    seconds = impacts * _period_seconds(p, np.array([w.mu])) + 0.5
+    seconds = impacts * period_seconds(p, np.array([w.mu])) + 0.5
     rec = simulate([model], start_states(model, p, s, np.array([gait_start(gait)])), seconds, int(s["threads"]))
     cls = classifier(w.mu, s, "fast", 1)
     rows = row_signals(rec, p, s, cls, np.asarray(model.opt.gravity))

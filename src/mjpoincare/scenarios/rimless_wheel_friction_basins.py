@@ -1,0 +1,319 @@
+"""``mjpoincare sweep rimless-wheel-friction --grid theta_dot0=..,x_dot0=..``: regions of attraction with finite
+friction (002 Sec. 3.4, eq 26, Fig. 3.8), simulated against the reference on a coarser grid (PNG + JSON)."""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from analysis.checks import jsonable
+from analysis.theory import rimless_wheel_friction as theory
+from mjpoincare.params import ParameterError
+from mjpoincare.result import write_json
+from mjpoincare.scenarios.base import Values
+from mjpoincare.scenarios.rimless_wheel_friction import (
+    MU_NO_SLIP,
+    friction_wheel,
+    gait_start,
+    outcome,
+    period_seconds,
+    rate_unit,
+    reference_gait,
+    run_batch,
+    steps_to_converge,
+)
+from mjpoincare.simulate import RolloutReport
+
+# --- regions of attraction (002 Sec. 3.4, eq 26, Fig. 3.8) --------------------------------------------------------
+
+BASIN_STEPS = 4  # steps per trajectory of the 2-D map: label = a failure, else the type of the last complete step
+CONVERGE_STEPS = 30  # steps along the theta_dot0 lines, for the convergence counts
+CONVERGE_TOL = 0.01  # converged: mid-stance theta_dot within 1 % of its last value and every step of the final type
+BASIN_CHUNK = 250  # trajectories per rollout (every row of a rollout is kept for the analysis)
+REFERENCE_STRIDE = 4  # the reference map is evaluated on every 4th grid point in each direction
+FAILURES = ("backward", "detached", "painleve", "impact", "chatter", "unsettled", "")
+
+
+def reference_steps(w: theory.FrictionWheel, start: Sequence[float], n: int) -> tuple[str, np.ndarray, np.ndarray]:
+    """``n`` steps of the reference (:func:`theory.step`) from the post-impact state ``start``: (label, mid-stance
+    rates, types); label = the failure, else the type of the last step."""
+    z: tuple[float, float] | None = (float(start[0]), float(start[1]))
+    mids, kinds = [], []
+    label = ""
+    for _ in range(n):
+        rec = theory.step(w, z)  # type: ignore[arg-type]
+        if rec.failure is not None:
+            label = rec.failure
+            break
+        mids.append(rec.midstance[0])
+        kinds.append(theory.classify_record(rec) or "")
+        label = kinds[-1]
+        z = rec.post
+    return label, np.array(mids), np.array(kinds, dtype=str)
+
+
+def _basin_reference_job(p: dict[str, Any], mu: float, theta_dot0: list[float], x_dot0: float, n: int,
+                         eventual: bool) -> list[dict[str, Any]]:
+    w = friction_wheel({**p, "mu": mu})
+    out = []
+    for th in theta_dot0:
+        label, mids, kinds = reference_steps(w, (th, x_dot0), n)
+        row: dict[str, Any] = {"mu": mu, "theta_dot0": th, "x_dot0": x_dot0, "label": label,
+                               "converge_steps": steps_to_converge(mids, kinds, label, CONVERGE_TOL)}
+        if eventual:
+            lab, st = theory.basin_outcome(w, th, x_dot0)
+            row["eventual"], row["eventual_steps"] = str(lab), int(st)
+        out.append(row)
+    return out
+
+
+def simulate_starts(p: Values, s: Values, preset: str, starts: np.ndarray, nsteps: int, mu: float
+                    ) -> tuple[list[str], list[int], list[np.ndarray], RolloutReport]:
+    """Simulate ``starts`` in rollouts of BASIN_CHUNK trajectories (sorted by theta_dot0, so that only the slowest
+    chunk waits for a slow first step); per start: the label (failure, else the type of the last complete step), the
+    steps to converge (CONVERGE_TOL) and the mid-stance rates."""
+    order = np.argsort(starts[:, 0], kind="stable")
+    labels: list[str] = [""] * len(starts)
+    conv: list[int] = [-1] * len(starts)
+    mids: list[np.ndarray] = [np.zeros(0)] * len(starts)
+    total = RolloutReport()
+    for k in range(0, len(starts), BASIN_CHUNK):
+        idx = order[k : k + BASIN_CHUNK]
+        part = starts[idx]
+        extra = _first_step_seconds({**p, "mu": mu}, part)
+        _rows, steps, _cls, report = run_batch({**p, "mu": mu}, s, preset, part, nsteps, extra=extra)
+        total = report if not total.steps else total.merge(report)
+        for b, i in enumerate(idx):
+            label = outcome(steps, b)
+            done = np.nonzero(steps.complete[b])[0]
+            rate, kinds = steps.mid_rate[b, done], steps.kind[b, done]
+            labels[i], mids[i] = label, rate
+            conv[i] = steps_to_converge(rate, kinds, label, CONVERGE_TOL) if label not in FAILURES else -1
+    return labels, conv, mids, total
+
+
+def _first_step_seconds(p: Values, starts: np.ndarray) -> float:
+    """Extra time for a slow first step (a start near the backward edge crawls over the top), from the reference's
+    first step of the slowest start that does not roll back, at most 1 s."""
+    w = friction_wheel(p)
+    period = period_seconds(p, np.array([w.mu]))
+    for th, xd in starts[np.argsort(starts[:, 0])]:
+        rec = theory.step(w, (float(th), float(xd)))
+        if rec.failure != "backward":
+            return float(np.clip(rec.duration / rate_unit(p) - period, 0.0, 1.0))
+    return 0.0
+
+
+def basin_map(p: Values, s: Values, preset: str, theta_dot0: np.ndarray, x_dot0: np.ndarray, *,
+              workers: int = 2) -> dict[str, Any]:
+    """Regions of attraction (002 Sec. 3.4, eq 26, Fig. 3.8) from simulation, against the reference.
+
+    * The map: every (theta_dot0, x_dot0) post-impact start at the scenario's mu, BASIN_STEPS steps, batched
+      (BASIN_CHUNK trajectories per rollout); the reference on every REFERENCE_STRIDE-th point: the label after the
+      same steps and the eventual outcome (:func:`theory.basin_outcome`), run in ``workers`` processes.
+    * The lines: theta_dot0 alone (x_dot0 = 0) at mu and at MU_NO_SLIP (no slip along the gait: the paper's
+      unbounded friction), CONVERGE_STEPS steps: the window edges and the steps to converge, simulated and reference.
+    """
+    from mjpoincare.parallel import run_jobs
+
+    mu = float(p["mu"])
+    start = time.perf_counter()
+    grid = np.array([(th, xd) for xd in x_dot0 for th in theta_dot0])
+    labels, _, _, report = simulate_starts(p, s, preset, grid, BASIN_STEPS, mu)
+    sim_map = np.array(labels, dtype=object).reshape(len(x_dot0), len(theta_dot0)).astype(str)
+    map_wall = time.perf_counter() - start
+    line = np.column_stack([theta_dot0, np.zeros_like(theta_dot0)])
+    lines: dict[str, Any] = {}
+    for name, m in (("slip", mu), ("no_slip", MU_NO_SLIP)):
+        lab, conv, _, rep = simulate_starts(p, s, preset, line, CONVERGE_STEPS, m)
+        report = report.merge(rep)
+        lines[name] = {"mu": m, "simulated": lab, "simulated_steps": conv}
+    sim_wall = time.perf_counter() - start
+    ref_th = theta_dot0[::REFERENCE_STRIDE]
+    ref_xd = x_dot0[::REFERENCE_STRIDE]
+    jobs: list[tuple[Any, ...]] = [(dict(p), mu, list(map(float, ref_th)), float(xd), BASIN_STEPS, True)
+                                   for xd in ref_xd]
+    jobs += [(dict(p), m, [float(th)], 0.0, CONVERGE_STEPS, False) for m in (mu, MU_NO_SLIP) for th in theta_dot0]
+    results = list(run_jobs(_basin_reference_job, jobs, workers=workers))
+    ref_rows = [r for part in results for r in part if "eventual" in r]
+    line_rows = {(round(r["theta_dot0"], 12), r["mu"]): r for part in results for r in part if "eventual" not in r}
+    ref_wall = time.perf_counter() - start - sim_wall
+    ref_label = np.full((len(ref_xd), len(ref_th)), "", dtype=object)
+    ref_eventual = np.full((len(ref_xd), len(ref_th)), "", dtype=object)
+    for r in ref_rows:
+        i = int(np.argmin(np.abs(ref_xd - r["x_dot0"])))
+        j = int(np.argmin(np.abs(ref_th - r["theta_dot0"])))
+        ref_label[i, j], ref_eventual[i, j] = r["label"], r["eventual"]
+    for name, m in (("slip", mu), ("no_slip", MU_NO_SLIP)):
+        rows = [line_rows.get((round(float(th), 12), m), {}) for th in theta_dot0]
+        lines[name]["reference"] = [r.get("label", "") for r in rows]
+        lines[name]["reference_steps"] = [r.get("converge_steps", -1) for r in rows]
+    sub = sim_map[::REFERENCE_STRIDE, ::REFERENCE_STRIDE]
+    inside_sim = ~np.isin(sub, FAILURES)
+    inside_ref = ~np.isin(ref_eventual.astype(str), FAILURES)
+    result = {"mu": mu, "theta_dot0": theta_dot0, "x_dot0": x_dot0, "simulated": sim_map,
+              "reference_theta_dot0": ref_th, "reference_x_dot0": ref_xd,
+              "reference_after_steps": ref_label.astype(str),
+              "reference_eventual": ref_eventual.astype(str), "lines": lines,
+              "type_disagreement": float(np.mean(sub != ref_label.astype(str))),
+              "region_disagreement": float(np.mean(inside_sim != inside_ref)),
+              "region_disagreement_by_x_dot0": np.mean(inside_sim != inside_ref, axis=1),
+              "windows": _windows(p, theta_dot0, lines), "steps": float(report.steps),
+              "rollout_wall_s": report.wall_s, "map_wall_s": map_wall, "simulation_wall_s": sim_wall,
+              "reference_wall_s": ref_wall, "wall_s": time.perf_counter() - start,
+              "diverged": int(report.diverged.sum()), "warnings": report.warnings}
+    result["convergence"] = _convergence_summary(lines)
+    return result
+
+
+def _windows(p: Values, theta_dot0: np.ndarray, lines: dict[str, Any]) -> dict[str, Any]:
+    """Attraction windows in theta_dot0 (x_dot0 = 0): reference (:func:`theory.attraction_window`, eq 26 for
+    mu = inf) and simulated (the outermost converging starts of each line)."""
+    rigid = friction_wheel({**p, "mu": math.inf})
+    out: dict[str, Any] = {"eq26_unbounded": list(theory.attraction_window_rigid(rigid))}
+    for name, line in lines.items():
+        w = friction_wheel({**p, "mu": line["mu"]})
+        inside = np.array([lab not in FAILURES for lab in line["simulated"]])
+        centre = int(np.argmin(np.abs(theta_dot0 - gait_start(reference_gait(w))[0])))
+        sim = [math.nan, math.nan]
+        if inside[centre]:  # the unbroken run of converging starts around the gait's own speed
+            lo = centre
+            while lo > 0 and inside[lo - 1]:
+                lo -= 1
+            hi = centre
+            while hi < inside.size - 1 and inside[hi + 1]:
+                hi += 1
+            sim = [float(theta_dot0[lo]), float(theta_dot0[hi])]
+        out[name] = {"mu": line["mu"], "reference": list(theory.attraction_window(w, tol=1e-6)), "simulated": sim,
+                     "simulated_outside_converging": [float(x) for x, ok in zip(theta_dot0, inside, strict=True)
+                                                      if ok and not sim[0] <= x <= sim[1]]}
+    return out
+
+
+def _convergence_summary(lines: dict[str, Any]) -> dict[str, Any]:
+    out = {}
+    for name, line in lines.items():
+        sim = np.array(line["simulated_steps"], float)
+        ref = np.array(line["reference_steps"], float)
+        both = (sim >= 0) & (ref >= 0)
+        inside_sim = np.array([lab not in FAILURES for lab in line["simulated"]])
+        inside_ref = np.array([lab not in FAILURES for lab in line["reference"]])
+        out[name] = {"mu": line["mu"], "points": int(both.sum()),
+                     "region_disagreement": float(np.mean(inside_sim != inside_ref)),
+                     "median_steps_simulated": float(np.median(sim[both])) if both.any() else math.nan,
+                     "median_steps_reference": float(np.median(ref[both])) if both.any() else math.nan,
+                     "mean_abs_difference": float(np.mean(np.abs(sim[both] - ref[both]))) if both.any() else math.nan}
+    return out
+
+
+BASIN_COLORS = {"A": "#4c9be8", "B": "#6cc36c", "C": "#f2c14e", "D+": "#e8864c", "D-": "#c77dd6",
+                "backward": "#9e9e9e", "detached": "#d9534f", "": "#ffffff"}
+
+
+def plot_basins(result: dict[str, Any], path: str) -> None:
+    """The map (simulated labels) over the reference's eventual-outcome boundaries, and the convergence lines."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.colors import ListedColormap
+
+    names = list(BASIN_COLORS)
+    th, xd = np.asarray(result["theta_dot0"]), np.asarray(result["x_dot0"])
+    sim = np.asarray(result["simulated"])
+    codes = np.vectorize(lambda s: names.index(s) if s in names else names.index(""))(sim)
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(13, 5))
+    ax.pcolormesh(th, xd, codes, cmap=ListedColormap(list(BASIN_COLORS.values())), vmin=-0.5,
+                  vmax=len(names) - 0.5, shading="nearest")
+    rth, rxd = np.asarray(result["reference_theta_dot0"]), np.asarray(result["reference_x_dot0"])
+    ev = np.asarray(result["reference_eventual"])
+    inside = (~np.isin(ev, FAILURES)).astype(float)
+    back = (ev == "backward").astype(float)
+    if min(ev.shape) >= 2:  # a contour needs a 2 x 2 reference grid at least
+        if 0 < inside.mean() < 1:
+            ax.contour(rth, rxd, inside, levels=[0.5], colors="k", linewidths=1.5)
+        if 0 < back.mean() < 1:
+            ax.contour(rth, rxd, back, levels=[0.5], colors="k", linestyles="--", linewidths=1.0)
+    after = np.asarray(result["reference_after_steps"])
+    sub = sim[:: REFERENCE_STRIDE, :: REFERENCE_STRIDE]
+    yy, xx = np.nonzero(sub != after)
+    ax.plot(rth[xx], rxd[yy], "kx", ms=3)
+    ax.set_xlabel("post-impact theta_dot0 (nondimensional)")
+    ax.set_ylabel("post-impact slip speed x_dot0 (nondimensional)")
+    ax.set_title(f"mu = {result['mu']:g}: simulated outcome after {BASIN_STEPS} steps\nblack: reference region of "
+                 "attraction (solid), backward roll (dashed); x: type differs from the reference", fontsize=8)
+    handles = [plt.Rectangle((0, 0), 1, 1, color=c) for k, c in BASIN_COLORS.items() if k]
+    ax.legend(handles, [k for k in BASIN_COLORS if k], fontsize=7, loc="upper right")
+    for name, style in (("slip", "tab:green"), ("no_slip", "tab:blue")):
+        line = result["lines"][name]
+        sim_steps = np.array(line["simulated_steps"], float)
+        ref_steps = np.array(line["reference_steps"], float)
+        bx.plot(th[sim_steps >= 0], sim_steps[sim_steps >= 0], "o", ms=3, color=style,
+                label=f"MuJoCo, mu = {line['mu']:g}")
+        bx.plot(th[ref_steps >= 0], ref_steps[ref_steps >= 0], "-", color=style,
+                label=f"reference, mu = {line['mu']:g}")
+    lo, hi = result["windows"]["eq26_unbounded"]
+    bx.axvline(lo, color="k", ls=":", lw=1)
+    bx.axvline(hi, color="k", ls=":", lw=1, label="eq 26 window (mu = inf)")
+    for name, style in (("slip", "tab:green"), ("no_slip", "tab:blue")):
+        for edge in result["windows"][name]["reference"]:
+            if math.isfinite(edge):
+                bx.axvline(edge, color=style, ls="--", lw=1)
+    bx.set_xlabel("theta_dot0 (x_dot0 = 0)")
+    bx.set_ylabel(f"steps to converge (mid-stance rate within {CONVERGE_TOL:.0%})")
+    bx.set_title("steps to converge with slip (mu finite) and without (mu = 10), x_dot0 = 0\n"
+                 "dashed: reference windows (Fig. 3.8a)", fontsize=8)
+    bx.legend(fontsize=7)
+    fig.tight_layout()
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def run_basin_map(grid: str, assignments: Mapping[str, str], preset: str | None, json_path: str | None,
+                  output: str, *, workers: int = 2) -> int:
+    """``mjpoincare sweep rimless-wheel-friction --grid theta_dot0=0.02:1.3:100,x_dot0=0:0.3:100``: the basin map,
+    its PNG (``output``) and JSON; prints the disagreements, windows and convergence. Exit 0 when the simulated region
+    of attraction differs from the reference on at most 5 % of the reference points."""
+    from mjpoincare.sweep import parse_values
+    from mjpoincare.validate import resolve_inputs
+
+    axes: dict[str, np.ndarray] = {}
+    for part in grid.split(","):
+        name, _, spec = part.partition("=")
+        axes[name.strip()] = np.array([float(v) for v in parse_values(spec)])
+    if set(axes) != {"theta_dot0", "x_dot0"} or min(a.size for a in axes.values()) < 2:
+        raise ParameterError(f"--grid expects theta_dot0=START:STOP:N,x_dot0=START:STOP:N with N >= 2 (got {grid!r})")
+    if axes["theta_dot0"].min() <= 0 or axes["x_dot0"].min() < 0:
+        raise ParameterError(f"--grid needs theta_dot0 > 0 and x_dot0 >= 0 (got {grid!r})")
+    _, preset_name, p, s = resolve_inputs("rimless-wheel-friction", assignments, preset)
+    result = basin_map(p, s, preset_name, axes["theta_dot0"], axes["x_dot0"], workers=workers)
+    target = output.format(scenario="rimless-wheel-friction")
+    plot_basins(result, target)
+    w = result["windows"]
+    c = result["convergence"]
+    print(f"rimless-wheel-friction basins, mu = {result['mu']:g}: {axes['theta_dot0'].size}x{axes['x_dot0'].size} "
+          f"map in {result['map_wall_s']:.1f} s ({result['steps']:.3g} steps in all, {result['rollout_wall_s']:.1f} s "
+          f"in MuJoCo), reference {result['reference_wall_s']:.1f} s, total {result['wall_s']:.1f} s")
+    print(f"  region of attraction differs on {result['region_disagreement']:.1%} of the reference points, the type "
+          f"after {BASIN_STEPS} steps on {result['type_disagreement']:.1%}; by x_dot0: " + ", ".join(
+              f"{x:.3g}: {d:.0%}" for x, d in zip(result["reference_x_dot0"], result["region_disagreement_by_x_dot0"],
+                                                   strict=True)))
+    for name in ("slip", "no_slip"):
+        print(f"  mu = {w[name]['mu']:g}: window simulated {w[name]['simulated'][0]:.4f}..{w[name]['simulated'][1]:.4f}"
+              f", reference {w[name]['reference'][0]:.4f}..{w[name]['reference'][1]:.4f} (region differs on "
+              f"{c[name]['region_disagreement']:.1%} of the line); steps to converge (median over "
+              f"{c[name]['points']}) simulated {c[name]['median_steps_simulated']:.1f}, reference "
+              f"{c[name]['median_steps_reference']:.1f}, mean |difference| {c[name]['mean_abs_difference']:.2f}")
+    print(f"  eq 26 (mu = inf): {w['eq26_unbounded'][0]:.4f}..{w['eq26_unbounded'][1]:.4f}; wrote {target}")
+    if json_path:
+        write_json(jsonable({"scenario": "rimless-wheel-friction", "params": dict(p), "preset": preset_name,
+                             **result}), json_path)
+    return 0 if result["region_disagreement"] <= 0.05 and result["diverged"] == 0 else 1
+
+

@@ -1,0 +1,229 @@
+"""``mjpoincare sweep rimless-wheel-friction --param mu``: the gait type, eigenvalue and edges across friction
+(002 Sec. 3.3, Fig. 3.5), simulated in batches of mu values against the reference per mu (resumable)."""
+
+from __future__ import annotations
+
+import math
+import os
+import sys
+import time
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+import numpy as np
+
+from analysis.checks import jsonable
+from analysis.theory import rimless_wheel_friction as theory
+from mjpoincare.params import ParameterError
+from mjpoincare.result import write_json
+from mjpoincare.scenarios.base import Values
+from mjpoincare.scenarios.rimless_wheel_friction import (
+    D_SIM_STEPS,
+    FIT_OFFSETS,
+    Steps,
+    attractors,
+    cached_boundaries,
+    critical_ratio,
+    fit_steps,
+    friction_wheel,
+    gait_start,
+    outcome,
+    ratio_profile,
+    run_batch,
+    settled_rows,
+)
+
+# --- friction sweep (002 Sec. 3.3, Fig. 3.5) ---------------------------------------------------------------------
+
+SWEEP_OFFSETS = FIT_OFFSETS  # theta_dot0 offsets per mu: the middle start classifies, all fit lambda
+SWEEP_STEPS = 20
+SWEEP_BATCH = 12  # mu values per rollout (memory: every row of the batch is kept)
+
+
+def sweep_reference(p: Values, mu: float) -> dict[str, Any]:
+    """The reference at one mu: the stable gait (type, post-impact start, multiplier, mid-stance rate) and the type
+    :func:`theory.settle` reaches from the simulation's middle start (the gait's start, or eq 16's sticking fixed point
+    where no gait exists)."""
+    w = friction_wheel({**p, "mu": mu})
+    gaits = attractors(w)
+    if gaits:
+        gait = gaits[0]
+        start = gait_start(gait)
+        lam = complex(gait.eigenvalues[np.argmax(np.abs(gait.eigenvalues))])
+        row = {"gait": gait.kind, "eigenvalue": lam.real, "midstance_rate": gait.midstance_rate}
+    else:
+        start = (theory.sticking_fixed_point(w), 0.0)
+        row = {"gait": "", "eigenvalue": math.nan, "midstance_rate": math.nan}
+    settled = theory.settle(w, start, max_steps=300, tol=1e-9)
+    return {"mu": mu, "start": list(start), "reference": settled.outcome, **row}
+
+
+def _sweep_reference_job(p: dict[str, Any], mus: list[float]) -> list[dict[str, Any]]:
+    return [sweep_reference(p, mu) for mu in mus]
+
+
+def sweep_batch(p: Values, s: Values, preset: str, refs: list[dict[str, Any]], seed: int = 0) -> list[dict[str, Any]]:
+    """Simulate every mu of ``refs`` in ONE rollout (a model per trajectory, SWEEP_OFFSETS starts per mu) and
+    classify: settled type, the type of the last step before a failure, the fitted multiplier of the gait."""
+    n = len(SWEEP_OFFSETS)
+    starts = np.array([[r["start"][0] * (1 + d), r["start"][1]] for r in refs for d in SWEEP_OFFSETS])
+    mus = np.repeat([r["mu"] for r in refs], n)
+    steps_n = D_SIM_STEPS if all(r["gait"].startswith("D") for r in refs) else SWEEP_STEPS
+    rows, steps, _cls, report = run_batch(p, s, preset, starts, steps_n, mus=mus)
+    out = []
+    for i, ref in enumerate(refs):
+        middle = i * n + n // 2
+        sim = outcome(steps, middle)
+        before = _type_before_failure(steps, middle)
+        lam = math.nan
+        if ref["gait"]:
+            try:
+                mine = np.isin(np.arange(len(starts)), range(i * n, (i + 1) * n))
+                fit, _, _ = fit_steps(steps, mine, ref["gait"], seed)
+                lam = float(np.real(fit.eigenvalues[0]))
+            except ValueError:
+                lam = math.nan
+        ratio = math.nan
+        if sim == "A":  # the force ratio the A gait needs along its stance: MuJoCo's mu_c (002 eq 23)
+            phi = math.pi / int(p["spokes"])
+            pooled = settled_rows(rows, steps, range(i * n, (i + 1) * n), "A")
+            ratio = critical_ratio(*ratio_profile(rows, pooled, phi), phi)
+        out.append({**ref, "simulated": sim, "simulated_before_failure": before, "critical_ratio": ratio,
+                    "simulated_velocity_only": outcome(steps, middle, velocity_only=True),
+                    "agree": sim == ref["reference"], "eigenvalue_simulated": lam,
+                    "eigenvalue_error": abs(lam - ref["eigenvalue"]) if ref["gait"] else math.nan,
+                    "diverged": int(report.diverged[i * n : (i + 1) * n].sum()), "warnings": report.warnings})
+    return out
+
+
+def _type_before_failure(steps: Steps, b: int) -> str:
+    done = np.nonzero(steps.complete[b])[0]
+    if steps.failure[b]:
+        done = done[done < steps.failure_step[b]]
+    return str(steps.kind[b, done[-1]]) if done.size else str(steps.failure[b])
+
+
+def type_edges(mus: Sequence[float], types: Sequence[str]) -> dict[str, float]:
+    """Where the type changes along increasing mu: ``"X/Y"`` -> the midpoint between the last mu of type X and the
+    first of type Y (only between neighbouring grid points)."""
+    order = np.argsort(mus)
+    m = [float(mus[i]) for i in order]
+    ty = [types[i] for i in order]
+    edges: dict[str, float] = {}
+    for k in range(len(m) - 1):
+        if ty[k] != ty[k + 1]:
+            edges.setdefault(f"{ty[k]}/{ty[k + 1]}", 0.5 * (m[k] + m[k + 1]))
+    return edges
+
+
+def sweep_summary(rows: list[dict[str, Any]], boundaries: theory.GaitBoundaries) -> dict[str, Any]:
+    """Agreement, the located type edges against the reference's (gait_boundaries), eigenvalue errors per type."""
+    mus = [r["mu"] for r in rows]
+    reference = {"A/B (mu_c)": boundaries.ab, "B/C": boundaries.bc, "C/D+": boundaries.d_sign,
+                 "D+/backward": boundaries.d_lower}
+    names = {"A/B (mu_c)": ("B", "A"), "B/C": ("C", "B"), "C/D+": ("D+", "C"), "D+/backward": ("backward", "D+")}
+
+    def locate(types: list[str]) -> dict[str, float]:
+        found = type_edges(mus, types)
+        return {k: found.get(f"{lo}/{hi}", math.nan) for k, (lo, hi) in names.items()}
+
+    sim_edges = locate([r["simulated"] for r in rows])
+    before_edges = locate([r["simulated_before_failure"] for r in rows])
+    ref_edges_grid = locate([r["reference"] for r in rows])
+    eig: dict[str, float] = {}
+    for r in rows:
+        if r["gait"] and math.isfinite(r["eigenvalue_error"]):
+            eig[r["gait"]] = max(eig.get(r["gait"], 0.0), r["eigenvalue_error"])
+    ratios = [r["critical_ratio"] for r in rows if math.isfinite(r.get("critical_ratio", math.nan))]
+    mu_c_ratio = float(np.median(ratios)) if ratios else math.nan
+    agree = sum(r["agree"] for r in rows)
+    agree_before = sum(r["simulated_before_failure"] == r["reference"] for r in rows)
+    return {"points": len(rows), "agreement": agree / len(rows), "agreement_before_failure": agree_before / len(rows),
+            "disagreements": [{"mu": r["mu"], "reference": r["reference"], "simulated": r["simulated"],
+                               "before_failure": r["simulated_before_failure"]} for r in rows if not r["agree"]],
+            "edges_reference": reference, "edges_reference_on_grid": ref_edges_grid, "edges_simulated": sim_edges,
+            "edges_simulated_before_failure": before_edges,
+            "edge_errors": {k: abs(sim_edges[k] - v) for k, v in reference.items()},
+            "mu_c_relative_error": abs(sim_edges["A/B (mu_c)"] - boundaries.ab) / boundaries.ab,
+            "mu_c_force_ratio": mu_c_ratio, "mu_c_force_ratio_points": len(ratios),
+            "mu_c_force_ratio_relative_error": abs(mu_c_ratio - boundaries.ab) / boundaries.ab,
+            "max_eigenvalue_error_per_type": eig}
+
+
+def run_mu_sweep(values: Sequence[str], assignments: Mapping[str, str], preset: str | None, json_path: str | None,
+                 *, resume: bool = False, workers: int = 2) -> int:
+    """``mjpoincare sweep rimless-wheel-friction --param mu --values START:STOP:COUNT``: the settled gait type over mu,
+    batched (SWEEP_BATCH mu values per rollout, a model per trajectory), against the reference; progress on stderr,
+    each finished batch written to ``json_path`` (whole), ``resume`` skips the mu values that file holds. Prints the
+    agreement, the located edges (mu_c = A/B) and the eigenvalue errors; exit 0 when the agreement is >= 95 %, every
+    edge within 0.02 and every eigenvalue within 0.02, else 1."""
+    from mjpoincare.parallel import run_jobs
+    from mjpoincare.validate import resolve_inputs
+
+    _, preset_name, p, s = resolve_inputs("rimless-wheel-friction", {k: v for k, v in assignments.items()
+                                                                      if k != "mu"}, preset)
+    mus = [float(v) for v in values]
+    for mu in mus:
+        if not 0.0 <= mu <= 1e3:
+            raise ParameterError(f"mu must be in [0, 1000] (got {mu})")
+    header = {"scenario": "rimless-wheel-friction", "param": "mu", "assignments": dict(assignments),
+              "preset": preset_name}
+    rows: list[dict[str, Any]] = []
+    if resume:
+        from mjpoincare.sweep import resumed_rows
+
+        rows = [{k: (math.nan if v is None else v) for k, v in r.items()}  # JSON null = NaN
+                for r in resumed_rows(json_path, header) if r["mu"] in mus]
+    done = {r["mu"] for r in rows}
+    todo = [mu for mu in mus if mu not in done]
+    start = time.perf_counter()
+    parts = max(1, min(workers, len(todo)))
+    chunks = [todo[i::parts] for i in range(parts)]  # interleaved: the D range costs more
+    refs = [r for part in run_jobs(_sweep_reference_job, [(dict(p), c) for c in chunks], workers=workers)
+            for r in part]
+    refs.sort(key=lambda r: r["mu"])
+    ref_wall = time.perf_counter() - start
+    tty = sys.stderr.isatty() and not os.environ.get("CI")
+    for k in range(0, len(refs), SWEEP_BATCH):
+        batch = refs[k : k + SWEEP_BATCH]
+        rows += sweep_batch(p, s, preset_name, batch)
+        if json_path and json_path != "-":
+            write_json(jsonable({**header, "rows": sorted(rows, key=lambda r: r["mu"])}), json_path)
+        if tty:
+            print(f"[{len(rows)}/{len(mus)}] mu {batch[0]['mu']:.4g}..{batch[-1]['mu']:.4g} "
+                  f"({time.perf_counter() - start:.0f} s)", file=sys.stderr)
+    rows.sort(key=lambda r: r["mu"])
+    w = friction_wheel(p)
+    summary = sweep_summary(rows, cached_boundaries(w.kappa, w.spokes, w.slope))
+    wall = time.perf_counter() - start
+    print(sweep_table(rows, summary, wall, ref_wall, len(todo)))
+    if json_path:
+        write_json(jsonable({**header, "rows": rows, "summary": summary, "wall_s": wall}), json_path)
+    ok = (summary["agreement"] >= 0.95 and all(e <= 0.02 for e in summary["edge_errors"].values() if math.isfinite(e))
+          and all(e <= 0.02 for e in summary["max_eigenvalue_error_per_type"].values()))
+    return 0 if ok else 1
+
+
+def sweep_table(rows: list[dict[str, Any]], summary: dict[str, Any], wall: float, ref_wall: float, run: int) -> str:
+    """The sweep as a table a person reads, with the summary lines."""
+    lines = ["| mu | reference | simulated | before failure | lambda ref | lambda sim |", "|---|---|---|---|---|---|"]
+    for r in rows:
+        lines.append(f"| {r['mu']:.4g} | {r['reference']} | {r['simulated']}{'' if r['agree'] else ' (!)'} | "
+                     f"{r['simulated_before_failure']} | {r['eigenvalue']:.4f} | {r['eigenvalue_simulated']:.4f} |")
+    lines.append(f"\nagreement {summary['agreement']:.1%} of {summary['points']} "
+                 f"({summary['agreement_before_failure']:.1%} counting the type before a flight)")
+    for name, ref in summary["edges_reference"].items():
+        lines.append(f"edge {name}: simulated {summary['edges_simulated'][name]:.4f}, reference {ref:.4f} "
+                     f"(error {summary['edge_errors'][name]:.4f}; before failure "
+                     f"{summary['edges_simulated_before_failure'][name]:.4f})")
+    edge = summary["edges_simulated"]["A/B (mu_c)"]
+    lines.append(f"mu_c: A/B type edge {edge:.4f} ({summary['mu_c_relative_error']:.2%} off); max |f_t/f_n| along the "
+                 f"simulated A gaits (eq 23, median of {summary['mu_c_force_ratio_points']}) "
+                 f"{summary['mu_c_force_ratio']:.4f} ({summary['mu_c_force_ratio_relative_error']:.2%} off); "
+                 f"reference {summary['edges_reference']['A/B (mu_c)']:.6f}")
+    lines.append("largest eigenvalue error per type: " + ", ".join(
+        f"{k} {v:.4f}" for k, v in summary["max_eigenvalue_error_per_type"].items()))
+    lines.append(f"{run} mu values run in {wall:.1f} s ({ref_wall:.1f} s of reference)")
+    return "\n".join(lines)
+
+
