@@ -69,11 +69,12 @@ STEPS = 10  # heel strikes per trajectory
 #: Initial offsets from the fixed point on the 3-D post-impact section: STARTS random directions (fixed seed), of
 #: size PERTURBATION, x (timestep / 20 us)^(1/3) below 20 us, shrunk to a third as |lambda|max -> 1. Never larger:
 #: at 0.051 (the fast preset's size while it grew with the step) starts fell at slope 0.01 and at mu = 0.25 (stress
-#: run). The size balances the fit's bias (the exact reference through the same design: 1e-2 with a quadratic
-#: fit at 12 starts of 0.015, 1.4e-4 to 8.6e-4 with the cubic fit at 0.015-0.03) against MuJoCo's impact-onset jitter: the one-step map scatters by
-#: ~1.2e-4 rad/s (accurate preset), a sawtooth in the sub-step phase at which the foot meets the slope (correlation
-#: -0.70), which the fitted eigenvalues feel as noise / (size sqrt(pairs)). 24 starts of 0.03 with the cubic fit:
-#: 3e-3 near the flip (slope 0.073, Goswami masses), where 12 quadratic-fit starts of 0.015 gave 1.8e-2.
+#: run). The size balances the fit's bias (the exact reference through the same design: 1e-2 with a quadratic fit
+#: at 12 starts of 0.015, 1.4e-4 to 8.6e-4 with the cubic fit at 0.015-0.03) against MuJoCo's impact-onset jitter:
+#: the one-step map scatters by ~1.2e-4 rad/s (accurate preset), a sawtooth in the sub-step phase at which the foot
+#: meets the slope (correlation -0.70), which the fitted eigenvalues feel as noise / (size sqrt(pairs)). 24 starts
+#: of 0.03 with the cubic fit: 3e-3 near the flip (slope 0.073, Goswami masses), where 12 quadratic-fit starts of
+#: 0.015 gave 1.8e-2.
 STARTS = 24
 PERTURBATION = 0.03
 ENABLE_AHEAD = 0.05  # swing-foot contact switches on once the foot is this far (x l) ahead of the stance foot
