@@ -181,6 +181,22 @@ def test_gait_b():
     )
 
 
+def test_stance_foot_motion_of_gait_b():
+    """The exact stance foot: still at the impact, slipping forward, still, slipping back; it ends displaced by the
+    step's slip distance, and its speed grows slowly after the stick -> slip- switch (the reason a speed threshold
+    sees the switch ~10 ms late on both sides)."""
+    g = cf.paper_gait("B", 0.14)
+    rec = g.record
+    t_stick, t_slip = rec.phase_times[1:]
+    times = np.array([0.0, 0.5 * t_stick, 0.5 * (t_stick + t_slip), t_slip + 0.005, t_slip + 0.01, rec.period])
+    x, v = cf.stance_foot_motion(g.biped, g.z, times)
+    assert x[0] == 0.0 and v[0] == pytest.approx(0.0, abs=1e-12)
+    assert v[1] > 0.01 and v[2] == pytest.approx(0.0, abs=1e-9) and v[5] < -0.01
+    assert x[5] == pytest.approx(rec.slip_distance, abs=1e-9)
+    assert -0.005 < v[4] < -0.003 < v[3] < 0.0
+    assert np.isnan(cf.stance_foot_motion(g.biped, g.z, [rec.period + 0.01])[1][0])
+
+
 def test_gait_b_loses_stability_near_mu_011():
     g = cf.paper_gait("B", 0.11)
     assert g.spectral_radius == pytest.approx(1.0030, rel=1e-3)

@@ -1200,6 +1200,26 @@ def reference_trajectory(bp: FrictionBiped, z_star: ArrayLike, actuation: Actuat
     return ReferenceTrajectory(np.array(times), np.array(th), np.array(om), np.array(al))
 
 
+def stance_foot_motion(bp: FrictionBiped, z_star: ArrayLike, times: ArrayLike, actuation: Actuation | None = None
+                       ) -> tuple[Vector, Vector]:
+    """(x, x_dot) of the stance foot along the slope at ``times`` after the impact of the step from z (002 Secs.
+    4-5: the foot's coordinate x of eq 27, 0 at the impact; x_dot > 0 is forward slip), from the re-integrated
+    phases; NaN past the heel strike. A simulator's stance-foot speed can then be classified with the same
+    threshold as the exact one (a stick -> slip switch shows in the speed only once it has grown)."""
+    act = PASSIVE if actuation is None else actuation
+    model = _model(bp, act)
+    q0, qd0 = section_state(np.asarray(z_star, dtype=float))
+    stance, _ = _stance(bp, act, q0, qd0, T_MAX)
+    ts = np.asarray(times, dtype=float)
+    x, v = np.full(ts.shape, np.nan), np.full(ts.shape, np.nan)
+    for _mode, t0, t1, sol in _phase_solutions(model, stance, bp.mu):
+        sel = (ts >= t0) & (ts <= t1)
+        if sol is not None and sel.any():
+            y = sol(ts[sel])
+            x[sel], v[sel] = y[2], y[NQ + 2 + 2]
+    return x, v
+
+
 def scuffing_crossings(bp: FrictionBiped, z_star: ArrayLike, actuation: Actuation | None = None,
                        samples: int = 2001) -> list[tuple[float, float, float]]:
     """Zero crossings of the swing-foot height l(cos theta1 - cos theta2) strictly inside the stance of the step
