@@ -17,6 +17,7 @@ from analysis.checks import Check
 from mjpoincare.cli import main
 from mjpoincare.result import Result
 from mjpoincare.scenarios import compass_biped_friction as sc
+from mjpoincare.scenarios import compass_biped_friction_stance as stance
 from mjpoincare.validate import resolve_inputs, run_validation
 
 pytestmark = pytest.mark.mujoco
@@ -114,6 +115,19 @@ def test_gait_b_phase_times() -> None:
     check = _checks("b")["phase_times"]
     assert check.passed, _run("b").table()
     assert check.analytic == pytest.approx([0.0878, 0.7309], abs=2e-4)
+
+
+def test_exact_steps_read_by_the_simulation_classifier() -> None:
+    """The phase labels the checks compare against: the exact foot through the same 5 mm/s detector. Gait B keeps
+    002's three phases (switches seen 1.6 ms early and 10.7 ms late); Gait II's 5.2 ms slip+ ends inside the first
+    5 ms that the detector skips, so it reads 'stick' (its slipping impact is the impact_kind check's)."""
+    p_b = resolve_inputs("compass-biped-friction", {"gait": "b"}, "fast")[2]
+    p_ii = resolve_inputs("compass-biped-friction", {"gait": "ii"}, "fast")[2]
+    b = stance.classified_pattern(sc.gait(p_b), 1e-4)
+    assert [lab for lab, _ in b] == ["slip+", "stick", "slip-"]
+    assert [t for _, t in b[1:]] == pytest.approx([0.0878, 0.7309], abs=2e-4)
+    assert sc.gait(p_ii).record.phases == ("slip+", "stick")
+    assert [lab for lab, _ in stance.classified_pattern(sc.gait(p_ii), 1e-4)] == ["stick"]
 
 
 @pytest.mark.parametrize(
