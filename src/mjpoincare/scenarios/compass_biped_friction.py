@@ -124,7 +124,7 @@ def _gait(name: str, mu: float, kp: float, kd: float) -> theory.Gait:
     if name == "III" and (kp, kd) != (15.0, 15.0):
         bp = theory.FrictionBiped(slope=0.0, mu=mu)
         base = theory.paper_gait("III", mu)
-        return theory.find_gait(bp, base.z, theory.PDTracking(theory.gait_cstance.reference_at(), kp, kd))
+        return theory.find_gait(bp, base.z, theory.PDTracking(theory.gait_c_reference(), kp, kd))
     return theory.paper_gait(name, mu)
 
 
@@ -213,7 +213,7 @@ class FrictionGaitController(cb.GaitController):
                                       tau_ankle=actuated[0], tau_hip=actuated[1])
         super().__init__(model, shim, batch, foot_radius)
         self.fb, self.pd, self.dt = bp, pd, model.opt.timestep
-        self.ref = theory.gait_cstance.reference_at() if pd is not None else None
+        self.ref = theory.gait_c_reference() if pd is not None else None
         self.last_strike = np.zeros(batch)
         self.work = np.zeros(batch)
         self.step_work: list[list[float]] = [[] for _ in range(batch)]
