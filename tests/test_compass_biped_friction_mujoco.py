@@ -70,7 +70,7 @@ def test_gait_iii_eigenvalues() -> None:
 @pytest.mark.xfail(strict=True, reason="measured: 0.218 +- 0.717j, 0.443 vs 0.346 +- 0.744j, 0.338 (error 0.131 "
                    "at the fast preset; 0.036 accurate; 0.012 at a 4 us step with a 0.1 ms contact): the soft impact "
                    "(0.19 mm deep, fast) starts the slip+ ~2.5 ms late and the sliding foot rises at ~mu v_t "
-                   "(MuJoCo's convex contact); slip+ covers 3.51 mm vs 4.05 (fast), 3.84 (accurate), 3.91 (4 us)")
+                   "(MuJoCo's convex contact); slip+ covers 3.51 mm vs 4.05 (fast), 3.84 (accurate), 3.96 (4 us)")
 def test_gait_b_eigenvalues() -> None:
     """Gait B's multipliers (|lambda|max 0.8206, 002 Sec. 4.2), starts inside the sticking-impact border."""
     assert _checks("b")["eigenvalues"].passed, _run("b").table()
