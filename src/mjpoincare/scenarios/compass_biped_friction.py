@@ -414,7 +414,9 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     matched = _match(lam, fit.eigenvalues)
     out.append(checks.Check("eigenvalues", lam, matched, float(np.max(np.abs(matched - lam))), tol["eigenvalues"],
                             "max-abs", "", "the 3 largest multipliers of 002's post-impact map (Newton + finite "
-                            "differences) vs the cubic fit of the MuJoCo legs-parallel samples; " + why))
+                            f"differences) vs the degree-{degree} fit of the MuJoCo legs-parallel samples (bootstrap "
+                            f"std of the fitted multipliers {float(np.max(np.abs(fit.eigenvalue_std))):.2g}: an "
+                            "error well above it is MuJoCo's map, not the sampling); " + why))
     ys, dts, lengths, works = _step_data(c)
     rec = g.record
     period_sim = _regress_at(y_star, ys, dts) if len(dts) > 4 else math.nan
