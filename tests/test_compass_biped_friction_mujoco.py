@@ -12,8 +12,8 @@ from __future__ import annotations
 from functools import cache
 
 import pytest
+from mjpoincare.analysis.checks import Check
 
-from analysis.checks import Check
 from mjpoincare.cli import main
 from mjpoincare.result import Result
 from mjpoincare.scenarios import compass_biped_friction as sc

@@ -9,8 +9,8 @@ from __future__ import annotations
 import math
 
 import pytest
+from mjpoincare.analysis.theory import compass_biped as theory
 
-from analysis.theory import compass_biped as theory
 from mjpoincare.cli import main
 from mjpoincare.validate import run_validation
 

@@ -7,8 +7,7 @@ from collections.abc import Callable
 
 import numpy as np
 import pytest
-
-from analysis.returnmap import ReturnMapFit, convergence_ratio, fit_return_map, sample_pairs
+from mjpoincare.analysis.returnmap import ReturnMapFit, convergence_ratio, fit_return_map, sample_pairs
 
 RHO, THETA, REAL = 0.9, 0.4, 0.3
 

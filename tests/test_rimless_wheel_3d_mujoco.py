@@ -10,18 +10,21 @@ from __future__ import annotations
 
 import json
 import math
+from pathlib import Path
 
 import mujoco
 import numpy as np
 import pytest
+from mjpoincare.analysis.theory import rimless_wheel_3d as theory
 
-from analysis.theory import rimless_wheel_3d as theory
 from mjpoincare.cli import main
 from mjpoincare.params import ParameterError
 from mjpoincare.scenarios import rimless_wheel_3d as rw3
 from mjpoincare.validate import resolve_inputs, run_validation
 
 pytestmark = pytest.mark.mujoco
+
+REPO_MODELS = Path(__file__).resolve().parents[1] / "models"  # the MJCF files a user opens
 
 
 @pytest.fixture(scope="module")
@@ -94,7 +97,7 @@ def test_bad_input_exit_code(capsys: pytest.CaptureFixture[str]) -> None:
 
 def test_model_file_and_rebuild() -> None:
     """models/rimless_wheel_3d.xml loads on its own; the MjSpec rebuild sets spokes, inertia, slope and mode."""
-    model = mujoco.MjModel.from_xml_path(str(rw3.load_spec.__globals__["MODELS_DIR"] / "rimless_wheel_3d.xml"))
+    model = mujoco.MjModel.from_xml_path(str(REPO_MODELS / "rimless_wheel_3d.xml"))
     assert (model.nq, model.nv) == (7, 6)
     _, _, params, settings = resolve_inputs("rimless-wheel-3d", {"spokes": "10", "slope": "0.2", "J": "1"}, None)
     rebuilt = rw3.build(params, settings)

@@ -1,5 +1,5 @@
 """Regression: MuJoCo's rimless wheel with Coulomb friction against the stick-slip reference (Gamus & Or 2015,
-Sec. 3 and Appendix A; :mod:`analysis.theory.rimless_wheel_friction`).
+Sec. 3 and Appendix A; :mod:`mjpoincare.analysis.theory.rimless_wheel_friction`).
 
 The checks and their tolerances are the scenario's own (:mod:`mjpoincare.scenarios.rimless_wheel_friction`); nothing
 here loosens them. The Type D+ test pins a measured MuJoCo limitation (a sliding foot lifts off), so that a change

@@ -12,8 +12,8 @@ from pathlib import Path
 import mujoco
 import numpy as np
 import pytest
+from mjpoincare.analysis.theory import rimless_wheel as theory
 
-from analysis.theory import rimless_wheel as theory
 from mjpoincare import scenarios
 from mjpoincare.cli import main
 from mjpoincare.scenarios import rimless_wheel as rw
@@ -21,6 +21,8 @@ from mjpoincare.simulate import initial_states, rollout_batch
 from mjpoincare.validate import resolve_inputs, run_validation
 
 pytestmark = pytest.mark.mujoco
+
+REPO_MODELS = Path(__file__).resolve().parents[1] / "models"  # the MJCF files a user opens
 
 
 @pytest.fixture(scope="module")
@@ -115,7 +117,7 @@ def test_divergence_is_reported_and_warnings_captured(tmp_path: Path) -> None:
 
 def test_model_file_is_the_default_wheel() -> None:
     """models/rimless_wheel_2d.xml loads on its own; the MjSpec rebuild keeps its structure."""
-    model = mujoco.MjModel.from_xml_path(str(rw.load_spec.__globals__["MODELS_DIR"] / "rimless_wheel_2d.xml"))
+    model = mujoco.MjModel.from_xml_path(str(REPO_MODELS / "rimless_wheel_2d.xml"))
     assert model.nq == 3 and model.nv == 3
     _, _, params, settings = resolve_inputs("rimless-wheel", {"spokes": "10", "slope": "0.1"}, "fast")
     rebuilt = rw.build(params, settings)

@@ -3,9 +3,8 @@
 from __future__ import annotations
 
 import numpy as np
-
-from analysis.outcomes import classify_outcomes
-from analysis.sections import level_crossings, wrap_events, wrap_phase
+from mjpoincare.analysis.outcomes import classify_outcomes
+from mjpoincare.analysis.sections import level_crossings, wrap_events, wrap_phase
 
 
 def test_level_crossings_interpolate_time_and_values() -> None:

@@ -9,10 +9,9 @@ import re
 
 import numpy as np
 import pytest
+from mjpoincare.analysis.theory import compass_biped as cb
+from mjpoincare.analysis.theory.compass_biped import CompassBiped
 from scipy.integrate import solve_ivp
-
-from analysis.theory import compass_biped as cb
-from analysis.theory.compass_biped import CompassBiped
 
 KISA_X = np.array([-0.2073985186, 0.2873985186, 1.0406442919, 0.4810330477])
 KISA_T = 0.72404762

@@ -9,10 +9,9 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-
-from analysis.theory import compass_biped as cb
-from analysis.theory import compass_biped_friction as cf
-from analysis.theory.compass_biped_friction import FrictionBiped
+from mjpoincare.analysis.theory import compass_biped as cb
+from mjpoincare.analysis.theory import compass_biped_friction as cf
+from mjpoincare.analysis.theory.compass_biped_friction import FrictionBiped
 
 ALPHA = math.radians(1.0)
 PAPER = FrictionBiped()

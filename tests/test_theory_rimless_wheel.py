@@ -7,10 +7,9 @@ import math
 
 import numpy as np
 import pytest
-
-from analysis.theory import rimless_wheel as rw
-from analysis.theory import rimless_wheel_hybrid as hy
-from analysis.theory.rimless_wheel import RimlessWheel
+from mjpoincare.analysis.theory import rimless_wheel as rw
+from mjpoincare.analysis.theory import rimless_wheel_hybrid as hy
+from mjpoincare.analysis.theory.rimless_wheel import RimlessWheel
 
 ALPHA8 = math.pi / 8
 KAPPA_PAPER = 1.0 / 3.0

@@ -8,11 +8,10 @@ import math
 
 import numpy as np
 import pytest
-
-from analysis.theory import rimless_wheel as rw
-from analysis.theory import rimless_wheel_friction as rf
-from analysis.theory import stick_slip as ss
-from analysis.theory.rimless_wheel_friction import FrictionWheel
+from mjpoincare.analysis.theory import rimless_wheel as rw
+from mjpoincare.analysis.theory import rimless_wheel_friction as rf
+from mjpoincare.analysis.theory import stick_slip as ss
+from mjpoincare.analysis.theory.rimless_wheel_friction import FrictionWheel
 
 ALPHA = math.radians(13.0)
 KAPPA = 1.0 / 3.0

@@ -9,9 +9,8 @@ import math
 
 import numpy as np
 import pytest
-
-from analysis.theory import slotted_skate as ss
-from analysis.theory.slotted_skate import SlottedSkate
+from mjpoincare.analysis.theory import slotted_skate as ss
+from mjpoincare.analysis.theory.slotted_skate import SlottedSkate
 
 R1000 = math.sqrt(1000.0)
 #: Note Sec. 3.1 parameter sets.

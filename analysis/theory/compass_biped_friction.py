@@ -3,8 +3,9 @@
 Source: seed 002 = Gamus & Or (2015), "Dynamic bipedal walking under stick-slip transitions", SIAM J. Appl. Dyn.
 Syst., Sec. 4 (passive CB on a slope, eq 27, Figs 4.1-4.2), Sec. 5 (actuated CB on level ground, eqs 28-30,
 Figs 5.1-5.2) and Appendix A (eqs 31-40); re-derivation with numbers in reference card 002 Secs. 3, 4 and 7. The
-stance and impact machinery is the model-agnostic :mod:`analysis.theory.stick_slip`; this module only supplies the
-matrices of eq 27, the actuation, the heel-strike guard, the relabelling and the shooting. It never imports mujoco.
+stance and impact machinery is the model-agnostic :mod:`mjpoincare.analysis.theory.stick_slip`; this module only
+supplies the matrices of eq 27, the actuation, the heel-strike guard, the relabelling and the shooting. It never
+imports mujoco.
 
 Model (002 eq 27, SI units): legs of length ``l`` with a point mass ``m`` at distance ``d`` from the foot, hip
 mass ``m_h``, slope ``slope`` = alpha, friction ``mu`` (static = kinetic). q = (theta1, theta2, x, y): (x, y) is the
@@ -17,7 +18,7 @@ B = (-l m b S12 th2d^2, -l m b S12 th1d^2, -m b S2 th2d^2 - K S1 th1d^2, -K C1 t
 G = g (-K sin(theta1 + alpha), -m b sin(alpha - theta2), -M_tot sin(alpha), M_tot cos(alpha)),
 W = [[0, 0, 1, 0], [0, 0, 0, 1]], W~ = [[l C1, l C2, 1, 0], [-l S1, l S2, 0, 1]] (002 eq 27 as printed; the tests
 re-derive M, B, G from the point-mass Lagrangian by finite differences). Equations of motion 002 eq 2 in the sign
-of :mod:`analysis.theory.stick_slip`: M qdd = -(B + G - Q) + W^T f, Q the actuation's generalised force.
+of :mod:`mjpoincare.analysis.theory.stick_slip`: M qdd = -(B + G - Q) + W^T f, Q the actuation's generalised force.
 
 Step: from the post-impact state theta1 = theta2 = -theta*, (theta1_dot, theta2_dot, x_dot) and y_dot = 0, the
 stance is integrated (stick / slip+ / slip-, 002 eq 35) until heel strike theta1 = theta2 > 0 (swing foot ahead and
@@ -44,7 +45,7 @@ Actuation (002 Sec. 5), stated as the generalised force Q on (theta1, theta2):
   destabilising sign). The reference is a stored gait trajectory (:class:`ReferenceTrajectory`, sampled with
   :func:`reference_trajectory`); 002's is the passive Gait C of its Fig. 4.2a, mu = 0.14 (:func:`gait_c_reference`).
 
-Time dependence: :class:`analysis.theory.stick_slip.ContactModel` has time-free callables, so :func:`contact_model`
+Time dependence: :class:`.stick_slip.ContactModel` has time-free callables, so :func:`contact_model`
 appends two decoupled unit-mass coordinates: index 4 is the phase clock phi (phi_dot = 1, phi_ddot = 0) and index 5
 an actuator-work accumulator whose velocity is W_act(t) = int Q . qd dt (its acceleration is Q . qd). Neither enters
 W, W~ or the coupling of M, so the stick-slip machinery is used unchanged (stick_slip.py is not modified).
@@ -53,7 +54,7 @@ Gaits (002 Secs. 4-5; :func:`paper_gait`, seeds in :data:`GAIT_SEEDS`, values in
 
 * A (sticking throughout) and B (sticking impact, slip+ -> stick -> slip-) reproduce reference card 002 Sec. 3.2;
   B loses stability at mu = 0.11035 (card 0.1104, 002 "~0.11"). Gait A equals the passive biped of
-  :mod:`analysis.theory.compass_biped` (issue #6) in that module's angles.
+  :mod:`.compass_biped` (issue #6) in that module's angles.
 * C (slipping impact with forward slip, slip+ -> stick, stuck before the heel strike) was not found by reference
   card 002; it is found here by :func:`search_gaits` (grid on the pre-impact section, then Newton): unstable
   (|lambda|max 1.82 at mu = 0.14, 1.53 at 0.2), impact angle 4.53 deg at mu = 0.14 (002: "4 deg" in Fig. 4.2a)
@@ -81,7 +82,7 @@ Gaits (002 Secs. 4-5; :func:`paper_gait`, seeds in :data:`GAIT_SEEDS`, values in
 
 Corrections to 002 found here (reference card 002 Sec. 7 items 3-5, 12-14 agree):
 
-* (34) sign, (39) Gamma~ = (s mu, 1)^T, W q_dot = 0 (not W = 0): see :mod:`analysis.theory.stick_slip`.
+* (34) sign, (39) Gamma~ = (s mu, 1)^T, W q_dot = 0 (not W = 0): see :mod:`mjpoincare.analysis.theory.stick_slip`.
 * Sec. 5 / (28): E and the reported torques are sign-inconsistent (above).
 * Sec. 4.1 says the scuffing collision is "where theta1 = theta2"; reference card 002 says theta2 = -theta1. The
   swing foot crosses the ground line twice before the heel strike and is below it in between
@@ -102,12 +103,11 @@ from functools import lru_cache
 from typing import Any, NamedTuple, Protocol
 
 import numpy as np
+from mjpoincare.analysis.theory import stick_slip as ss
+from mjpoincare.analysis.theory.shooting import central_jacobian, chord_newton
 from numpy.typing import ArrayLike, NDArray
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq, minimize_scalar
-
-from analysis.theory import stick_slip as ss
-from analysis.theory.shooting import central_jacobian, chord_newton
 
 Vector = NDArray[np.float64]
 Matrix = NDArray[np.float64]
@@ -407,7 +407,7 @@ def swing_jacobian(bp: FrictionBiped, q: ArrayLike) -> Matrix:
 def heel_strike_guard(q: ArrayLike) -> float:
     """max(theta2 - theta1, -(theta1 + theta2)): > 0 just after an impact (theta1 = theta2 = -theta*) and while the
     swing foot is behind the stance foot, crossing 0 downwards at the heel strike theta1 = theta2 > 0 (002 Sec. 4;
-    the same guard as :mod:`analysis.theory.compass_biped` in its angles). It also crosses 0 when the legs pass
+    the same guard as :mod:`.compass_biped` in its angles). It also crosses 0 when the legs pass
     parallel (theta1 + theta2 = 0) with theta1 > theta2, i.e. with the stance leg already past the normal; the
     stance is then continued with :func:`heel_strike_after_scuff` (:func:`step`, ``late_swing``)."""
     th1, th2 = float(np.asarray(q)[0]), float(np.asarray(q)[1])
@@ -420,7 +420,7 @@ _JAC[1, 3] = 1.0
 
 
 def contact_model(bp: FrictionBiped, actuation: Actuation | None = None) -> ss.ContactModel:
-    """The biped as a :class:`analysis.theory.stick_slip.ContactModel` (002 eq 27 with eq 28 or 30) on the
+    """The biped as a :class:`.stick_slip.ContactModel` (002 eq 27 with eq 28 or 30) on the
     augmented q = (theta1, theta2, x, y, phi, w): phi the phase clock, w_dot the actuator work (module docstring).
 
     h = B + G - Q (002 eq 2), W and W~ of eq 27 (zero columns for the clock and accumulator), guard
@@ -690,9 +690,9 @@ def _diagnostics(bp: FrictionBiped, model: ss.ContactModel, stance: ss.StanceRes
 def step(bp: FrictionBiped, z: ArrayLike, actuation: Actuation | None = None, *, forces: bool = False,
          t_max: float = T_MAX) -> StepRecord:
     """One step of the (actuated) biped from the post-impact section state z = (theta*, theta1_dot+, theta2_dot+)
-    or (..., x_dot+) (002 Secs. 4-5): the stance by :func:`analysis.theory.stick_slip.integrate_stance` (002 eqs 2,
+    or (..., x_dot+) (002 Secs. 4-5): the stance by :func:`.stick_slip.integrate_stance` (002 eqs 2,
     31-35) until the heel strike theta1 = theta2 > 0 (the swing foot's passages below the ground line are ignored,
-    002 Sec. 4.1), the frictional impact :func:`analysis.theory.stick_slip.impact` (002 eqs 37-40, corrected) and
+    002 Sec. 4.1), the frictional impact :func:`.stick_slip.impact` (002 eqs 37-40, corrected) and
     the relabelling theta1 <-> -theta2, theta1_dot <-> -theta2_dot (002 Sec. 4).
     ``forces``: also compute max |f_t/f_n| and the lowest swing-foot height (re-integrates the phases; slower).
     """

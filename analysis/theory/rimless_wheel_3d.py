@@ -16,7 +16,7 @@ in-plane height), after which theta resets to -beta (eqs 4-5, 44). Rates are ord
 theta_dot), the paper's state is q = (psi, phi, theta, psi_dot, phi_dot, theta_dot) (eq 2).
 
 Derivations (re-done here, all checked against the independent hybrid integrator
-:mod:`analysis.theory.rimless_wheel_3d_hybrid`):
+:mod:`mjpoincare.analysis.theory.rimless_wheel_3d_hybrid`):
 
 * Planar cycle at heading psi (eqs 12-13): the axle y'' is horizontal iff g . y'' = 0, i.e.
   tan phi = -sin psi tan alpha. Then gravity lies in the wheel plane and its component along the ground line x'

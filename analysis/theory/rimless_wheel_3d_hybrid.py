@@ -1,5 +1,5 @@
 """Exact event-driven reference of the 3D rimless wheel, independent of the closed forms of
-:mod:`analysis.theory.rimless_wheel_3d`.
+:mod:`mjpoincare.analysis.theory.rimless_wheel_3d`.
 
 Model (the physics of 001 = Coleman, Chatterjee & Ruina 1997, Sec. 3, solved generically; m = l = g = 1):
 
@@ -31,18 +31,17 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
-from scipy.integrate import solve_ivp
-from scipy.optimize import minimize_scalar
-
-from analysis.theory.rimless_wheel_3d import (
+from mjpoincare.analysis.theory.rimless_wheel_3d import (
     RimlessWheel3D,
     midstance_pitch_rate,
     planar_bank,
     planar_pitch_rate,
     validate,
 )
-from analysis.theory.shooting import central_jacobian
+from mjpoincare.analysis.theory.shooting import central_jacobian
+from numpy.typing import ArrayLike, NDArray
+from scipy.integrate import solve_ivp
+from scipy.optimize import minimize_scalar
 
 RTOL = 1e-12
 ATOL = 1e-12

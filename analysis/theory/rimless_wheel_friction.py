@@ -2,8 +2,8 @@
 
 Source: seed 002 = Gamus & Or (2015), "Dynamic bipedal walking under stick-slip transitions", SIAM J. Appl. Dyn.
 Syst., Sec. 3 eqs (11)-(26), Figs 3.3-3.8, Appendix A eqs (41)-(45); re-derivation with oracles in reference card
-002 Secs. 1, 2, 4, 5, 7. The rigid (sticking) closed forms are reused from :mod:`analysis.theory.rimless_wheel`
-(003/002 eqs 12-17, 22-25) through :func:`rigid_wheel`.
+002 Secs. 1, 2, 4, 5, 7. The rigid (sticking) closed forms are reused from
+:mod:`mjpoincare.analysis.theory.rimless_wheel` (003/002 eqs 12-17, 22-25) through :func:`rigid_wheel`.
 
 Conventions (002's, nondimensional): m = l = 1 and g = 1 + kappa, so the stance rate omega_c =
 sqrt(g/(l (1+kappa))) = 1 (002's "tau_c" is this rate; :func:`omega_c` converts: theta_dot_SI = theta_dot omega_c,
@@ -18,7 +18,7 @@ f/(m g), impulses in units of m l omega_c. Contact modes: "stick", "slip+" (x_do
 Two independent implementations of a step: ``method="fast"`` integrates in theta, with the sticking phases in
 closed form (energy integral 002 eq 13, forces eq 19) and the slipping phases from eq 42 (u = theta_dot^2 obeys
 a linear ODE in theta); ``method="generic"`` runs the Appendix-A matrix machinery of
-:mod:`analysis.theory.stick_slip` in time on q = (x, y, theta) with M, B, G, W, W~ of eq 11.
+:mod:`mjpoincare.analysis.theory.stick_slip` in time on q = (x, y, theta) with M, B, G, W, W~ of eq 11.
 
 Corrections to 002 (re-derived; they agree with reference card 002 Sec. 7 items 1-8):
 
@@ -32,7 +32,7 @@ Corrections to 002 (re-derived; they agree with reference card 002 Sec. 7 items 
   D_s = 2kappa + 1 - cos2phi + s_F mu sin2phi. The printed theta row uses s = -s_F (against the paper's own
   s = -sgn(v~_t^-)), and the printed x row's kappa term 2 s mu kappa sin(phi) should be 4 s mu kappa l sin(phi).
   Only the corrected row reproduces 002's Delta x_dot = -0.0517 (Fig. 3.6).
-* (34) has a sign error (see :mod:`analysis.theory.stick_slip`).
+* (34) has a sign error (see :mod:`mjpoincare.analysis.theory.stick_slip`).
 
 Where reference card 002 needed correcting (everything else in its Secs. 1, 2, 4, 5 reproduces):
 
@@ -62,13 +62,12 @@ from dataclasses import dataclass, field
 from functools import lru_cache
 
 import numpy as np
+from mjpoincare.analysis.theory import rimless_wheel as rw
+from mjpoincare.analysis.theory import stick_slip as ss
+from mjpoincare.analysis.theory.shooting import central_jacobian, chord_newton
 from numpy.typing import ArrayLike, NDArray
 from scipy.integrate import IntegrationWarning, quad, solve_ivp
 from scipy.optimize import brentq, minimize_scalar
-
-from analysis.theory import rimless_wheel as rw
-from analysis.theory import stick_slip as ss
-from analysis.theory.shooting import central_jacobian, chord_newton
 
 RTOL = 1e-11
 ATOL = 1e-12
@@ -110,8 +109,8 @@ def omega_c(leg_length: float, gravity: float, kappa: float) -> float:
 
 
 def rigid_wheel(w: FrictionWheel) -> rw.RimlessWheel:
-    """The same wheel for :mod:`analysis.theory.rimless_wheel` (003's slope gamma = 002's alpha), in units where
-    its rate2 = g/(l(1+kappa)) = 1: l = 1, gyration = sqrt(kappa), g = 1 + kappa."""
+    """The same wheel for :mod:`mjpoincare.analysis.theory.rimless_wheel` (003's slope gamma = 002's alpha), in units
+    where its rate2 = g/(l(1+kappa)) = 1: l = 1, gyration = sqrt(kappa), g = 1 + kappa."""
     return rw.RimlessWheel(w.spokes, w.slope, 1.0, math.sqrt(w.kappa), 1.0 + w.kappa)
 
 
@@ -124,8 +123,8 @@ def beta(spokes: int, kappa: float) -> float:
 def slope_bounds(spokes: int, kappa: float) -> tuple[float, float]:
     """(alpha_min, alpha_max) (rad): the sticking gait exists (002 eq 18) and keeps f_n > 0 (002 eq 21).
 
-    Computed by :func:`analysis.theory.rimless_wheel.existence_bound` (eq 18 with equality) and
-    :func:`analysis.theory.rimless_wheel.no_flight_bound`, which scans the whole step instead of assuming the
+    Computed by :func:`mjpoincare.analysis.theory.rimless_wheel.existence_bound` (eq 18 with equality) and
+    :func:`mjpoincare.analysis.theory.rimless_wheel.no_flight_bound`, which scans the whole step instead of assuming the
     minimum of f_n at theta = phi (002 Appendix B proves that only for n >= 6 or 9, depending on the case); for the
     paper set both equal eq 21. (nan, nan) when beta <= 0 (n = 3 with kappa <= 1/2, n = 4 with kappa = 0).
     """
@@ -136,10 +135,10 @@ def slope_bounds(spokes: int, kappa: float) -> tuple[float, float]:
 def validate(w: FrictionWheel) -> None:
     """Raise ``ValueError`` naming the parameter and its allowed range.
 
-    ``spokes``: integer >= 3, the same check as :class:`analysis.theory.rimless_wheel.RimlessWheel` and the MuJoCo
-    scenario. 002 states n >= 4 (its Appendix B); the slope window below enforces that in effect, because it rejects
-    every wheel without a contact-preserving sticking gait and n = 3 has none for any kappa in [0, 1] (beta <= 0 for
-    kappa <= 1/2; alpha_min > alpha_max above, e.g. 38.2 > 28.7 deg at kappa = 1), so the message names the empty
+    ``spokes``: integer >= 3, the same check as :class:`mjpoincare.analysis.theory.rimless_wheel.RimlessWheel` and the
+    MuJoCo scenario. 002 states n >= 4 (its Appendix B); the slope window below enforces that in effect, because it
+    rejects every wheel without a contact-preserving sticking gait and n = 3 has none for any kappa in [0, 1] (beta <=
+    0 for kappa <= 1/2; alpha_min > alpha_max above, e.g. 38.2 > 28.7 deg at kappa = 1), so the message names the empty
     window rather than a second, redundant spoke bound. ``kappa`` in [0, 1] (002 below eq 11); ``mu`` >= 0 (inf
     allowed); ``slope`` strictly inside (alpha_min, alpha_max) of eqs 18/21 (:func:`slope_bounds`).
     """
@@ -205,7 +204,7 @@ def critical_friction(w: FrictionWheel, samples: int = 20001) -> tuple[float, fl
     """(mu_c, theta at which |sigma| peaks): mu_c = max |sigma(theta)| over [-pi/n, pi/n] (002 eq 23).
 
     Dense scan of eq 22 plus a bounded refinement; mu_c agrees with
-    :func:`analysis.theory.rimless_wheel.required_friction`. The peak can sit at either end of the step.
+    :func:`mjpoincare.analysis.theory.rimless_wheel.required_friction`. The peak can sit at either end of the step.
     """
     grid = np.linspace(-w.phi, w.phi, samples)
     vals = np.abs(np.asarray(force_ratio(w, grid)))
@@ -231,7 +230,7 @@ def impulse_ratio(spokes: int, kappa: float) -> float:
 def attraction_window_rigid(w: FrictionWheel) -> tuple[float, float]:
     """(theta_dot_min, theta_dot_max) for mu = inf (002 eq 26 and the unnumbered equation after it):
     theta_dot_min = sqrt(2(1 - cos(alpha - pi/n))) (0 for alpha >= pi/n; reuses
-    :func:`analysis.theory.rimless_wheel.forward_threshold`),
+    :func:`mjpoincare.analysis.theory.rimless_wheel.forward_threshold`),
     theta_dot_max = sqrt(3cos(alpha+phi) - 2cos(alpha-phi) + kappa cos(alpha)/cos(phi)) (f_n(phi) = 0 on the
     first step; assumes the minimum of f_n at theta = phi, 002 Appendix B)."""
     a, p = w.slope, w.phi
@@ -384,7 +383,7 @@ def type_d_linear(w: FrictionWheel) -> tuple[float, float]:
 
 
 def contact_model(w: FrictionWheel) -> ss.ContactModel:
-    """The wheel as a :class:`analysis.theory.stick_slip.ContactModel` on q = (x, y, theta) (002 eq 11,
+    """The wheel as a :class:`mjpoincare.analysis.theory.stick_slip.ContactModel` on q = (x, y, theta) (002 eq 11,
     nondimensional): M = [[1, 0, cos], [0, 1, -sin], [cos, -sin, 1+kappa]], h = B + G with
     B = (-theta_dot^2 sin, -theta_dot^2 cos, 0), G = g(-sin(alpha), cos(alpha), -sin(alpha+theta)),
     W = [[1, 0, 0], [0, 1, 0]], W~ = d(tip of the spoke ahead)/dq (= eq 11's W~_c at theta = phi), guard: height of
@@ -735,7 +734,7 @@ def step(
     frictional impact at theta = phi (eqs 43-45 corrected) and the relabelling to the next spoke.
 
     ``method``: "fast" (theta-domain, closed-form sticking phases) or "generic"
-    (:func:`analysis.theory.stick_slip.integrate_stance` on the matrix model of :func:`contact_model`).
+    (:func:`mjpoincare.analysis.theory.stick_slip.integrate_stance` on the matrix model of :func:`contact_model`).
     ``max_step``: largest step while slipping (theta in rad for "fast", default 0.05; time for "generic",
     default 1e-2). No validation of ``w`` here (see :func:`validate`).
     """

@@ -1,7 +1,7 @@
 """Exact event-driven reference simulator of the planar rimless wheel (independent of the closed forms).
 
 Model (the physics of 003 Sec. 3.1-3.2 = Kiša 2020 and of 002 Sec. 3.1 eqs 11-14 = Gamus & Or 2015,
-but solved generically, without using any of the closed forms of :mod:`analysis.theory.rimless_wheel`):
+but solved generically, without using any of the closed forms of :mod:`mjpoincare.analysis.theory.rimless_wheel`):
 
 * A planar rigid body with generalized coordinates q = (x, z, psi) in the SLOPE frame: x downhill along the
   slope, z normal to it, psi the stance spoke's angle from the slope normal, clockwise positive
@@ -35,11 +35,10 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
+from mjpoincare.analysis.theory.rimless_wheel import RimlessWheel, validate
 from numpy.typing import NDArray
 from scipy.integrate import solve_ivp
 from scipy.optimize import minimize_scalar, root_scalar
-
-from analysis.theory.rimless_wheel import RimlessWheel, validate
 
 RTOL = 1e-11
 ATOL = 1e-12

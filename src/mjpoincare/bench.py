@@ -25,8 +25,8 @@ import mujoco
 import numpy as np
 from mujoco import rollout as mj_rollout
 
-from analysis.checks import jsonable
 from mjpoincare import scenarios
+from mjpoincare.analysis.checks import jsonable
 from mjpoincare.params import Value
 from mjpoincare.result import write_json
 from mjpoincare.validate import resolve_inputs, run_validation

@@ -1,27 +1,35 @@
-"""Load the MJCF files in ``models/`` as :class:`mujoco.MjSpec` and compile them with clear errors."""
+"""Load the MJCF files shipped as package data (``mjpoincare.mjcf``, built from the top-level ``models/``) as
+:class:`mujoco.MjSpec` and compile them with clear errors."""
 
 from __future__ import annotations
 
 from collections.abc import Mapping
-from pathlib import Path
+from importlib import resources
+from importlib.abc import Traversable
 
 import mujoco
 
 from mjpoincare.params import ParameterError, Value
 from mjpoincare.settings import apply_unskip
 
-MODELS_DIR = Path(__file__).resolve().parents[2] / "models"
+#: The package holding the MJCF files (``models/`` in the source tree, ``mjpoincare/mjcf/`` in a wheel).
+MODELS_PACKAGE = "mjpoincare.mjcf"
+
+
+def model_file(filename: str) -> Traversable:
+    """The shipped MJCF file ``filename`` (readable with ``read_text``; a path on disk in any install)."""
+    return resources.files(MODELS_PACKAGE) / filename
 
 
 def load_spec(filename: str) -> mujoco.MjSpec:
-    """Parse ``models/<filename>``; a missing or malformed file raises :class:`ParameterError`."""
-    path = MODELS_DIR / filename
-    if not path.is_file():
-        raise ParameterError(f"model file {path} not found")
+    """Parse the shipped model ``filename``; a missing or malformed file raises :class:`ParameterError`."""
+    source = model_file(filename)
+    if not source.is_file():
+        raise ParameterError(f"model file {filename} not found in {MODELS_PACKAGE}")
     try:
-        return mujoco.MjSpec.from_file(str(path))
+        return mujoco.MjSpec.from_string(source.read_text())
     except ValueError as err:  # MuJoCo's XML parser reports malformed models as ValueError
-        raise ParameterError(f"model {path.name} is malformed: {str(err).splitlines()[0]}") from None
+        raise ParameterError(f"model {filename} is malformed: {str(err).splitlines()[0]}") from None
 
 
 def compile_spec(spec: mujoco.MjSpec, settings: Mapping[str, Value] | None = None) -> mujoco.MjModel:

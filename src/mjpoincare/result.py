@@ -10,7 +10,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from analysis.checks import Check, jsonable
+from mjpoincare.analysis.checks import Check, jsonable
 
 
 @dataclass

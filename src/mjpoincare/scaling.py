@@ -22,7 +22,7 @@ from typing import Any
 import mujoco
 from mujoco import rollout as mj_rollout
 
-from analysis.checks import jsonable
+from mjpoincare.analysis.checks import jsonable
 from mjpoincare.parallel import run_jobs
 from mjpoincare.params import ParameterError
 from mjpoincare.result import write_json

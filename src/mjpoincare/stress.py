@@ -28,9 +28,9 @@ from typing import Any
 
 import numpy as np
 
-from analysis.checks import jsonable
 from mjpoincare import scenarios
 from mjpoincare import settings as sim_settings
+from mjpoincare.analysis.checks import jsonable
 from mjpoincare.parallel import run_jobs
 from mjpoincare.params import ParameterError
 from mjpoincare.result import write_json

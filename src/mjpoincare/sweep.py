@@ -28,7 +28,7 @@ from typing import Any
 
 import numpy as np
 
-from analysis.checks import jsonable
+from mjpoincare.analysis.checks import jsonable
 from mjpoincare.parallel import check_engine, run_jobs
 from mjpoincare.params import ParameterError
 from mjpoincare.result import write_json

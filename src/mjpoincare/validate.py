@@ -7,9 +7,9 @@ from collections.abc import Mapping
 
 import mujoco
 
-from analysis.checks import Check
 from mjpoincare import scenarios
 from mjpoincare import settings as sim_settings
+from mjpoincare.analysis.checks import Check
 from mjpoincare.params import resolve, unknown
 from mjpoincare.result import Result
 

@@ -13,7 +13,7 @@ from typing import Any
 import mujoco
 import numpy as np
 
-from analysis.checks import Check
+from mjpoincare.analysis.checks import Check
 from mjpoincare.params import Param, ParameterError, Value
 from mjpoincare.simulate import RolloutReport
 

@@ -1,7 +1,7 @@
 """Scenario ``compass-biped``: the passive compass-gait walker on a slope, sticking contact.
 
 Analytic reference: Kiša (2020) Ch. 4 (EoM 4.5, impact law 4.15-4.17, gait of Fig. 18), the same
-model as Goswami et al. (1996/98); see :mod:`analysis.theory.compass_biped` (Newton shooting on the
+model as Goswami et al. (1996/98); see :mod:`mjpoincare.analysis.theory.compass_biped` (Newton shooting on the
 exact hybrid model, finite-difference eigenvalues).
 
 Contact protocol, as the analytic model assumes (003 Sec. 4.1): the swing foot's contact is off
@@ -25,11 +25,11 @@ import time
 import mujoco
 import numpy as np
 
-from analysis import checks
-from analysis.returnmap import fit_return_map, sample_pairs
-from analysis.sections import level_crossings
-from analysis.theory import compass_biped as theory
 from mjpoincare import settings as sim_settings
+from mjpoincare.analysis import checks
+from mjpoincare.analysis.returnmap import fit_return_map, sample_pairs
+from mjpoincare.analysis.sections import level_crossings
+from mjpoincare.analysis.theory import compass_biped as theory
 from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios.base import Evaluation, Scenario, Soak, StressCase, Values

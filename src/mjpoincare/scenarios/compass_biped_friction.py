@@ -2,7 +2,8 @@
 
 Analytic reference: Gamus & Or (2015), seed 002, Sec. 4 (passive Gaits A, B on a 1 deg slope, eq 27, Figs
 4.1-4.2) and Sec. 5 (Gait I: constant torques, eq 28; Gait III: PD tracking with phase reset, eq 30; cost of
-transport eq 29); re-derived in :mod:`analysis.theory.compass_biped_friction` (reference card 002 Secs. 3-4, 7).
+transport eq 29); re-derived in :mod:`mjpoincare.analysis.theory.compass_biped_friction` (reference card 002 Secs. 3-4,
+7).
 
 MuJoCo side: the ``compass-biped`` model rebuilt with 002's parameters (l = 1.6 m, d = 0.8 m: a = b = 0.8 m,
 m = 4 kg, m_h = 2 kg, g = 9.8 m/s^2) by :func:`mjpoincare.scenarios.compass_biped.build`, and its contact
@@ -36,9 +37,9 @@ import mujoco
 import numpy as np
 from scipy.optimize import brentq
 
-from analysis import checks
-from analysis.returnmap import fit_return_map, sample_pairs
-from analysis.theory import compass_biped_friction as theory
+from mjpoincare.analysis import checks
+from mjpoincare.analysis.returnmap import fit_return_map, sample_pairs
+from mjpoincare.analysis.theory import compass_biped_friction as theory
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios import compass_biped as cb
 from mjpoincare.scenarios import compass_biped_friction_stance as stance
@@ -387,7 +388,7 @@ def _match(reference: np.ndarray, values: np.ndarray) -> np.ndarray:
 
 def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     """Simulate perturbed gaits, fit the legs-parallel return map, and check it and the gait's friction, phases
-    and cost against 002 (via :mod:`analysis.theory.compass_biped_friction`)."""
+    and cost against 002 (via :mod:`mjpoincare.analysis.theory.compass_biped_friction`)."""
     g = gait(p)
     name = gait_name(p)
     model = build(p, s)

@@ -1,7 +1,7 @@
 """Stance measurements of ``compass-biped-friction`` (issue #7) from MuJoCo's recorded rows, and the checks built
 on them: the stance foot's motion and the contact force ratio per step, the stance phases (stick / slip+ / slip-)
 and the impact kind, each read the same way from the exact step of Gamus & Or (2015, seed 002, Secs. 4-5, eq 27)
-through :func:`analysis.theory.compass_biped_friction.stance_foot_motion`.
+through :func:`mjpoincare.analysis.theory.compass_biped_friction.stance_foot_motion`.
 """
 
 from __future__ import annotations
@@ -11,8 +11,8 @@ import math
 
 import numpy as np
 
-from analysis import checks
-from analysis.theory import compass_biped_friction as theory
+from mjpoincare.analysis import checks
+from mjpoincare.analysis.theory import compass_biped_friction as theory
 
 IMPACT_TIMECONSTS = 3.0  # contact time constants after a heel strike at which x_dot+ is read
 RELEASE_SKIP = 5e-3  # s after heel strike excluded from force ratios and phase labels: the soft impact's transient
@@ -105,8 +105,8 @@ def phases(stance: dict[str, np.ndarray], dt: float) -> list[tuple[str, float]]:
 
 def classified_pattern(g: theory.Gait, dt: float) -> list[tuple[str, float]]:
     """The exact step's stance phases as :func:`phases` sees them: its stance-foot speed (002 eq 27,
-    :func:`analysis.theory.compass_biped_friction.stance_foot_motion`) sampled every ``dt`` and classified by the
-    same threshold, windows and merging as the simulated rows (Gait II's 5.2 ms slip+ ends inside the first
+    :func:`mjpoincare.analysis.theory.compass_biped_friction.stance_foot_motion`) sampled every ``dt`` and classified
+    by the same threshold, windows and merging as the simulated rows (Gait II's 5.2 ms slip+ ends inside the first
     RELEASE_SKIP: seen as "stick" on both sides; its slipping impact is the impact_kind check's)."""
     t = dt * np.arange(1, math.floor(g.record.period / dt) + 1)
     _, v = theory.stance_foot_motion(g.biped, g.z, t, g.actuation)

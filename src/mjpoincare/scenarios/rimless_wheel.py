@@ -2,7 +2,7 @@
 
 Analytic reference: Kiša (2020) Sec. 3 (return map 3.13-3.14 corrected, fixed points, Table 1
 regions, basins 3.17-3.18) with the hub inertia of Gamus & Or (eq 12-25); see
-:mod:`analysis.theory.rimless_wheel`.
+:mod:`mjpoincare.analysis.theory.rimless_wheel`.
 
 Poincaré section. The post-impact instant is smeared over the soft contact's impact window, so
 the wheel is sampled at **mid-stance** (stance spoke normal to the slope, wrapped hinge angle
@@ -22,13 +22,13 @@ import mujoco
 import numpy as np
 from mujoco import rollout as mj_rollout
 
-from analysis import checks
-from analysis.outcomes import classify_outcomes
-from analysis.returnmap import fit_return_map, sample_pairs
-from analysis.sections import Crossings, level_crossings, wrap_events, wrap_phase
-from analysis.theory import rimless_wheel as theory
-from analysis.theory.rimless_wheel_hybrid import simulate_hybrid
 from mjpoincare import settings as sim_settings
+from mjpoincare.analysis import checks
+from mjpoincare.analysis.outcomes import classify_outcomes
+from mjpoincare.analysis.returnmap import fit_return_map, sample_pairs
+from mjpoincare.analysis.sections import Crossings, level_crossings, wrap_events, wrap_phase
+from mjpoincare.analysis.theory import rimless_wheel as theory
+from mjpoincare.analysis.theory.rimless_wheel_hybrid import simulate_hybrid
 from mjpoincare.mjlog import captured_mujoco_log
 from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError

@@ -2,11 +2,11 @@
 
 Analytic reference: Coleman, Chatterjee & Ruina (1997), "Motions of a rimless spoked wheel: a simple 3D system with
 impacts" (seed 001; the OCR is garbled, every formula is re-derived in reference note 001 and in
-:mod:`analysis.theory.rimless_wheel_3d`): the planar cycle at any heading psi (eqs 12-14: bank
+:mod:`mjpoincare.analysis.theory.rimless_wheel_3d`): the planar cycle at any heading psi (eqs 12-14: bank
 tan phi* = -sin psi tan alpha, effective slope sin gamma = sin alpha cos psi, pitch rate theta_dot*), the collision
 coefficient mu (eq 6), and the eigenvalues of the 3D return map (Sec. 8.1, Table 2: 1, 0.9884 e^(+-0.3989 i),
 0.9613, 0.9011 = mu^2 for n = 16, alpha = 0.125, psi = pi/10, J = 1/2), computed exactly by the event-driven
-reference :mod:`analysis.theory.rimless_wheel_3d_hybrid` (DOP853 at 1e-12 plus the vector impact law).
+reference :mod:`mjpoincare.analysis.theory.rimless_wheel_3d_hybrid` (DOP853 at 1e-12 plus the vector impact law).
 
 Two impact modes (``--set impact=contact|ideal``), reported side by side:
 
@@ -17,18 +17,19 @@ Two impact modes (``--set impact=contact|ideal``), reported side by side:
   the stance only. An event controller (:func:`mjpoincare.simulate.event_rollout`) stops each trajectory exactly at
   the guard theta = pi/n (two fractional steps of the model's own integrator from the last state before it), applies
   the exact impact law (angular momentum about the new foot, 001 Sec. 3.2.2, via
-  :func:`analysis.theory.rimless_wheel_3d_hybrid.impact_rates`), relabels the new stance spoke as the body frame
-  (R -> R Ry(-2 pi/n)) and moves the pivot to the new foot. The difference between the two modes is the error
+  :func:`mjpoincare.analysis.theory.rimless_wheel_3d_hybrid.impact_rates`), relabels the new stance spoke as the body
+  frame (R -> R Ry(-2 pi/n)) and moves the pivot to the new foot. The difference between the two modes is the error
   MuJoCo's contact model adds.
 
 Poincare section (both modes): mid-stance, the stance spoke's pitch theta (3-1-2 angles R = Rz(psi) Rx(phi)
 Ry(theta) of the stance-spoke frame; the stance spoke is the lowest foot, i.e. theta wrapped to [-pi/n, pi/n))
 crossing 0 upwards, linearly interpolated; the state there is (psi, phi, psi_dot, phi_dot, theta_dot). Mid-stance is
 far from the soft impact; its map is conjugate to the paper's post-impact map (same eigenvalues). The 5-D map is
-fitted by affine least squares (:func:`analysis.returnmap.fit_return_map`) over a batch of small perturbations of the
-planar cycle (note 001 Sec. 5: least squares over many +-1e-3 starts, not finite differences). The heading is neutral
-(eigenvalue 1), so the fixed point is a one-parameter family: the simulated fixed point is the fitted map's fixed
-point restricted to psi = ``heading``, and the residual of the heading row there is the heading drift per impact.
+fitted by affine least squares (:func:`~mjpoincare.analysis.returnmap.fit_return_map`) over a batch of small
+perturbations of the planar cycle (note 001 Sec. 5: least squares over many +-1e-3 starts, not finite differences). The
+heading is neutral (eigenvalue 1), so the fixed point is a one-parameter family: the simulated fixed point is the
+fitted map's fixed point restricted to psi = ``heading``, and the residual of the heading row there is the heading
+drift per impact.
 
 Units: SI with the paper's scaling. The wheel has mass 1 kg (every checked quantity is independent of it), spoke
 length ``leg_length`` l (default 1 m) and gravity ``gravity`` g (default 9.81 m/s^2); angular rates are reported in
@@ -48,12 +49,12 @@ import mujoco
 import numpy as np
 from scipy.optimize import linear_sum_assignment
 
-from analysis import checks
-from analysis.returnmap import sample_pairs
-from analysis.sections import Crossings, level_crossings, wrap_phase
-from analysis.theory import rimless_wheel_3d as theory
-from analysis.theory import rimless_wheel_3d_hybrid as hybrid
 from mjpoincare import settings as sim_settings
+from mjpoincare.analysis import checks
+from mjpoincare.analysis.returnmap import sample_pairs
+from mjpoincare.analysis.sections import Crossings, level_crossings, wrap_phase
+from mjpoincare.analysis.theory import rimless_wheel_3d as theory
+from mjpoincare.analysis.theory import rimless_wheel_3d_hybrid as hybrid
 from mjpoincare.mjlog import captured_mujoco_log
 from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
@@ -157,7 +158,7 @@ def rate_unit(p: Values) -> float:
 def check_params(p: Values) -> None:
     """Refuse parameters outside the theory's assumptions, naming the parameter and the bound.
 
-    001 Sec. 2-5 (:func:`analysis.theory.rimless_wheel_3d.validate`): spokes >= 3, J > 0, |heading| < pi/2,
+    001 Sec. 2-5 (:func:`mjpoincare.analysis.theory.rimless_wheel_3d.validate`): spokes >= 3, J > 0, |heading| < pi/2,
     mu_collision > 0, effective slope above the existence threshold (eq 10, corrected). The stance normal force must
     stay positive (no flight; not in the paper, note 001 Sec. 1), and in contact mode ``mu`` must cover the friction
     the gait needs: the impact impulse ratio on the banked cycle and the stance max |F_t|/N of the exact reference.
@@ -347,7 +348,7 @@ class IdealImpactController:
     For each trajectory whose pitch passes theta = pi/n inside a chunk, the state is restarted from the last row
     before the guard with two fractional steps of the model's own integrator (secant on the step fraction), so the
     impact happens on the guard (measured within 1e-12 rad); the Euler rates jump by the vector law of 001 Sec. 3.2.2
-    (:func:`analysis.theory.rimless_wheel_3d_hybrid.impact_rates`), the orientation is relabelled to the new stance
+    (:func:`hybrid.impact_rates`), the orientation is relabelled to the new stance
     spoke (R -> R Ry(-2 pi/n), theta -> theta - 2 pi/n) and the pivot moves to the new foot. Mid-stance crossings
     are sampled on the kept rows.
     """
@@ -496,9 +497,9 @@ class MapFit:
     """Polynomial least-squares fit x_k+1 = F(x_k) of the 5-D mid-stance map (nondimensional) and what is read from it.
 
     The planar cycles form a family neutral in psi (eigenvalue 1, 001 Table 1), so F has no isolated fixed point (and
-    :func:`analysis.returnmap.fit_return_map`, which looks for one, does not apply); a biased map makes the cycle
-    drift along the family instead. ``fixed_point`` is the cycle at psi = heading and ``drift`` its heading change per
-    impact: F(x) = x + c t with t = d x*/d psi (t[0] = 1) and x[0] = heading, solved for (x[1:], c) by Newton.
+    :func:`~mjpoincare.analysis.returnmap.fit_return_map`, which looks for one, does not apply); a biased map makes the
+    cycle drift along the family instead. ``fixed_point`` is the cycle at psi = heading and ``drift`` its heading change
+    per impact: F(x) = x + c t with t = d x*/d psi (t[0] = 1) and x[0] = heading, solved for (x[1:], c) by Newton.
     ``A`` = DF there, the Jacobian whose eigenvalues are checked.
     """
 

@@ -1,7 +1,7 @@
 """Scenario ``rimless-wheel-friction``: the planar rimless wheel with Coulomb friction, stick-slip gaits A-D.
 
 Analytic reference: Gamus & Or (2015), Sec. 3 and Appendix A, through the exact event-driven hybrid simulator of
-:mod:`analysis.theory.rimless_wheel_friction` (sticking map eq 12-17, force ratio and mu_c eq 19-23, sticking
+:mod:`mjpoincare.analysis.theory.rimless_wheel_friction` (sticking map eq 12-17, force ratio and mu_c eq 19-23, sticking
 impulse ratio eq 25, slip dynamics eq 42, frictional impacts eq 43-45 as corrected there, regions of attraction
 eq 26 / Fig. 3.8). Gait types (002 Sec. 3.3): A sticking impact and stick throughout; B sticking impact, stick ->
 slip; C slipping impact, slip -> stick -> slip; D slipping impact and forward slip throughout (D+ / D-: the slip
@@ -44,10 +44,10 @@ from typing import Any
 import mujoco
 import numpy as np
 
-from analysis import checks
-from analysis.returnmap import fit_return_map, sample_pairs
-from analysis.sections import level_crossings, wrap_phase
-from analysis.theory import rimless_wheel_friction as theory
+from mjpoincare.analysis import checks
+from mjpoincare.analysis.returnmap import fit_return_map, sample_pairs
+from mjpoincare.analysis.sections import level_crossings, wrap_phase
+from mjpoincare.analysis.theory import rimless_wheel_friction as theory
 from mjpoincare.mjlog import captured_mujoco_log
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios import rimless_wheel as rw

@@ -11,8 +11,8 @@ from typing import Any
 
 import numpy as np
 
-from analysis.checks import jsonable
-from analysis.theory import rimless_wheel_friction as theory
+from mjpoincare.analysis.checks import jsonable
+from mjpoincare.analysis.theory import rimless_wheel_friction as theory
 from mjpoincare.params import ParameterError
 from mjpoincare.result import write_json
 from mjpoincare.scenarios.base import Values

@@ -1,7 +1,7 @@
 """Scenario ``slotted-skate``: the discrete Chaplygin sleigh, pegs switched by a controller.
 
 Analytic reference: Coleman & Holmes (1999), return map in (D, E, theta, H) (B.3, B.4), impact law
-(3.6)-(3.7), stability eigenvalue sigma_4 (3.10); see :mod:`analysis.theory.slotted_skate`.
+(3.6)-(3.7), stability eigenvalue sigma_4 (3.10); see :mod:`mjpoincare.analysis.theory.slotted_skate`.
 
 The peg is a MuJoCo joint equality in the "peg chart" (models/slotted_skate.xml): the controller
 (:class:`PegController`) stops each trajectory exactly at the slot end (a fractional step from the
@@ -23,10 +23,10 @@ import math
 import mujoco
 import numpy as np
 
-from analysis import checks
-from analysis.returnmap import fit_return_map
-from analysis.theory import slotted_skate as theory
 from mjpoincare import settings as sim_settings
+from mjpoincare.analysis import checks
+from mjpoincare.analysis.returnmap import fit_return_map
+from mjpoincare.analysis.theory import slotted_skate as theory
 from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios.base import Evaluation, Scenario, StressCase, Values
