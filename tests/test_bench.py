@@ -33,7 +33,7 @@ def test_quick_bench_writes_table_plot_and_json(tmp_path: Path, capsys: pytest.C
 
 
 def test_unskip_collisions_makes_every_geom_collide() -> None:
-    from mjpoincare.validate import resolve_inputs
+    from mjpoincare.validation import resolve_inputs
 
     scenario, _, params, settings = resolve_inputs("rimless-wheel", {"unskip": "collisions"}, None)
     model = scenario.build(params, settings)

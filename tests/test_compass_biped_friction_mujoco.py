@@ -18,7 +18,7 @@ from mjpoincare.cli import main
 from mjpoincare.result import Result
 from mjpoincare.scenarios import compass_biped_friction as sc
 from mjpoincare.scenarios import compass_biped_friction_stance as stance
-from mjpoincare.validate import resolve_inputs, run_validation
+from mjpoincare.validation import resolve_inputs, run_validation
 
 pytestmark = pytest.mark.mujoco
 

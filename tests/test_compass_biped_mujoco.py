@@ -12,7 +12,7 @@ import pytest
 from mjpoincare.analysis.theory import compass_biped as theory
 
 from mjpoincare.cli import main
-from mjpoincare.validate import run_validation
+from mjpoincare.validation import run_validation
 
 pytestmark = pytest.mark.mujoco
 

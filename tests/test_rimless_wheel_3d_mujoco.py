@@ -20,7 +20,7 @@ from mjpoincare.analysis.theory import rimless_wheel_3d as theory
 from mjpoincare.cli import main
 from mjpoincare.params import ParameterError
 from mjpoincare.scenarios import rimless_wheel_3d as rw3
-from mjpoincare.validate import resolve_inputs, run_validation
+from mjpoincare.validation import resolve_inputs, run_validation
 
 pytestmark = pytest.mark.mujoco
 

@@ -17,7 +17,7 @@ import pytest
 from mjpoincare.params import ParameterError
 from mjpoincare.scenarios import rimless_wheel_friction_basins as basins
 from mjpoincare.scenarios import rimless_wheel_friction_sweep as mu_sweep
-from mjpoincare.validate import resolve_inputs, run_validation
+from mjpoincare.validation import resolve_inputs, run_validation
 
 pytestmark = pytest.mark.mujoco
 

@@ -18,7 +18,7 @@ from mjpoincare import scenarios
 from mjpoincare.cli import main
 from mjpoincare.scenarios import rimless_wheel as rw
 from mjpoincare.simulate import initial_states, rollout_batch
-from mjpoincare.validate import resolve_inputs, run_validation
+from mjpoincare.validation import resolve_inputs, run_validation
 
 pytestmark = pytest.mark.mujoco
 

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from mjpoincare.cli import main
-from mjpoincare.validate import run_validation
+from mjpoincare.validation import run_validation
 
 pytestmark = pytest.mark.mujoco
 

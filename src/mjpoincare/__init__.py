@@ -1,1 +1,26 @@
-"""mjpoincare: analytic Poincare-map results of impacting systems, checked in MuJoCo."""
+"""mjpoincare: analytic Poincare-map results of impacting systems, checked in MuJoCo.
+
+``mjpoincare.validate(scenario, preset=None, seed=0, **values) -> Result`` is the Python API (see
+:mod:`mjpoincare.api`). The names below are loaded on first use, so that ``mjpoincare.analysis`` (numpy and scipy
+only) imports without MuJoCo.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from mjpoincare.api import validate
+    from mjpoincare.params import ParameterError
+    from mjpoincare.result import Result
+
+_LAZY = {"validate": "mjpoincare.api", "Result": "mjpoincare.result", "ParameterError": "mjpoincare.params"}
+__all__ = ["ParameterError", "Result", "validate"]
+
+
+def __getattr__(name: str) -> Any:
+    if name in _LAZY:
+        import importlib
+
+        return getattr(importlib.import_module(_LAZY[name]), name)
+    raise AttributeError(f"module 'mjpoincare' has no attribute {name!r}")

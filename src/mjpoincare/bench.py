@@ -29,7 +29,7 @@ from mjpoincare import scenarios
 from mjpoincare.analysis.checks import jsonable
 from mjpoincare.params import Value
 from mjpoincare.result import write_json
-from mjpoincare.validate import resolve_inputs, run_validation
+from mjpoincare.validation import resolve_inputs, run_validation
 
 #: (label, setting overrides): timestep refinement per integrator with the contact time constant kept at
 #: 10 steps, then contact variants at 0.1 ms steps.

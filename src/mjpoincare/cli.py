@@ -26,7 +26,7 @@ def _cmd_list(_: argparse.Namespace) -> int:
 def _cmd_validate(args: argparse.Namespace) -> int:
     from mjpoincare import scenarios
     from mjpoincare.result import write_json
-    from mjpoincare.validate import resolve_inputs, run_validation
+    from mjpoincare.validation import resolve_inputs, run_validation
 
     names = args.scenario or list(scenarios.DEFAULT_SCENARIOS)
     assignments = parse_assignments(args.set)
@@ -103,7 +103,7 @@ def _cmd_render(args: argparse.Namespace) -> int:
     if not args.seconds > 0 or not 1 <= args.fps <= 240:
         raise ParameterError(f"--seconds must be > 0 and --fps in [1, 240] (got {args.seconds}, {args.fps})")
     backend = select_gl_backend()  # before MuJoCo is imported
-    from mjpoincare.validate import resolve_inputs
+    from mjpoincare.validation import resolve_inputs
 
     resolve_inputs(args.scenario, assignments, args.preset)
     output = args.output or f"renders/{args.scenario}.mp4"

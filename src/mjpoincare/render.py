@@ -63,7 +63,7 @@ def render_frames(name: str, assignments: Mapping[str, str], preset: str | None,
     import mujoco
     from scipy import ndimage
 
-    from mjpoincare.validate import resolve_inputs
+    from mjpoincare.validation import resolve_inputs
 
     scenario, _, params, settings = resolve_inputs(name, assignments, preset)
     model = scenario.build(params, settings)

@@ -27,7 +27,7 @@ from mjpoincare.parallel import run_jobs
 from mjpoincare.params import ParameterError
 from mjpoincare.result import write_json
 from mjpoincare.sweep import parse_values, sweep_point
-from mjpoincare.validate import resolve_inputs
+from mjpoincare.validation import resolve_inputs
 
 
 def rollout_work(name: str, assignments: Mapping[str, str]) -> float:

@@ -35,7 +35,7 @@ from mjpoincare.parallel import run_jobs
 from mjpoincare.params import ParameterError
 from mjpoincare.result import write_json
 from mjpoincare.scenarios.base import Scenario, StressCase
-from mjpoincare.validate import resolve_inputs, run_validation
+from mjpoincare.validation import resolve_inputs, run_validation
 
 LADDER = (1, 2, 4, 8, 16, 32)
 BLOWUP = 10.0  # kinetic energy above this multiple of the largest initial one = blow-up

@@ -32,7 +32,7 @@ from mjpoincare.analysis.checks import jsonable
 from mjpoincare.parallel import check_engine, run_jobs
 from mjpoincare.params import ParameterError
 from mjpoincare.result import write_json
-from mjpoincare.validate import resolve_inputs, run_validation
+from mjpoincare.validation import resolve_inputs, run_validation
 
 
 def parse_values(text: str) -> list[str]:

@@ -281,7 +281,7 @@ def run_basin_map(grid: str, assignments: Mapping[str, str], preset: str | None,
     its PNG (``output``) and JSON; prints the disagreements, windows and convergence. Exit 0 when the simulated region
     of attraction differs from the reference on at most 5 % of the reference points."""
     from mjpoincare.sweep import parse_values
-    from mjpoincare.validate import resolve_inputs
+    from mjpoincare.validation import resolve_inputs
 
     axes: dict[str, np.ndarray] = {}
     for part in grid.split(","):

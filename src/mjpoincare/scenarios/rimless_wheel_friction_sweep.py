@@ -158,7 +158,7 @@ def run_mu_sweep(values: Sequence[str], assignments: Mapping[str, str], preset: 
     agreement, the located edges (mu_c = A/B) and the eigenvalue errors; exit 0 when the agreement is >= 95 %, every
     edge within 0.02 and every eigenvalue within 0.02, else 1."""
     from mjpoincare.parallel import run_jobs
-    from mjpoincare.validate import resolve_inputs
+    from mjpoincare.validation import resolve_inputs
 
     _, preset_name, p, s = resolve_inputs("rimless-wheel-friction", {k: v for k, v in assignments.items()
                                                                       if k != "mu"}, preset)

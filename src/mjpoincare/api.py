@@ -1,0 +1,34 @@
+"""The Python API: ``mjpoincare.validate(scenario, preset=None, seed=0, **values) -> Result``.
+
+The command line (:mod:`mjpoincare.cli`) is a thin layer over this function: the same inputs give the same
+:class:`~mjpoincare.result.Result`, and ``Result.to_dict()`` is the CLI's ``--json`` output.
+"""
+
+from __future__ import annotations
+
+from mjpoincare.params import ParameterError, Value
+from mjpoincare.result import Result
+from mjpoincare.validation import run_validation
+
+
+def validate(scenario: str, preset: str | None = None, seed: int = 0, **values: Value) -> Result:
+    """Run ``scenario``'s validation and check it against the analytic results.
+
+    Args:
+        scenario: a registered name (``mjpoincare list``), e.g. ``"rimless-wheel"``.
+        preset: simulator preset (``"fast"``, ``"accurate"``, ...); None is the scenario's default.
+        seed: seed of the experiment design's random parts (same seed, same result on any thread count).
+        **values: physical parameters and simulator settings, typed (``spokes=8``, ``timestep=2e-4``,
+            ``integrator="rk4"``); text as on the command line is accepted too.
+
+    Returns:
+        The :class:`~mjpoincare.result.Result`: ``passed`` (bool) and ``checks`` (name, analytic, simulated,
+        error, tolerance, passed, why each).
+
+    Raises:
+        ParameterError: (a ``ValueError``) any bad input, before any simulation; the message is one line naming
+            the parameter and its bound.
+    """
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise ParameterError(f"seed must be an integer >= 0 (got {seed!r})")
+    return run_validation(scenario, values, preset, seed)
