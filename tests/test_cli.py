@@ -47,3 +47,28 @@ def test_list_shows_scenarios_and_parameters(capsys: pytest.CaptureFixture[str])
     assert main(["list"]) == 0
     out = capsys.readouterr().out
     assert "rimless-wheel" in out and "spokes = 8" in out and "presets: fast, accurate" in out
+
+
+@pytest.mark.parametrize("command", [
+    ["validate", "rimless-wheel", "--json", "/proc/mjpoincare-x.json"],
+    ["validate", "rimless-wheel", "--report", "/proc/mjpoincare-report"],
+    ["sweep", "rimless-wheel", "--param", "slope", "--values", "0.1,0.12", "--json", "/proc/x.json"],
+    ["sweep", "slotted-skate", "--grid", "x=-1:0:2,y=0.1:0.5:2", "-o", "/proc/x.png"],
+    ["stress", "rimless-wheel", "--json", "/proc/x.json"],
+    ["bench", "rimless-wheel", "--quick", "--json", "/proc/x.json"],
+    ["bench", "rimless-wheel", "--quick", "-o", "/proc/x.png"],
+    ["render", "rimless-wheel", "-o", "/proc/x.mp4"],
+])
+def test_unwritable_output_exits_2_before_any_simulation(command: list[str], capsys: pytest.CaptureFixture[str],
+                                                         monkeypatch: pytest.MonkeyPatch) -> None:
+    """An output path that cannot be written is refused first: one line naming the option, exit 2, and no rollout
+    (every rollout goes through ``simulate._native_chunk``, which fails this test if reached)."""
+    from mjpoincare import simulate
+
+    def no_simulation(*_: object, **__: object) -> None:
+        raise AssertionError("simulated before checking the output path")
+
+    monkeypatch.setattr(simulate, "_native_chunk", no_simulation)
+    assert main(command) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "cannot be written" in err and "/proc/" in err, err

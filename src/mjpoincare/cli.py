@@ -25,14 +25,17 @@ def _cmd_list(_: argparse.Namespace) -> int:
 
 def _cmd_validate(args: argparse.Namespace) -> int:
     from mjpoincare import scenarios
-    from mjpoincare.result import write_json
-    from mjpoincare.validation import resolve_inputs, run_validation
+    from mjpoincare.api import validate
+    from mjpoincare.result import check_output_path, write_json
+    from mjpoincare.validation import resolve_inputs
 
     names = args.scenario or list(scenarios.DEFAULT_SCENARIOS)
     assignments = parse_assignments(args.set)
     for name in names:  # refuse bad input before any simulation or file
         resolve_inputs(name, assignments, args.preset)
-    results = [run_validation(name, assignments, args.preset, args.seed) for name in names]
+    check_output_path(args.json, "--json")
+    check_output_path(args.report, "--report", directory=True)
+    results = [validate(name, args.preset, args.seed, **assignments) for name in names]
     if args.json != "-":
         for result in results:
             print(result.table())
@@ -52,21 +55,33 @@ def _cmd_validate(args: argparse.Namespace) -> int:
 
 def _cmd_bench(args: argparse.Namespace) -> int:
     from mjpoincare.bench import run_bench, run_skips
+    from mjpoincare.result import check_output_path
 
     if args.scaling:
         from mjpoincare.scaling import run_scaling
 
         json_path = args.json if args.json != "renders/bench-{scenario}.json" else "renders/scaling-{scenario}.json"
+        check_output_path(json_path and json_path.format(scenario=args.scenario), "--json")
         return run_scaling(args.scenario, args.param, args.values, parse_assignments(args.set), json_path,
                            workers=args.workers, repeats=args.repeats)
     if args.skips:
         json_path = args.json if args.json != "renders/bench-{scenario}.json" else "renders/skips-{scenario}.json"
+        check_output_path(json_path and json_path.format(scenario=args.scenario), "--json")
         return run_skips(args.scenario, parse_assignments(args.set), json_path)
+    check_output_path(args.json and args.json.format(scenario=args.scenario), "--json")
+    check_output_path(args.output.format(scenario=args.scenario), "--output")
     return run_bench(args.scenario, parse_assignments(args.set), args.output, args.json, quick=args.quick)
 
 
 def _cmd_sweep(args: argparse.Namespace) -> int:
+    from mjpoincare.result import check_output_path
     from mjpoincare.sweep import parse_values, run_regions, run_sweep
+
+    check_output_path(args.json, "--json")
+    if args.grid:
+        output = args.output.format(scenario=args.scenario)
+        check_output_path(output.replace("regions-", "basins-") if args.scenario == "rimless-wheel-friction"
+                          else output, "--output")
 
     if args.scenario == "rimless-wheel-friction" and (args.grid or args.param == "mu"):
         from mjpoincare.scenarios import rimless_wheel_friction_basins as basins
@@ -90,7 +105,10 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
 
 
 def _cmd_stress(args: argparse.Namespace) -> int:
+    from mjpoincare.result import check_output_path
     from mjpoincare.stress import run_stress
+
+    check_output_path(args.json, "--json")
 
     return run_stress(args.scenario, args.json, soak=args.soak, workers=args.workers)
 
@@ -107,6 +125,9 @@ def _cmd_render(args: argparse.Namespace) -> int:
 
     resolve_inputs(args.scenario, assignments, args.preset)
     output = args.output or f"renders/{args.scenario}.mp4"
+    from mjpoincare.result import check_output_path
+
+    check_output_path(output, "--output")
     frames, timing = render_frames(args.scenario, assignments, args.preset, args.seconds, args.fps, size)
     write_media(output, frames, args.fps)
     print(f"wrote {output}: {len(frames)} frames {size[0]}x{size[1]} with MUJOCO_GL={backend}; "

@@ -1,52 +1,55 @@
-"""Capture MuJoCo's warnings instead of leaving them in the user's folder.
+"""Capture MuJoCo's warnings into the run's result, leaving the caller's process as it was.
 
-MuJoCo's default warning handler prints to the process's stdout and appends to
-``MUJOCO_LOG.TXT`` in the current directory, from whatever (C++) thread raised it. While a
-simulation runs under :func:`captured_mujoco_log`, the working directory is a private temporary
-folder and file descriptors 1 and 2 point at a temporary file; both are read back into the
-returned list afterwards. This keeps ``--json -`` output clean and leaves no file behind.
+MuJoCo's default warning handler prints to stdout and appends to ``MUJOCO_LOG.TXT`` in the current directory. While
+at least one :func:`captured_mujoco_log` is open, MuJoCo's settable warning callback (``mju_user_warning``) is
+pointed at a handler that hands each message to every open capture (and to the handler that was set before, if
+any); when the last capture closes, the previous handler is restored. No working directory, file descriptor or
+stream is touched, and no file is written. MuJoCo also counts warnings per ``MjData`` (``data.warning``), which
+:mod:`mjpoincare.simulate` reads for each rollout's own data.
+
+The callback is process-wide and MuJoCo raises it from its rollout worker threads, which do not say which
+validation they serve: a message raised while two validations run in one process reaches both captures.
 """
 
 from __future__ import annotations
 
 import contextlib
-import os
-import sys
-import tempfile
-from collections.abc import Iterator
-from pathlib import Path
+import threading
+from collections.abc import Callable, Iterator
+
+import mujoco
+
+_lock = threading.Lock()
+_open: dict[int, list[str]] = {}
+_previous: list[Callable[[str], None] | None] = []
+
+
+def _handler(message: str) -> None:
+    line = f"WARNING: {message.strip()}"
+    with _lock:
+        sinks = list(_open.values())
+        chained = _previous[0] if _previous else None
+    for sink in sinks:
+        if line not in sink:
+            sink.append(line)
+    if chained is not None:
+        chained(message)
 
 
 @contextlib.contextmanager
 def captured_mujoco_log() -> Iterator[list[str]]:
-    """Context manager yielding a list that receives MuJoCo's warning lines on exit."""
+    """Context manager yielding the list that receives MuJoCo's warning messages raised while it is open."""
     lines: list[str] = []
-    cwd = Path.cwd()
-    with tempfile.TemporaryDirectory(prefix="mjpoincare-") as tmp:
-        sys.stdout.flush()
-        sys.stderr.flush()
-        capture_path = Path(tmp) / "stdio.txt"
-        saved = [os.dup(1), os.dup(2)]
-        with open(capture_path, "wb") as capture:
-            os.dup2(capture.fileno(), 1)
-            os.dup2(capture.fileno(), 2)
-            os.chdir(tmp)
-            try:
-                yield lines
-            finally:
-                os.chdir(cwd)
-                os.dup2(saved[0], 1)
-                os.dup2(saved[1], 2)
-                for fd in saved:
-                    os.close(fd)
-        log = Path(tmp) / "MUJOCO_LOG.TXT"
-        text = log.read_text(errors="replace") if log.is_file() else ""
-        printed = capture_path.read_text(errors="replace")
-        seen = set()
-        for line in (text + "\n" + printed).splitlines():
-            line = line.strip()
-            # the log file stamps each line with a date; the printed copy does not: keep one of each
-            key = line.split(": ", 1)[-1]
-            if line and key not in seen:
-                seen.add(key)
-                lines.append(line)
+    with _lock:
+        if not _open:
+            _previous[:] = [mujoco.get_mju_user_warning()]
+            mujoco.set_mju_user_warning(_handler)
+        _open[id(lines)] = lines
+    try:
+        yield lines
+    finally:
+        with _lock:
+            del _open[id(lines)]
+            if not _open:
+                mujoco.set_mju_user_warning(_previous[0] if _previous else None)
+                _previous.clear()

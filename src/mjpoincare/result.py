@@ -11,6 +11,7 @@ from pathlib import Path
 from typing import Any
 
 from mjpoincare.analysis.checks import Check, jsonable
+from mjpoincare.params import ParameterError
 
 
 @dataclass
@@ -83,6 +84,27 @@ def _fmt(value: Any) -> str:
     if isinstance(value, float):
         return f"{value:.6g}"
     return str(value)
+
+
+def check_output_path(path: str | None, option: str, *, directory: bool = False) -> None:
+    """Refuse an output path that cannot be written, before any simulation: the nearest existing folder on the way
+    to ``path`` (``path`` itself when ``directory``) must be a directory that takes a new file. ``None`` and ``-``
+    (stdout) pass. Raises :class:`ParameterError` naming ``option``."""
+    if path is None or path == "-":
+        return
+    target = Path(path)
+    if not directory and target.is_dir():
+        raise ParameterError(f"{option} {path} is a directory, not a file")
+    folder = target if directory else target.parent
+    while not folder.exists() and folder != folder.parent:
+        folder = folder.parent
+    if not folder.is_dir():
+        raise ParameterError(f"{option} {path} cannot be written: {folder} is not a directory")
+    try:
+        with tempfile.TemporaryFile(dir=folder):
+            pass
+    except OSError as err:
+        raise ParameterError(f"{option} {path} cannot be written: {err.strerror or err} in {folder}") from None
 
 
 def write_json(payload: Any, path: str) -> None:

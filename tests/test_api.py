@@ -1,0 +1,102 @@
+"""The Python API's contract: typed values, the Result record, one exception type, the CLI as a thin layer over it,
+and a library call that leaves its caller's process alone (working directory, stdout, MuJoCo's warning handler)."""
+
+from __future__ import annotations
+
+import json
+import os
+import threading
+import time
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+import mujoco
+import pytest
+
+import mjpoincare
+from mjpoincare.cli import main
+
+
+def test_bad_values_raise_one_exception_type_naming_the_bound() -> None:
+    with pytest.raises(mjpoincare.ParameterError, match=r"spokes must be in \[3, 64\] \(got 2\)"):
+        mjpoincare.validate("rimless-wheel", spokes=2)
+    with pytest.raises(mjpoincare.ParameterError, match="unknown parameter 'spoke'"):
+        mjpoincare.validate("rimless-wheel", spoke=8)
+    with pytest.raises(mjpoincare.ParameterError, match="unknown scenario"):
+        mjpoincare.validate("no-such-system")
+    with pytest.raises(mjpoincare.ParameterError, match="seed must be"):
+        mjpoincare.validate("rimless-wheel", seed=-1)
+    assert issubclass(mjpoincare.ParameterError, ValueError)
+
+
+@pytest.mark.mujoco
+def test_typed_values_and_the_result_record(capsys: pytest.CaptureFixture[str]) -> None:
+    """Typed values give the same run as the CLI's text; ``to_dict`` is the CLI's JSON."""
+    result = mjpoincare.validate("rimless-wheel", spokes=8, slope=0.08, timestep=2e-4, solref_timeconst=8e-4)
+    assert isinstance(result.passed, bool)
+    assert result.params["spokes"] == 8 and result.settings["timestep"] == 2e-4
+    for check in result.checks:
+        for field in ("name", "analytic", "simulated", "error", "tolerance", "passed", "why"):
+            assert hasattr(check, field)
+    assert result.passed == all(c.passed for c in result.checks)
+    code = main(["validate", "rimless-wheel", "--set", "spokes=8", "--set", "slope=0.08", "--set", "timestep=2e-4",
+                 "--set", "solref_timeconst=8e-4", "--json", "-"])
+    payload = json.loads(capsys.readouterr().out)
+    assert code == (0 if result.passed else 1)
+    mine = result.to_dict()
+    for volatile in ("timing",):  # wall-clock times differ between two runs
+        mine.pop(volatile), payload.pop(volatile)
+    assert mine == payload
+
+
+@pytest.mark.mujoco
+def test_threads_give_the_serial_results_and_leave_cwd_and_stdout_alone(capfd: pytest.CaptureFixture[str]) -> None:
+    """Two validations in two threads of one process: the same checks as serial runs, while the caller's working
+    directory never changes and its prints (on file descriptor 1) still arrive."""
+    cases = [("rimless-wheel", {}), ("rimless-wheel", {"spokes": 10, "slope": 0.1})]
+    serial = [mjpoincare.validate(name, **values).to_dict()["checks"] for name, values in cases]
+    cwd = os.getcwd()
+    seen_cwd: set[str] = set()
+    done = threading.Event()
+
+    def watch() -> None:
+        while not done.is_set():
+            seen_cwd.add(os.getcwd())
+            print("caller still prints", flush=True)
+            time.sleep(0.01)
+
+    watcher = threading.Thread(target=watch)
+    watcher.start()
+    try:
+        with ThreadPoolExecutor(2) as pool:
+            threaded = list(pool.map(lambda case: mjpoincare.validate(case[0], **case[1]).to_dict()["checks"], cases))
+    finally:
+        done.set()
+        watcher.join()
+    assert threaded == serial
+    assert seen_cwd == {cwd}
+    out = capfd.readouterr().out
+    assert out.count("caller still prints") >= 10
+
+
+@pytest.mark.mujoco
+def test_warnings_go_into_the_result_not_a_file_or_stdout(tmp_path: Path, capfd: pytest.CaptureFixture[str]) -> None:
+    """A diverging start: MuJoCo's warning text is in the result, nothing is printed or written to the working
+    directory, and MuJoCo's warning handler is the caller's again afterwards."""
+    import numpy as np
+
+    from mjpoincare.scenarios import rimless_wheel as rw
+    from mjpoincare.simulate import initial_states, rollout_batch
+    from mjpoincare.validation import resolve_inputs
+
+    _, _, params, settings = resolve_inputs("rimless-wheel", {}, "fast")
+    model = rw.build(params, settings)
+    bad = initial_states(model, np.array([[0.0, 1.0, 0.0]]), np.array([[1e12, 0.0, 1e12]]))
+    before = mujoco.get_mju_user_warning()
+    report = rollout_batch(model, bad, 50, lambda _: None, threads=2, chunk_steps=25)
+    assert mujoco.get_mju_user_warning() is before
+    assert report.diverged.tolist() == [True]
+    assert any("WARNING: Nan, Inf or huge value" in line for line in report.warnings), report.warnings
+    captured = capfd.readouterr()
+    assert "WARNING" not in captured.out + captured.err
+    assert list(tmp_path.iterdir()) == []
