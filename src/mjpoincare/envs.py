@@ -1,0 +1,183 @@
+"""The validated systems as dm_control environments: ``load(name, preset=None, environment_kwargs=None, **values)``.
+
+Each registered scenario (:data:`ALL`) loads as a :class:`dm_control.rl.control.Environment`, in the manner of
+``dm_control.suite``: a :class:`Physics` over the scenario's compiled model with the given physical parameters and
+simulator settings applied (``scenario.build``, through MjSpec, not the raw MJCF file), and a :class:`SystemTask`
+that starts each episode from a full-physics start state the validation itself starts from (``scenario.probe``'s
+first batch, around the analytic fixed point or gait of the paper in ``scenario.source``, kept as
+``task.source``): its first row by default, ``task_kwargs={"start": i}`` row ``i``, ``{"start": None}`` a random
+row per episode.
+
+* Observations: ``position`` (qpos), ``velocity`` (qvel), ``com_velocity`` (world-frame velocity of the centre of
+  mass of ``scenario.track_body``'s subtree: the whole wheel, walker or skate).
+* Reward: the down-slope speed of that centre of mass, m/s (the slope is tilted gravity, so down-slope is the
+  horizontal part of ``model.opt.gravity``: model +x); with no slope (``slotted-skate``, gravity off) its
+  horizontal speed.
+* Actions: one per model actuator. Only the compass bipeds have any: ``ankle0``, ``ankle1`` on the leg hinges and
+  ``hip`` on the ``leg1 - leg0`` tendon. The MJCF builds them with zero gain (the validation drives them through
+  their biases), so the environment sets a unit gain: an action is a torque, N m, unbounded (with ``gait=iii`` of
+  ``compass-biped-friction`` the ankles keep the PD bias ``-kp q - kd q_dot`` the scenario builds in, and an ankle
+  action is the PD's reference term ``kp q_ref + kd q_ref_dot``). The others have an empty action.
+
+What the environment does NOT do: it steps plain MuJoCo physics, without the validation's event controllers. The
+planar rimless wheels (``rimless-wheel``, ``rimless-wheel-friction``) and ``rimless-wheel-3d`` with
+``impact=contact`` (the default) need none: their environments are the validated simulation. For the others a user
+gets the validated model and start, and their own controller acts through ``physics`` and the actions:
+
+* ``compass-biped``, ``compass-biped-friction``: no contact switching (the swing foot's contact is not switched off
+  after heel strike nor back on once ahead and clear, the trailing foot is not released at heel strike; the
+  validation toggles ``physics.model.geom_contype`` of ``foot0`` / ``foot1``). The swing foot catches the slope
+  near legs-parallel (t = 0.24 s on the default ``compass-biped``) and the walker falls forward, legs together. No
+  constant or PD torques either (``tau_ankle``, ``tau_hip``, gaits ``i`` / ``iii``), and no phase reset.
+* ``slotted-skate``: no peg switching at the slot ends: the one peg stays in and the slot acts as if unbounded.
+* ``rimless-wheel-3d`` with ``impact=ideal``: no impact law and no pivot moves: the wheel swings about one foot
+  (through the slope: contact is off in that mode).
+"""
+
+from __future__ import annotations
+
+import collections
+import contextlib
+from collections.abc import Iterator, Mapping
+from typing import Any
+
+import mujoco
+import numpy as np
+from dm_control import mujoco as dm_mujoco
+from dm_control.mujoco import wrapper
+from dm_control.mujoco.wrapper.mjbindings import sizes
+from dm_control.rl import control
+from dm_control.suite import base
+
+from mjpoincare import scenarios
+from mjpoincare.params import ParameterError, Value
+from mjpoincare.validation import resolve_inputs
+
+#: The loadable names: every scenario of the registry.
+ALL: tuple[str, ...] = tuple(scenarios.REGISTRY)
+#: Default episode length, s (``environment_kwargs={"time_limit": ...}`` overrides it).
+DEFAULT_TIME_LIMIT = 10.0
+_FULLPHYSICS = mujoco.mjtState.mjSTATE_FULLPHYSICS
+
+
+@contextlib.contextmanager
+def _known_fields(model: mujoco.MjModel, data: mujoco.MjData) -> Iterator[None]:
+    """dm_control's named-index table without the fields the installed ``mujoco`` no longer has.
+
+    dm_control 1.0.50 lists flex fields that mujoco 4.0 removed (``flex_vertedge``, ``flexvert_J``...) and its
+    named indexing fails on the first one it cannot read, for every model (its own suite included). Only while
+    a :class:`Physics` sets up its indexing, and only when a field is missing, the table is swapped for a copy
+    without those fields; nothing that exists is touched.
+    """
+    table = sizes.array_sizes
+    kept = {struct: {f: dims for f, dims in fields.items() if hasattr(obj, f)}
+            for struct, fields, obj in (("mjmodel", table["mjmodel"], model), ("mjdata", table["mjdata"], data))}
+    if all(len(kept[s]) == len(table[s]) for s in kept):
+        yield
+        return
+    sizes.array_sizes = {**table, **kept}
+    try:
+        yield
+    finally:
+        sizes.array_sizes = table
+
+
+class Physics(dm_mujoco.Physics):
+    """dm_control physics of a validated system, with the centre-of-mass velocity the reward reads."""
+
+    def _reload_from_data(self, data: wrapper.MjData) -> None:
+        with _known_fields(data.model.ptr, data.ptr):
+            super()._reload_from_data(data)
+
+    def subtree_velocity(self, body: str) -> np.ndarray:
+        """World-frame linear velocity of the centre of mass of ``body``'s subtree.
+
+        MuJoCo fills ``subtree_linvel`` only on demand, so this calls ``mj_subtreeVel`` first.
+        """
+        mujoco.mj_subtreeVel(self.model.ptr, self.data.ptr)
+        return np.array(self.named.data.subtree_linvel[body])
+
+    def downhill(self) -> np.ndarray | None:
+        """Unit down-slope direction: the horizontal part of gravity (the slope is tilted gravity); None if level."""
+        g = np.array(self.model.opt.gravity, float)
+        g[2] = 0.0
+        norm = float(np.linalg.norm(g))
+        return g / norm if norm > 0.0 else None
+
+
+class SystemTask(base.Task):
+    """Start from the validation's start state, observe the state, reward down-slope speed."""
+
+    def __init__(self, track_body: str, starts: np.ndarray, start: int | None = 0,
+                 random: int | np.random.RandomState | None = None, source: str = "") -> None:
+        """
+        Args:
+            track_body: body whose subtree's centre of mass the reward and ``com_velocity`` follow.
+            starts: full-physics start states, (batch, nstate).
+            start: row of ``starts`` each episode starts from; None draws one per episode with ``self.random``.
+            random: seed or ``RandomState`` of that draw.
+            source: the analytic reference the start comes from (the scenario's ``source``).
+        """
+        starts = np.atleast_2d(np.asarray(starts, float))
+        if start is not None and (isinstance(start, bool) or not isinstance(start, int)
+                                  or not 0 <= start < len(starts)):
+            raise ParameterError(f"start must be None or an integer in [0, {len(starts)}) (got {start!r})")
+        self.track_body, self.starts, self.start, self.source = track_body, starts, start, source
+        super().__init__(random=random)
+
+    def initialize_episode(self, physics: Physics) -> None:
+        """Set the chosen start state (time, qpos, qvel, act, mocap, active equalities...)."""
+        row = self.random.randint(len(self.starts)) if self.start is None else self.start
+        mujoco.mj_setState(physics.model.ptr, physics.data.ptr, self.starts[row], _FULLPHYSICS)
+        super().initialize_episode(physics)
+
+    def get_observation(self, physics: Physics) -> collections.OrderedDict[str, np.ndarray]:
+        """``position`` (qpos), ``velocity`` (qvel), ``com_velocity`` (tracked subtree's centre of mass, world)."""
+        obs: collections.OrderedDict[str, np.ndarray] = collections.OrderedDict()
+        obs["position"] = physics.data.qpos.copy()
+        obs["velocity"] = physics.data.qvel.copy()
+        obs["com_velocity"] = physics.subtree_velocity(self.track_body)
+        return obs
+
+    def get_reward(self, physics: Physics) -> float:
+        """Down-slope speed of the tracked centre of mass, m/s (horizontal speed when there is no slope)."""
+        velocity = physics.subtree_velocity(self.track_body)
+        direction = physics.downhill()
+        if direction is None:
+            return float(np.linalg.norm(velocity[:2]))
+        return float(velocity @ direction)
+
+
+def _unit_gains(model: mujoco.MjModel) -> None:
+    """Give fixed-gain actuators built with zero gain a unit gain, so that ``ctrl`` is the force or torque."""
+    for i in range(model.nu):
+        if model.actuator_gaintype[i] == mujoco.mjtGain.mjGAIN_FIXED and model.actuator_gainprm[i, 0] == 0.0:
+            model.actuator_gainprm[i, 0] = 1.0
+
+
+def load(name: str, preset: str | None = None, environment_kwargs: Mapping[str, Any] | None = None,
+         task_kwargs: Mapping[str, Any] | None = None, **values: Value) -> control.Environment:
+    """The dm_control environment of scenario ``name``.
+
+    Args:
+        name: a registered scenario (:data:`ALL`), e.g. ``"rimless-wheel"``.
+        preset: simulator preset (``"fast"``, ``"accurate"``, ...); None is the scenario's default.
+        environment_kwargs: passed to :class:`dm_control.rl.control.Environment` (``time_limit``, default
+            :data:`DEFAULT_TIME_LIMIT`; ``control_timestep`` or ``n_sub_steps``, default one physics step).
+        task_kwargs: passed to :class:`SystemTask`: ``start`` (row of the start batch, None: random) and ``random``.
+        **values: physical parameters and simulator settings, typed (``spokes=8``) or as text, as for
+            :func:`mjpoincare.validate`.
+
+    Raises:
+        ParameterError: any bad input (unknown scenario, preset or parameter, value out of range), one line.
+    """
+    scenario, _, params, settings = resolve_inputs(name, values, preset)
+    model, batches = scenario.probe(params, settings)
+    _unit_gains(model)
+    physics = Physics.from_model(wrapper.MjModel(model))
+    task = SystemTask(scenario.track_body, batches[0][0], source=scenario.source, **dict(task_kwargs or {}))
+    kwargs = {"time_limit": DEFAULT_TIME_LIMIT, **dict(environment_kwargs or {})}
+    return control.Environment(physics, task, **kwargs)
+
+
+__all__ = ["ALL", "DEFAULT_TIME_LIMIT", "Physics", "SystemTask", "load"]
