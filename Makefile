@@ -1,26 +1,43 @@
 # Two commands do all the set-up on a fresh machine:
-#   make validate   creates .venv, installs mjpoincare, runs the default validation and prints the table
-#   make test       creates .venv, installs mjpoincare with its dev tools, runs ruff and pytest
+#   make validate   creates .venv, installs mjpoincare from the lock, runs the default validation and prints the table
+#   make test       creates .venv, installs mjpoincare with its dev tools from the lock, runs ruff and pytest
+# The lock (requirements/lock.txt) pins every dependency for every Python >= 3.10 and platform (uv's universal
+# resolution); pip installs through it as constraints, so CI and a new user get the versions the suite was tested on.
+#   make lock         regenerate requirements/lock.txt from pyproject.toml
+#   make test-latest  the tests against the newest versions pyproject.toml allows (finds dependency drift)
 PYTHON ?= python3
 VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
+LOCK := requirements/lock.txt
+LATEST := .venv-latest
 
-.PHONY: validate test bench gate clean
+.PHONY: validate test test-latest lock bench gate clean
 
-$(STAMP): pyproject.toml
+$(STAMP): pyproject.toml $(LOCK)
 	@$(PYTHON) -c 'import sys; sys.exit(0 if sys.version_info >= (3, 10) else "mjpoincare needs Python >= 3.10")'
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -e ".[dev]"
+	$(BIN)/python -m pip install --quiet --constraint $(LOCK) -e ".[dev]"
 	touch $(STAMP)
 
 validate: $(STAMP)
 	$(BIN)/mjpoincare validate
 
 test: $(STAMP)
-	$(BIN)/ruff check src analysis tests
+	$(BIN)/ruff check src analysis models tests
 	$(BIN)/python -m pytest -q
+
+test-latest:
+	$(PYTHON) -m venv $(LATEST)
+	$(LATEST)/bin/python -m pip install --quiet --upgrade pip
+	$(LATEST)/bin/python -m pip install --quiet --upgrade --upgrade-strategy eager -e ".[dev]"
+	$(LATEST)/bin/python -m pip list --format freeze | grep -iE '^(mujoco|numpy|scipy|dm-control)=='
+	$(LATEST)/bin/python -m pytest -q
+
+lock: $(STAMP)
+	$(BIN)/python -m pip install --quiet uv
+	$(BIN)/uv pip compile pyproject.toml --extra dev --universal --python-version 3.10 --quiet -o $(LOCK)
 
 bench: $(STAMP)
 	$(BIN)/mjpoincare bench rimless-wheel
@@ -36,4 +53,4 @@ gate:
 	.venv-mujoco-$(MUJOCO)/bin/mjpoincare validate --json renders/gate-mujoco-$(MUJOCO).json
 
 clean:
-	rm -rf $(VENV) .venv-mujoco-* build *.egg-info
+	rm -rf $(VENV) $(LATEST) .venv-mujoco-* build *.egg-info

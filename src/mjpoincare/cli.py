@@ -1,14 +1,23 @@
-"""``mjpoincare list | validate | bench | sweep | stress | render``: the command line."""
+"""``mjpoincare list | validate | bench | sweep | stress | margins | render``: the command line."""
 
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import sys
 from collections.abc import Sequence
+from pathlib import Path
 
 from mjpoincare.params import ParameterError, parse_assignments
 
 EXIT_PASS, EXIT_FAIL, EXIT_BAD_INPUT = 0, 1, 2
+
+
+def _require_viz(what: str, *modules: str) -> None:
+    """Refuse, before any simulation, a command whose output needs the optional ``viz`` extra when it is missing."""
+    missing = [m for m in modules if importlib.util.find_spec(m) is None]
+    if missing:
+        raise ParameterError(f"{what} needs {', '.join(missing)}: pip install 'mjpoincare[viz]'")
 
 
 def _cmd_list(_: argparse.Namespace) -> int:
@@ -35,6 +44,8 @@ def _cmd_validate(args: argparse.Namespace) -> int:
         resolve_inputs(name, assignments, args.preset)
     check_output_path(args.json, "--json")
     check_output_path(args.report, "--report", directory=True)
+    if args.report:
+        _require_viz("--report", "matplotlib")
     results = [validate(name, args.preset, args.seed, **assignments) for name in names]
     if args.json != "-":
         for result in results:
@@ -70,6 +81,7 @@ def _cmd_bench(args: argparse.Namespace) -> int:
         return run_skips(args.scenario, parse_assignments(args.set), json_path)
     check_output_path(args.json and args.json.format(scenario=args.scenario), "--json")
     check_output_path(args.output.format(scenario=args.scenario), "--output")
+    _require_viz("bench's plot", "matplotlib")
     return run_bench(args.scenario, parse_assignments(args.set), args.output, args.json, quick=args.quick)
 
 
@@ -82,6 +94,7 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
         output = args.output.format(scenario=args.scenario)
         check_output_path(output.replace("regions-", "basins-") if args.scenario == "rimless-wheel-friction"
                           else output, "--output")
+        _require_viz("sweep --grid", "matplotlib")
 
     if args.scenario == "rimless-wheel-friction" and (args.grid or args.param == "mu"):
         from mjpoincare.scenarios import rimless_wheel_friction_basins as basins
@@ -113,6 +126,35 @@ def _cmd_stress(args: argparse.Namespace) -> int:
     return run_stress(args.scenario, args.json, soak=args.soak, workers=args.workers)
 
 
+def _cmd_margins(args: argparse.Namespace) -> int:
+    import json
+
+    from mjpoincare import gate
+    from mjpoincare.result import check_output_path, write_json
+
+    check_output_path(args.json, "--json")
+    cases = [c for c in gate.GATE if not args.case or any(k in c.label for k in args.case)]
+    if not cases:
+        raise ParameterError(f"--case matches no gate case; cases: {', '.join(c.label for c in gate.GATE)}")
+    compare = {}
+    for path in args.compare:
+        try:
+            other = json.loads(Path(path).read_text())["rows"]
+        except (OSError, ValueError, KeyError) as err:
+            raise ParameterError(f"--compare {path} is not a margins JSON file ({err})") from None
+        compare.update({(r["case"], r["check"]): float("nan") if r["error"] is None else r["error"] for r in other})
+    rows = gate.margin_rows(cases, compare)
+    if args.json != "-":
+        print(gate.margin_table(rows))
+    if args.json:
+        import mujoco
+
+        from mjpoincare.analysis.checks import jsonable
+
+        write_json(jsonable({"mujoco_version": mujoco.__version__, "margin": gate.MARGIN, "rows": rows}), args.json)
+    return EXIT_PASS if all(r["holds"] for r in rows) else EXIT_FAIL
+
+
 def _cmd_render(args: argparse.Namespace) -> int:
     from mjpoincare.render import parse_size, render_frames, select_gl_backend, write_media
 
@@ -128,6 +170,7 @@ def _cmd_render(args: argparse.Namespace) -> int:
     from mjpoincare.result import check_output_path
 
     check_output_path(output, "--output")
+    _require_viz("render", "mediapy", "imageio_ffmpeg")
     frames, timing = render_frames(args.scenario, assignments, args.preset, args.seconds, args.fps, size)
     write_media(output, frames, args.fps)
     print(f"wrote {output}: {len(frames)} frames {size[0]}x{size[1]} with MUJOCO_GL={backend}; "
@@ -196,6 +239,15 @@ def build_parser() -> argparse.ArgumentParser:
     stress.add_argument("--soak", type=int, default=10_000, help="impacts in the soak from the fixed point (0: none)")
     stress.add_argument("--workers", type=int, default=1, help="cases run at once (processes)")
     stress.set_defaults(func=_cmd_stress)
+
+    margins = sub.add_parser("margins", help="the regression gate's checks under perturbations that must not matter "
+                             "(seed, threads, starts x(1+1e-12)): error, spread, tolerance, margin")
+    margins.add_argument("--case", action="append", default=[], metavar="TEXT", help="only cases whose label "
+                         "contains TEXT (repeatable), e.g. rimless-wheel[fast")
+    margins.add_argument("--json", metavar="PATH|-", help="write the margin table as JSON (- for stdout)")
+    margins.add_argument("--compare", action="append", default=[], metavar="JSON", help="a margins JSON from another "
+                         "environment (e.g. the oldest numpy/scipy): its errors count into the spread")
+    margins.set_defaults(func=_cmd_margins)
 
     render = sub.add_parser("render", help="render a scenario off-screen to a video (.mp4, .gif) or still (.png)")
     render.add_argument("scenario", help="scenario name")

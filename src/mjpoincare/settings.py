@@ -49,6 +49,8 @@ SETTINGS: tuple[Param, ...] = (
     Param("solver", "newton", "constraint solver", str, choices=tuple(SOLVERS)),
     Param("jacobian", "auto", "constraint Jacobian storage", str, choices=tuple(JACOBIANS)),
     Param("threads", 2, "rollout threads", int, 1, 256),
+    Param("start_perturbation", 0.0, "relative change of every start state's velocities (a rounding-sized change, "
+          "e.g. 1e-12, that must not change a verdict: mjpoincare margins)", float, 0.0, 1e-6),
     Param("unskip", "none", "undo one of the scene's skips, to measure it (bench --skips): collisions = every geom "
           "collides with every other (no filtering to the feet and the ground), contact = contact detection on where "
           "only equality constraints act", str, choices=("none", "collisions", "contact")),
@@ -95,6 +97,11 @@ def apply_unskip(spec: mujoco.MjSpec, settings: Mapping[str, Value]) -> None:
             geom.contype, geom.conaffinity = 1, 1
     elif which == "contact":
         spec.option.disableflags &= ~int(mujoco.mjtDisableBit.mjDSBL_CONTACT)
+
+
+def rollout_options(settings: Mapping[str, Value]) -> dict[str, float | int]:
+    """The keyword arguments every batched rollout takes from the settings (threads, start perturbation)."""
+    return {"threads": int(settings["threads"]), "start_perturbation": float(settings["start_perturbation"])}
 
 
 def as_json(settings: Mapping[str, Value]) -> dict[str, object]:

@@ -103,6 +103,14 @@ def initial_states(model: mujoco.MjModel, qpos: np.ndarray, qvel: np.ndarray) ->
     return out
 
 
+def perturbed_starts(state0: np.ndarray, nq: int, nv: int, relative: float) -> np.ndarray:
+    """A copy of the full-physics states ``state0`` (B, nstate) with the velocities scaled by ``1 + relative``."""
+    current = np.array(state0, dtype=float)
+    if relative:
+        current[:, 1 + nq : 1 + nq + nv] *= 1.0 + relative
+    return current
+
+
 def _warning_lines(datas: list[mujoco.MjData]) -> list[str]:
     lines = []
     for name, kind in mujoco.mjtWarning.__members__.items():
@@ -144,19 +152,21 @@ def rollout_batch(
     *,
     threads: int = 2,
     chunk_steps: int = 20000,
+    start_perturbation: float = 0.0,
 ) -> RolloutReport:
     """Step every initial state in ``state0`` (B, nstate) for ``nstep`` steps, in native chunks.
 
-    ``consume`` is called with each :class:`Chunk`. Trajectories whose time does not advance by
-    exactly one timestep per step (MuJoCo reset them after an instability) or that contain
-    NaN/inf are flagged in ``diverged``; their rows after the divergence are set to NaN before
-    ``consume`` sees them, so no sample is taken from a reset state.
+    ``consume`` is called with each :class:`Chunk`. ``start_perturbation``: every start's velocities are scaled by
+    ``1 + start_perturbation`` (a rounding-sized change for measuring a verdict's sensitivity; 0 leaves them).
+    Trajectories whose time does not advance by exactly one timestep per step (MuJoCo reset them after an
+    instability) or that contain NaN/inf are flagged in ``diverged``; their rows after the divergence are set to NaN
+    before ``consume`` sees them, so no sample is taken from a reset state.
     """
     nq, nv = model.nq, model.nv
     batch = state0.shape[0]
     datas = [mujoco.MjData(model) for _ in range(max(1, threads))]
     report = RolloutReport(diverged=np.zeros(batch, bool))
-    current = np.array(state0, dtype=float)
+    current = perturbed_starts(state0, nq, nv, start_perturbation)
     dt = model.opt.timestep
     with captured_mujoco_log() as log, mj_rollout.Rollout(nthread=threads) as pool:
         done = 0
@@ -180,6 +190,7 @@ def event_rollout(
     threads: int = 2,
     chunk_steps: int = 200,
     control: Callable[[np.ndarray], np.ndarray] | None = None,
+    start_perturbation: float = 0.0,
 ) -> RolloutReport:
     """Batched rollout with a controller that acts at events, without Python between steps.
 
@@ -199,12 +210,13 @@ def event_rollout(
     acts on the step from recorded row k to k + 1). A time-varying feedforward (e.g. a reference trajectory in
     the phase since the last event, which the controller tracks) thus needs no Python between steps; rows
     after an event are discarded and the next chunk's control starts from the restart row.
+    ``start_perturbation``: as in :func:`rollout_batch`.
     """
     batch = state0.shape[0]
     nq, nv = models[0].nq, models[0].nv
     datas = [mujoco.MjData(models[0]) for _ in range(max(1, threads))]
     report = RolloutReport(diverged=np.zeros(batch, bool))
-    current = np.array(state0, dtype=float)
+    current = perturbed_starts(state0, nq, nv, start_perturbation)
     kept = np.zeros(batch, int)
     dt = models[0].opt.timestep
     with captured_mujoco_log() as log, mj_rollout.Rollout(nthread=threads) as pool:

@@ -33,6 +33,7 @@ from mjpoincare.analysis.theory import compass_biped as theory
 from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios.base import Evaluation, Scenario, Soak, StressCase, Values
+from mjpoincare.settings import rollout_options
 from mjpoincare.simulate import Chunk, KeptRows, RolloutReport, event_rollout, initial_states
 
 PARAMS: tuple[Param, ...] = (
@@ -292,7 +293,7 @@ def _run(model: mujoco.MjModel, bp: theory.CompassBiped, starts: np.ndarray, ste
     period = theory.step_period(bp, theory.fixed_point(bp))
     nstep = math.ceil((steps + 0.5) * period / model.opt.timestep)
     report = event_rollout(models, post_impact_states(model, bp, starts, float(s["foot_radius"])), nstep,
-                           controller, threads=int(s["threads"]),
+                           controller, **rollout_options(s),
                            chunk_steps=max(10, round(CHUNK_SECONDS / model.opt.timestep)))
     return controller, report
 

@@ -44,6 +44,7 @@ from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios import compass_biped as cb
 from mjpoincare.scenarios import compass_biped_friction_stance as stance
 from mjpoincare.scenarios.base import Evaluation, Scenario, StressCase, Values
+from mjpoincare.settings import rollout_options
 from mjpoincare.simulate import Chunk, KeptRows, RolloutReport, event_rollout, initial_states
 
 GAITS = ("a", "b", "c", "i", "ii", "iii")
@@ -350,7 +351,7 @@ def _run(p: Values, s: Values, model: mujoco.MjModel, starts: np.ndarray, steps:
     nstep = math.ceil((steps + 0.5) * g.record.period / model.opt.timestep)
     kept = KeptRows(controller) if wrap else None
     report = event_rollout(models, post_impact_states(model, g.biped, starts, radius), nstep,
-                           kept if kept is not None else controller, threads=int(s["threads"]), chunk_steps=chunk,
+                           kept if kept is not None else controller, **rollout_options(s), chunk_steps=chunk,
                            control=(lambda t0: controller.control(t0, chunk)) if pd is not None else None)
     return controller, report, kept
 

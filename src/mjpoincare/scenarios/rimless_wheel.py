@@ -33,6 +33,7 @@ from mjpoincare.mjlog import captured_mujoco_log
 from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios.base import Evaluation, Scenario, Soak, StressCase, Values
+from mjpoincare.settings import rollout_options
 from mjpoincare.simulate import Chunk, RolloutReport, initial_states, rollout_batch
 
 PARAMS: tuple[Param, ...] = (
@@ -205,7 +206,7 @@ def _simulate(model: mujoco.MjModel, w: theory.RimlessWheel, omega0: np.ndarray,
     radius = float(s["foot_radius"])
     recorder = _Recorder(w, len(omega0), radius)
     report = rollout_batch(model, post_impact_states(model, w, omega0, radius), _whole_chunks(model, seconds),
-                           recorder, threads=int(s["threads"]), chunk_steps=_chunk(model))
+                           recorder, **rollout_options(s), chunk_steps=_chunk(model))
     return recorder, report
 
 

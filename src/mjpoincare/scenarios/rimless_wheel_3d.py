@@ -59,6 +59,7 @@ from mjpoincare.mjlog import captured_mujoco_log
 from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios.base import Evaluation, Scenario, Soak, StressCase, Values
+from mjpoincare.settings import rollout_options
 from mjpoincare.simulate import Chunk, KeptRows, RolloutReport, event_rollout, initial_states, rollout_batch
 
 MODES = ("contact", "ideal")
@@ -436,15 +437,15 @@ def _run(p: Values, s: Values, model: mujoco.MjModel, x0: np.ndarray, impacts: i
     dt = model.opt.timestep
     seconds = (impacts + 1.2) * _step_seconds(p)
     nstep = math.ceil(seconds / dt)
-    threads = int(s["threads"])
+    options = rollout_options(s)
     if _ideal(p):
         controller = IdealImpactController(p, len(x0))
         chunk = max(10, round(EVENT_CHUNK_FRACTION * _step_seconds(p) / dt))
-        report = event_rollout([copy.copy(model) for _ in x0], state0, nstep, controller, threads=threads,
+        report = event_rollout([copy.copy(model) for _ in x0], state0, nstep, controller, **options,
                                chunk_steps=chunk)
         return _Run(_first_samples(controller.mid, len(x0), impacts, p), report, guard_error=controller.guard_error)
     recorder = _ContactRecorder(p, s, len(x0))
-    report = rollout_batch(model, state0, nstep, recorder, threads=threads,
+    report = rollout_batch(model, state0, nstep, recorder, **options,
                            chunk_steps=max(1, round(CHUNK_SECONDS / dt)))
     return _Run(_first_samples(recorder.mid, len(x0), impacts, p), report,
                 max_clearance=float(np.nanmax(recorder.max_clearance)))

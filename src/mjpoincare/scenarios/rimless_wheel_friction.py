@@ -52,6 +52,7 @@ from mjpoincare.mjlog import captured_mujoco_log
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios import rimless_wheel as rw
 from mjpoincare.scenarios.base import Evaluation, Scenario, Soak, StressCase, Values
+from mjpoincare.settings import rollout_options
 from mjpoincare.simulate import Chunk, RolloutReport, event_rollout
 
 PAPER_SLOPE = math.radians(13.0)
@@ -221,7 +222,7 @@ class Recorded:
     report: RolloutReport
 
 
-def simulate(models: Sequence[mujoco.MjModel], state0: np.ndarray, seconds: float, threads: int) -> Recorded:
+def simulate(models: Sequence[mujoco.MjModel], state0: np.ndarray, seconds: float, s: Values) -> Recorded:
     """Roll every initial state out for ``seconds`` (one :func:`mujoco.rollout` batch, a model per trajectory, native
     chunks of 0.5 s) and keep every recorded row."""
     dt = models[0].opt.timestep
@@ -233,7 +234,7 @@ def simulate(models: Sequence[mujoco.MjModel], state0: np.ndarray, seconds: floa
         parts.append(c if not parts else Chunk(c.time[:, 1:], c.qpos[:, 1:], c.qvel[:, 1:]))
         return np.full(c.time.shape[0], chunk)
 
-    report = event_rollout(list(models), state0, nstep, keep, threads=threads, chunk_steps=chunk)
+    report = event_rollout(list(models), state0, nstep, keep, chunk_steps=chunk, **rollout_options(s))
     time_ = np.concatenate([c.time for c in parts], axis=1)[:, : nstep + 1]
     qpos = np.concatenate([c.qpos for c in parts], axis=1)[:, : nstep + 1]
     qvel = np.concatenate([c.qvel for c in parts], axis=1)[:, : nstep + 1]
@@ -692,7 +693,7 @@ def run_batch(p: Values, s: Values, preset: str, starts: np.ndarray, steps: int,
     mu_all = np.full(len(starts), float(p["mu"])) if mus is None else np.asarray(mus, float)
     models = [model] * len(starts) if mus is None else [with_friction(model, float(m)) for m in mu_all]
     period = period_seconds(p, mu_all)
-    rec = simulate(models, start_states(model, p, s, starts), steps * period + extra, int(s["threads"]))
+    rec = simulate(models, start_states(model, p, s, starts), steps * period + extra, s)
     cls = classifier(mu_all, s, preset, len(starts))
     rows = row_signals(rec, p, s, cls, np.asarray(model.opt.gravity))
     return rows, step_table(rows, cls, steps + 2), cls, rec.report
@@ -920,7 +921,7 @@ def soak(p: Values, s: Values, impacts: int) -> Soak:
     gait = reference_gait(w)
     model = build(p, s)
     seconds = impacts * period_seconds(p, np.array([w.mu])) + 0.5
-    rec = simulate([model], start_states(model, p, s, np.array([gait_start(gait)])), seconds, int(s["threads"]))
+    rec = simulate([model], start_states(model, p, s, np.array([gait_start(gait)])), seconds, s)
     cls = classifier(w.mu, s, "fast", 1)
     rows = row_signals(rec, p, s, cls, np.asarray(model.opt.gravity))
     phi = math.pi / w.spokes

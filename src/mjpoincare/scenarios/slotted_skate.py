@@ -30,6 +30,7 @@ from mjpoincare.analysis.theory import slotted_skate as theory
 from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios.base import Evaluation, Scenario, StressCase, Values
+from mjpoincare.settings import rollout_options
 from mjpoincare.simulate import Chunk, KeptRows, event_rollout, initial_states
 
 PARAMS: tuple[Param, ...] = (
@@ -216,7 +217,7 @@ def _simulate(p: Values, s: Values) -> tuple[PegController, object]:
     controller = PegController(p, np.where(V > 0, float(p["l0"]), float(p["l0"]) + float(p["delta"])))
     models = [copy.copy(model) for _ in V]
     nstep = math.ceil(_duration(p, V, Om) / model.opt.timestep)
-    report = event_rollout(models, start_states(model, p, V, Om), nstep, controller, threads=int(s["threads"]),
+    report = event_rollout(models, start_states(model, p, V, Om), nstep, controller, **rollout_options(s),
                            chunk_steps=max(10, min(2000, nstep // 20)))
     return controller, report
 
@@ -445,7 +446,7 @@ def region_map(p: Values, s: Values, x: np.ndarray, y: np.ndarray, impacts: int 
                            np.stack([np.full_like(V, omega0), V, np.zeros_like(V)], 1))
     seconds = 1.2 * (impacts + 1) * float(delta_all.max())
     nstep = math.ceil(seconds / model.opt.timestep)
-    report = event_rollout([model] * len(V), start, nstep, controller, threads=int(s["threads"]),
+    report = event_rollout([model] * len(V), start, nstep, controller, **rollout_options(s),
                            chunk_steps=max(10, min(500, nstep // 10)))
     measured = np.full(2 * cells, np.nan)
     for b, samples in enumerate(controller.samples):
