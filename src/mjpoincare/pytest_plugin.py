@@ -1,0 +1,336 @@
+"""pytest plugin: gate CI on mjpoincare's analytic checks, one test item per check.
+
+Usage (the plugin is registered through the ``pytest11`` entry point ``mjpoincare``; no test files needed)::
+
+    pytest --mjpoincare rimless-wheel,compass-biped [--mjpoincare-preset fast]
+           [--mjpoincare-set timestep=2e-4 ...] [--mjpoincare-seed 0]
+
+Each scenario gives one item per check of its :class:`~mjpoincare.result.Result`, node id
+``mjpoincare::<scenario>::<check>`` (the ``stable`` check, divergence + MuJoCo warnings, included); every item
+carries the ``mjpoincare`` marker, so ``-m mjpoincare`` selects only these and ``-m "not mjpoincare"`` skips them.
+A failing item prints the check's analytic and simulated values, error (and its kind), tolerance, unit and why,
+then the scenario / preset / seed / settings. Exit status is pytest's: 0 all passed, 1 a check failed,
+4 bad input (unknown scenario, preset or ``--mjpoincare-set`` value: a one-line usage error naming the parameter
+and its bound, raised in ``pytest_configure`` before any simulation). Without ``--mjpoincare`` the plugin adds
+nothing and imports nothing beyond pytest (no MuJoCo, numpy or scipy); ``-p no:mjpoincare`` disables it.
+
+How the items get into the session (pytest 8 and 9): a ``pytest_make_collect_report`` wrapper adds one collector
+per scenario to the *session's* collect report. pytest then expands those collectors exactly as it expands files:
+collect reports, ``pytest_itemcollected``, the "collected N items" count, then ``pytest_collection_modifyitems``
+(``-k``, ``-m``, ``--deselect``, ``--lf``) and ``session.testscollected``. So the run exits 0 (not 5, "no tests")
+in an empty directory and the items sit beside a project's own tests. The alternatives are weaker: items appended
+in ``pytest_collection_modifyitems`` skip the collect reports (wrong count) and race the plugins that deselect
+in that same hook; a ``pytest_collect_directory`` collector is only reached for directories on the collection
+path, so ``pytest tests/test_x.py --mjpoincare ...`` would silently drop the checks.
+
+When the simulation runs: the check names are only known after a run, so each scenario is validated once, at
+collection time, when its collector is expanded (lazily, in order); the result is cached on the config and its
+items only read it. Consequences: ``--collect-only`` and a ``-k`` that keeps one check still run the whole
+scenario, and under pytest-xdist every worker runs every scenario (run these checks without ``-n``). A run that
+raises (a crash, not a failed check) gives one failing item ``mjpoincare::<scenario>::validate`` with the
+traceback, so the other scenarios and the project's tests still run.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Generator
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import pytest
+
+if TYPE_CHECKING:
+    from mjpoincare.analysis.checks import Check
+    from mjpoincare.result import Result
+
+MARKER = "mjpoincare"
+
+
+@dataclass(frozen=True)
+class Request:
+    """What ``--mjpoincare*`` asked for, checked: scenarios, preset, seed and ``name=value`` settings."""
+
+    scenarios: tuple[str, ...]
+    preset: str | None
+    seed: int
+    assignments: dict[str, str]
+
+    def describe(self, scenario: str | None = None) -> str:
+        """One line: scenario(s), preset, seed and the ``--mjpoincare-set`` values."""
+        names = scenario or ", ".join(self.scenarios)
+        sets = " ".join(f"{k}={v}" for k, v in self.assignments.items()) or "(none)"
+        return f"mjpoincare {names}  preset={self.preset or '(scenario default)'}  seed={self.seed}  set: {sets}"
+
+
+_REQUEST = pytest.StashKey[Request]()
+_RESULTS = pytest.StashKey["dict[str, Result | Exception]"]()
+
+
+def pytest_addoption(parser: pytest.Parser) -> None:
+    """The ``--mjpoincare*`` options (cheap: no mjpoincare module is imported)."""
+    group = parser.getgroup("mjpoincare", "mjpoincare analytic checks (one test item per check)")
+    group.addoption("--mjpoincare", action="append", default=[], metavar="SCENARIOS",
+                    help="validate these scenarios (comma-separated, repeatable), one test item per check")
+    group.addoption("--mjpoincare-preset", default=None, metavar="PRESET",
+                    help="simulator preset, e.g. fast or accurate (default: each scenario's own)")
+    group.addoption("--mjpoincare-set", action="append", default=[], metavar="NAME=VALUE",
+                    help="set a parameter or simulator setting for every scenario (repeatable)")
+    group.addoption("--mjpoincare-seed", type=int, default=None, metavar="SEED",
+                    help="seed of the experiment design's random parts (default 0)")
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    """Check the ``--mjpoincare*`` input before any collection; bad input is a one-line usage error."""
+    request = _parse_request(config)
+    if request is None:
+        return
+    config.stash[_REQUEST] = request
+    config.stash[_RESULTS] = {}
+    config.addinivalue_line("markers", f"{MARKER}: an mjpoincare analytic check (added by --mjpoincare)")
+
+
+def _parse_request(config: pytest.Config) -> Request | None:
+    """The checked request, None without ``--mjpoincare``; raises :class:`pytest.UsageError` on bad input."""
+    given: list[str] = config.getoption("mjpoincare")
+    preset: str | None = config.getoption("mjpoincare_preset")
+    sets: list[str] = config.getoption("mjpoincare_set")
+    seed: int | None = config.getoption("mjpoincare_seed")
+    if not given:
+        extra = [flag for flag, value in (("--mjpoincare-preset", preset), ("--mjpoincare-set", sets),
+                                          ("--mjpoincare-seed", seed)) if value is not None and value != []]
+        if extra:
+            raise pytest.UsageError(f"{', '.join(extra)} given without --mjpoincare SCENARIOS "
+                                    "(nothing would be validated)")
+        return None
+    names = tuple(dict.fromkeys(n.strip() for item in given for n in item.split(",") if n.strip()))
+    if not names:
+        raise pytest.UsageError("--mjpoincare expects scenario names, e.g. --mjpoincare rimless-wheel,compass-biped")
+    if seed is not None and seed < 0:
+        raise pytest.UsageError(f"--mjpoincare-seed must be an integer >= 0 (got {seed})")
+    for item in sets:
+        if "=" not in item or not item.partition("=")[0].strip():
+            raise pytest.UsageError(f"--mjpoincare-set expects NAME=VALUE (got {item!r})")
+
+    from mjpoincare.params import ParameterError, parse_assignments
+    from mjpoincare.validation import resolve_inputs
+
+    try:
+        assignments = parse_assignments(sets)
+    except ParameterError as err:
+        raise pytest.UsageError(f"--mjpoincare-set: {err}") from None
+    for name in names:
+        try:
+            resolve_inputs(name, assignments, preset)
+        except ParameterError as err:
+            raise pytest.UsageError(f"--mjpoincare {name}: {err}") from None
+    return Request(names, preset, 0 if seed is None else seed, assignments)
+
+
+def pytest_report_header(config: pytest.Config) -> str | None:
+    """The request in the session header."""
+    request = config.stash.get(_REQUEST, None)
+    return None if request is None else request.describe()
+
+
+@pytest.hookimpl(wrapper=True)
+def pytest_make_collect_report(
+    collector: pytest.Collector,
+) -> Generator[None, pytest.CollectReport, pytest.CollectReport]:
+    """Add one :class:`ScenarioCollector` per requested scenario to the session's collect report.
+
+    The node id is given (``mjpoincare::<scenario>``): a child of the session that is not a file would otherwise
+    get ``::<scenario>`` (pytest 8 and 9 alike); the items below get ``mjpoincare::<scenario>::<check>``.
+    """
+    report = yield
+    request = collector.config.stash.get(_REQUEST, None)
+    if request is not None and isinstance(collector, pytest.Session) and report.passed:
+        report.result.extend(
+            ScenarioCollector.from_parent(collector, name=name, nodeid=f"{MARKER}::{name}")
+            for name in request.scenarios
+        )
+    return report
+
+
+def _result(config: pytest.Config, scenario: str) -> Result | Exception:
+    """The scenario's result (or the exception its run raised), run once and cached on the config."""
+    cache = config.stash[_RESULTS]
+    if scenario not in cache:
+        import mjpoincare
+
+        request = config.stash[_REQUEST]
+        try:
+            cache[scenario] = mjpoincare.validate(scenario, request.preset, request.seed, **request.assignments)
+        except Exception as err:  # a crash becomes a failing item, not a collection error that stops the session
+            cache[scenario] = err
+    return cache[scenario]
+
+
+class ScenarioCollector(pytest.Collector):
+    """One scenario: validated when collected (check names exist only after a run), one item per check."""
+
+    def collect(self) -> list[pytest.Item]:
+        """Run (or reuse) the validation: a :class:`CheckItem` per check, or one :class:`RunErrorItem`."""
+        result = _result(self.config, self.name)
+        if isinstance(result, Exception):
+            return [RunErrorItem.from_parent(self, name="validate")]
+        return [CheckItem.from_parent(self, name=check.name) for check in result.checks]
+
+
+class _MjpoincareItem(pytest.Item):
+    """Shared parts: the marker, the scenario name and the report location."""
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        self.add_marker(MARKER)
+
+    @property
+    def scenario(self) -> str:
+        """The scenario this item belongs to."""
+        assert self.parent is not None
+        return self.parent.name
+
+    def reportinfo(self) -> tuple[Any, int | None, str]:
+        """Location shown in headers: ``mjpoincare <scenario>::<name>``."""
+        return self.path, None, f"{MARKER} {self.scenario}::{self.name}"
+
+
+class ScenarioCrashed(Exception):
+    """A scenario's validation raised (its ``__cause__``) instead of returning a result."""
+
+
+class RunErrorItem(_MjpoincareItem):
+    """Stands for a scenario whose run raised: fails with that exception and its traceback."""
+
+    def runtest(self) -> None:
+        """Fail with the exception the validation raised at collection time."""
+        error = _result(self.config, self.scenario)
+        assert isinstance(error, Exception)
+        raise ScenarioCrashed(f"validation raised {type(error).__name__}: {error}") from error
+
+    def repr_failure(self, excinfo: pytest.ExceptionInfo[BaseException], style: Any = None) -> Any:
+        """The original exception with its own traceback (from the run, not from pytest's runner)."""
+        error = excinfo.value.__cause__ if isinstance(excinfo.value, ScenarioCrashed) else None
+        if error is None:
+            return super().repr_failure(excinfo, style)
+        tbstyle = self.config.getoption("tbstyle", "auto")
+        return pytest.ExceptionInfo.from_exception(error).getrepr(
+            style="long" if tbstyle == "auto" else tbstyle, showlocals=bool(self.config.getoption("showlocals")))
+
+
+class CheckFailed(AssertionError):
+    """A check's error is not finite or exceeds its tolerance."""
+
+    def __init__(self, check: Check) -> None:
+        super().__init__(_summary(check))
+        self.check = check
+
+
+class CheckItem(_MjpoincareItem):
+    """One check of a scenario's cached result: passes when the check passed."""
+
+    def runtest(self) -> None:
+        """Read the check from the cached result; raise :class:`CheckFailed` if it failed."""
+        result = _result(self.config, self.scenario)
+        assert not isinstance(result, Exception)
+        check = next(c for c in result.checks if c.name == self.name)
+        self.user_properties.extend([("analytic", _fmt(check.analytic)), ("simulated", _fmt(check.simulated)),
+                                     ("error", f"{_fmt(check.error)} {check.kind}"),
+                                     ("tolerance", _fmt(check.tolerance)), ("unit", check.unit)])
+        if not check.passed:
+            raise CheckFailed(check)
+
+    def repr_failure(self, excinfo: pytest.ExceptionInfo[BaseException], style: Any = None) -> Any:
+        """A failed check as its values, tolerance and reason (no traceback); other errors as usual."""
+        if not isinstance(excinfo.value, CheckFailed):
+            return super().repr_failure(excinfo, style)
+        result = _result(self.config, self.scenario)
+        assert not isinstance(result, Exception)
+        return CheckFailureRepr(_failure_lines(excinfo.value.check, result, self.config.stash[_REQUEST]),
+                                _Crash(_summary(excinfo.value.check)))
+
+
+@dataclass(frozen=True)
+class _Crash:
+    """The one-line message pytest's short summary and JUnit XML read (``longrepr.reprcrash.message``)."""
+
+    message: str
+
+    def __str__(self) -> str:
+        return self.message
+
+
+@dataclass(frozen=True)
+class CheckFailureRepr:
+    """A failed check's report (pytest calls ``toterminal``; xdist and JUnit XML use ``str``)."""
+
+    lines: tuple[str, ...]
+    reprcrash: _Crash
+
+    def toterminal(self, tw: Any) -> None:
+        """Write the lines to pytest's terminal writer."""
+        for line in self.lines:
+            tw.line(line)
+
+    def __str__(self) -> str:
+        return "\n".join(self.lines)
+
+
+def _summary(check: Check) -> str:
+    """One line: the error against the tolerance, and the two values (the node id names the check)."""
+    unit = f" {check.unit}" if check.unit else ""
+    if not math.isfinite(check.error):
+        why = f"error {_fmt(check.error)} (simulated value missing or not finite)"
+    else:
+        why = f"{check.kind} error {_fmt(check.error)} > tolerance {_fmt(check.tolerance)}"
+    return f"{why}; analytic {_fmt(check.analytic)}{unit}, simulated {_fmt(check.simulated)}{unit}"
+
+
+def _failure_lines(check: Check, result: Result, request: Request) -> tuple[str, ...]:
+    """The failing check's values and reason, then what was run."""
+    unit = check.unit or "(dimensionless)"
+    lines = [
+        f"mjpoincare check {result.scenario}::{check.name} FAILED",
+        f"  analytic   {_fmt(check.analytic)}",
+        f"  simulated  {_fmt(check.simulated)}",
+        f"  error      {_fmt(check.error)} ({check.kind})",
+        f"  tolerance  {_fmt(check.tolerance)} ({check.kind})",
+        f"  unit       {unit}",
+        f"  why        {check.why}",
+    ]
+    if check.name == "stable":
+        lines += [f"  diverged trajectories: {result.diverged}"] if result.diverged else []
+        lines += [f"  mujoco warning: {w}" for w in result.warnings]
+    lines += [
+        request.describe(result.scenario),
+        f"  resolved preset={result.preset}  MuJoCo {result.mujoco_version}",
+        "  params:   " + " ".join(f"{k}={_fmt(v)}" for k, v in result.params.items()),
+        "  settings: " + " ".join(f"{k}={_fmt(v)}" for k, v in result.settings.items()),
+    ]
+    return tuple(lines)
+
+
+def _fmt(value: Any) -> str:
+    """Numbers to 6 significant digits, arrays and lists element-wise, complex as ``a+bj``."""
+    if hasattr(value, "tolist"):
+        value = value.tolist()
+    if isinstance(value, list | tuple):
+        return "[" + ", ".join(_fmt(v) for v in value) + "]"
+    if isinstance(value, complex):
+        return f"{value.real:.6g}{value.imag:+.6g}j" if value.imag else f"{value.real:.6g}"
+    if isinstance(value, float):
+        return f"{value:.6g}"
+    return str(value)
+
+
+def pytest_terminal_summary(terminalreporter: Any, config: pytest.Config) -> None:
+    """Each validated scenario's check table at the end of the run (not with ``-q``)."""
+    results = config.stash.get(_RESULTS, None)
+    if not results or terminalreporter.verbosity < 0:
+        return
+    terminalreporter.write_sep("=", "mjpoincare")
+    for name, result in results.items():
+        if isinstance(result, Exception):
+            terminalreporter.write_line(f"{name}: validation raised {type(result).__name__}: {result}")
+        else:
+            terminalreporter.write_line(result.table())

@@ -1,0 +1,100 @@
+"""The pytest plugin (``pytest --mjpoincare ...``), run in a subprocess so the ``pytest11`` entry point loads it."""
+
+from __future__ import annotations
+
+import re
+
+import pytest
+
+pytest_plugins = ["pytester"]
+
+NODE = re.compile(r"^mjpoincare::rimless-wheel::(\w+) (PASSED|FAILED)", re.MULTILINE)
+
+
+@pytest.fixture
+def pytester(pytester: pytest.Pytester, monkeypatch: pytest.MonkeyPatch) -> pytest.Pytester:
+    """pytester with plugin autoloading on (as in a user's CI job) and the CI env vars off (stable summary)."""
+    for name in ("PYTEST_DISABLE_PLUGIN_AUTOLOAD", "PYTEST_PLUGINS", "CI", "BUILD_NUMBER"):
+        monkeypatch.delenv(name, raising=False)
+    return pytester
+
+
+def run(pytester: pytest.Pytester, *args: str) -> pytest.RunResult:
+    """``pytest *args`` in a fresh interpreter, in pytester's directory."""
+    result = pytester.runpytest_subprocess(*args, timeout=120)
+    assert not (pytester.path / "MUJOCO_LOG.TXT").exists()
+    return result
+
+
+@pytest.mark.mujoco
+def test_empty_dir_passes_with_one_item_per_check(pytester: pytest.Pytester) -> None:
+    import mjpoincare
+
+    result = run(pytester, "--mjpoincare", "rimless-wheel", "--mjpoincare-preset", "fast", "-v")
+    assert result.ret == pytest.ExitCode.OK, result.stdout.str()
+    expected = [c.name for c in mjpoincare.validate("rimless-wheel", preset="fast").checks]
+    assert NODE.findall(result.stdout.str()) == [(name, "PASSED") for name in expected]
+    assert {"eigenvalue", "stable"} <= set(expected)
+    result.assert_outcomes(passed=len(expected))
+
+
+@pytest.mark.mujoco
+def test_failing_check_reports_values_beside_project_tests(pytester: pytest.Pytester) -> None:
+    pytester.makepyfile(test_project="def test_project():\n    assert True\n")
+    result = run(pytester, "--mjpoincare", "rimless-wheel", "--mjpoincare-set", "timestep=0.004", "-v")
+    out = result.stdout.str()
+    assert result.ret == pytest.ExitCode.TESTS_FAILED, out
+    assert "test_project.py::test_project PASSED" in out
+    failed = [name for name, verdict in NODE.findall(out) if verdict == "FAILED"]
+    assert failed
+    report = out.split("= FAILURES =")[1]
+    for field in ("analytic", "simulated", "error", "tolerance", "unit", "why"):
+        assert re.search(rf"^  {field} +\S", report, re.MULTILINE), field
+    assert f"mjpoincare check rimless-wheel::{failed[0]} FAILED" in report
+    assert "set: timestep=0.004" in report
+    assert re.search(rf"^FAILED mjpoincare::rimless-wheel::{failed[0]} - \w+ error \d", out, re.MULTILINE)
+
+
+@pytest.mark.parametrize(("args", "message"), [
+    (["--mjpoincare", "rimless-wheel,no-such-wheel"], "unknown scenario 'no-such-wheel'; known: rimless-wheel"),
+    (["--mjpoincare", "rimless-wheel", "--mjpoincare-set", "timestep=1"], "timestep must be in (0, 0.05] (got 1)"),
+    (["--mjpoincare", "rimless-wheel", "--mjpoincare-set", "timestep"], "--mjpoincare-set expects NAME=VALUE"),
+    (["--mjpoincare-set", "timestep=2e-4"], "--mjpoincare-set given without --mjpoincare"),
+])
+def test_bad_input_is_a_one_line_usage_error(pytester: pytest.Pytester, args: list[str], message: str) -> None:
+    result = run(pytester, *args)
+    assert result.ret == pytest.ExitCode.USAGE_ERROR
+    lines = [line for line in result.stderr.lines if line.strip()]
+    assert len(lines) == 1 and lines[0].startswith("ERROR: ") and message in lines[0], lines
+    assert "collected" not in result.stdout.str()
+
+
+def test_a_crash_fails_one_item_and_the_run_goes_on(pytester: pytest.Pytester) -> None:
+    pytester.makeconftest("""
+        import mjpoincare.api
+
+        def crash(scenario, *args, **kwargs):
+            raise RuntimeError(f"simulated crash in {scenario}")
+
+        mjpoincare.api.validate = crash
+    """)
+    pytester.makepyfile(test_project="def test_project():\n    assert True\n")
+    result = run(pytester, "--mjpoincare", "rimless-wheel", "-rf")
+    assert result.ret == pytest.ExitCode.TESTS_FAILED
+    result.assert_outcomes(passed=1, failed=1)
+    result.stdout.fnmatch_lines(["FAILED mjpoincare::rimless-wheel::validate - RuntimeError: simulated crash*"])
+    assert "runtest" not in result.stdout.str()  # the run's own traceback, not pytest's runner frames
+
+
+def test_without_option_the_plugin_adds_nothing(pytester: pytest.Pytester) -> None:
+    assert run(pytester).ret == pytest.ExitCode.NO_TESTS_COLLECTED
+    pytester.makepyfile(test_project="""
+        import sys
+
+        def test_plugin_loaded_but_light():
+            assert "mjpoincare.pytest_plugin" in sys.modules
+            assert not {"mujoco", "numpy", "mjpoincare.validation"} & set(sys.modules)
+    """)
+    result = run(pytester, "-v")
+    result.assert_outcomes(passed=1)
+    assert "mjpoincare::" not in result.stdout.str()
