@@ -6,43 +6,27 @@ heel strike); tolerances are the scenario's own.
 
 from __future__ import annotations
 
-import math
-
 import pytest
 from mjpoincare.analysis.theory import compass_biped as theory
 
+from mjpoincare import gate
 from mjpoincare.cli import main
-from mjpoincare.validation import run_validation
 
 pytestmark = pytest.mark.mujoco
 
 
-def test_fast_validation_passes_without_scuffing() -> None:
-    result = run_validation("compass-biped", {}, "fast")
-    assert result.passed, result.table()
+def test_fast_validation_avoids_scuffing() -> None:
+    """Its verdict is the gate's (tests/test_gate.py)."""
+    result = gate.case("compass-biped[fast]").run()
     assert result.extras["scuffs_avoided"] > 0  # equal legs do pass through the slope mid-swing ...
     by_name = {c.name: c for c in result.checks}
     assert by_name["swing_foot_contacts"].simulated == 0  # ... but the switched-off foot never touched
 
 
-@pytest.mark.parametrize("slope", [0.04])
-def test_accurate_preset_meets_targets(slope: float) -> None:
-    """Acceptance on the Kisa gait: fixed point within 1e-3 per component, eigenvalues within 0.01, step period
-    within 1e-3 relative (accurate preset; Goswami 3 deg and the slopes near the flip are measured by the CLI and
-    listed in the README: 60-110 s each, too slow for the CI budget)."""
-    result = run_validation("compass-biped", {"slope": str(slope)}, "accurate")
-    by_name = {c.name: c for c in result.checks}
-    assert by_name["fixed_point"].error <= 1e-3, result.table()
-    assert by_name["eigenvalues"].error <= 0.01, result.table()
-    assert by_name["step_period"].error <= 1e-3, result.table()
-    assert math.isfinite(by_name["step_length"].error)
-
-
 def test_constant_torques_move_the_gait_as_the_theory_says() -> None:
     """Ankle and hip torques are MuJoCo actuators switched to the stance leg at each heel strike: the gait they
     give matches the exact actuated model (fast preset tolerances)."""
-    result = run_validation("compass-biped", {"tau_ankle": "0.5", "tau_hip": "0.2"}, "fast")
-    assert result.passed, result.table()
+    result = gate.case("compass-biped[fast,tau_ankle=0.5,tau_hip=0.2]").run()
     passive = theory.fixed_point(theory.CompassBiped())
     assert abs(result.extras["analytic"]["fixed_point"][2] - passive[2]) > 0.01  # the torques matter
 

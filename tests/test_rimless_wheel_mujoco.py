@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 from mjpoincare.analysis.theory import rimless_wheel as theory
 
-from mjpoincare import scenarios
+from mjpoincare import gate, scenarios
 from mjpoincare.cli import main
 from mjpoincare.scenarios import rimless_wheel as rw
 from mjpoincare.simulate import initial_states, rollout_batch
@@ -27,12 +27,11 @@ REPO_MODELS = Path(__file__).resolve().parents[1] / "models"  # the MJCF files a
 
 @pytest.fixture(scope="module")
 def fast_result() -> dict:
-    return run_validation("rimless-wheel", {}, "fast", seed=0).to_dict()
+    return gate.case("rimless-wheel[fast]").run().to_dict()
 
 
-def test_default_fast_validation_passes(fast_result: dict) -> None:
-    failed = [c for c in fast_result["checks"] if not c["passed"]]
-    assert not failed, failed
+def test_default_fast_validation_has_its_checks(fast_result: dict) -> None:
+    """The run's checks (their verdicts are the gate's: tests/test_gate.py)."""
     names = {c["name"] for c in fast_result["checks"]}
     assert {"omega_post_impact", "eigenvalue", "basins", "stable"} <= names
 
@@ -53,21 +52,6 @@ def test_result_json_schema(fast_result: dict) -> None:
 def test_same_seed_same_result(fast_result: dict) -> None:
     again = run_validation("rimless-wheel", {}, "fast", seed=0).to_dict()
     assert [c["simulated"] for c in again["checks"]] == [c["simulated"] for c in fast_result["checks"]]
-
-
-@pytest.mark.parametrize(("spokes", "slope"), [(8, 0.08), (10, 0.1), (12, 0.1), (8, 0.2)])
-def test_accurate_preset_meets_targets(spokes: int, slope: float) -> None:
-    """Acceptance: omega_post_impact rel error <= 1e-3 and eigenvalue abs error <= 0.01 (accurate preset).
-
-    Only these two are asserted here: the other checks of the same run are reported findings (e.g. the
-    step period near the no-flight bound, where MuJoCo's impacts make the wheel hop by millimetres).
-    spokes = 6 misses the 1e-3 target (measured 5e-3, see the README); it is not in this list.
-    """
-    result = run_validation("rimless-wheel", {"spokes": str(spokes), "slope": str(slope)}, "accurate")
-    by_name = {c.name: c for c in result.checks}
-    assert by_name["omega_post_impact"].error <= 1e-3, result.table()
-    assert by_name["eigenvalue"].error <= 0.01, result.table()
-    assert by_name["stable"].passed
 
 
 def test_error_shrinks_as_timestep_is_refined() -> None:
