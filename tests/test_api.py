@@ -100,3 +100,24 @@ def test_warnings_go_into_the_result_not_a_file_or_stdout(tmp_path: Path, capfd:
     captured = capfd.readouterr()
     assert "WARNING" not in captured.out + captured.err
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.mujoco
+def test_a_foreign_warning_handler_is_kept_and_not_called_from_worker_threads() -> None:
+    """dm_control installs a ctypes warning handler at import (it raises when called with a Python str): a diverging
+    rollout with it installed neither aborts nor calls it, and it is MuJoCo's handler again afterwards."""
+    import dm_control.mujoco  # noqa: F401  (installs dm_control's handler)
+    import numpy as np
+
+    from mjpoincare.scenarios import rimless_wheel as rw
+    from mjpoincare.simulate import initial_states, rollout_batch
+    from mjpoincare.validation import resolve_inputs
+
+    foreign = mujoco.get_mju_user_warning()
+    assert foreign is not None
+    _, _, params, settings = resolve_inputs("rimless-wheel", {}, "fast")
+    model = rw.build(params, settings)
+    bad = initial_states(model, np.array([[0.0, 1.0, 0.0]]), np.array([[1e12, 0.0, 1e12]]))
+    report = rollout_batch(model, np.repeat(bad, 3, axis=0), 50, lambda _: None, threads=2, chunk_steps=25)
+    assert report.diverged.all() and report.warnings
+    assert mujoco.get_mju_user_warning() is foreign

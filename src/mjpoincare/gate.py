@@ -109,9 +109,10 @@ GATE: tuple[GateCase, ...] = (
     _case("rimless-wheel-friction", "fast", "gait_type midstance_rate eigenvalue impact_kind phase_sequence stable",
           mu=0.24),
     _case("rimless-wheel-friction", "accurate", _FRICTION_WHEEL.replace("phase_sequence ", ""), {
-        "phase_sequence": "measured 0.2 vs 0 (accurate): 1 of the 5 settled steps (step 26) reads slip+ > stick > "
-        "slip+, a 1.0 ms slip+ run (theta -0.2968 to -0.2944) just after the 7.2 ms impact window, at the 1 ms "
-        "merge length of the phase classifier"}),
+        "phase_sequence": "measured 0.2 vs 0 (accurate): 1 of the 5 settled stances reads slip+ > stick > slip+; "
+        "its new foot, 38 um deep after the impact, is pushed out by the soft contact and hops 14 um high from 2.5 "
+        "to 7.6 ms after the impact, then lands past the 7.2 ms impact window and slides on the friction cone for "
+        "0.6 ms before it sticks (the rigid theory has no hop)"}),
     _case("rimless-wheel-friction", "coarse", _FRICTION_WHEEL),
     _case("compass-biped-friction", "fast", "fixed_point step_period speed friction_ratio_window critical_friction "
           "phase_sequence impact_kind stable", reported="eigenvalues step_length"),

@@ -2,9 +2,11 @@
 
 MuJoCo's default warning handler prints to stdout and appends to ``MUJOCO_LOG.TXT`` in the current directory. While
 at least one :func:`captured_mujoco_log` is open, MuJoCo's settable warning callback (``mju_user_warning``) is
-pointed at a handler that hands each message to every open capture (and to the handler that was set before, if
-any); when the last capture closes, the previous handler is restored. No working directory, file descriptor or
-stream is touched, and no file is written. MuJoCo also counts warnings per ``MjData`` (``data.warning``), which
+pointed at a handler that hands each message to every open capture; when the last capture closes, the handler that
+was set before (e.g. dm_control's, which logs) is restored. The previous handler is not called meanwhile: MuJoCo
+raises warnings from its rollout worker threads, where an exception from foreign code would abort the process
+(dm_control's ctypes handler raises when called from Python), and the run's result is where its warnings belong.
+No working directory, file descriptor or stream is touched, and no file is written. MuJoCo also counts warnings per ``MjData`` (``data.warning``), which
 :mod:`mjpoincare.simulate` reads for each rollout's own data.
 
 The callback is process-wide and MuJoCo raises it from its rollout worker threads, which do not say which
@@ -25,15 +27,11 @@ _previous: list[Callable[[str], None] | None] = []
 
 
 def _handler(message: str) -> None:
-    line = f"WARNING: {message.strip()}"
+    line = f"WARNING: {str(message).strip()}"
     with _lock:
-        sinks = list(_open.values())
-        chained = _previous[0] if _previous else None
-    for sink in sinks:
-        if line not in sink:
-            sink.append(line)
-    if chained is not None:
-        chained(message)
+        for sink in _open.values():
+            if line not in sink:
+                sink.append(line)
 
 
 @contextlib.contextmanager
