@@ -6,8 +6,8 @@ pointed at a handler that hands each message to every open capture; when the las
 was set before (e.g. dm_control's, which logs) is restored. The previous handler is not called meanwhile: MuJoCo
 raises warnings from its rollout worker threads, where an exception from foreign code would abort the process
 (dm_control's ctypes handler raises when called from Python), and the run's result is where its warnings belong.
-No working directory, file descriptor or stream is touched, and no file is written. MuJoCo also counts warnings per ``MjData`` (``data.warning``), which
-:mod:`mjpoincare.simulate` reads for each rollout's own data.
+No working directory, file descriptor or stream is touched, and no file is written. MuJoCo also counts warnings per
+``MjData`` (``data.warning``), which :mod:`mjpoincare.simulate` reads for each rollout's own data.
 
 The callback is process-wide and MuJoCo raises it from its rollout worker threads, which do not say which
 validation they serve: a message raised while two validations run in one process reaches both captures.
