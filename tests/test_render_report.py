@@ -82,3 +82,19 @@ def test_report_table_matches_json(tmp_path: Path) -> None:
     rows = re.findall(r"<tr class=(pass|fail)><td>([^<]+)</td>", page)
     assert [(("pass" if c["passed"] else "fail"), c["name"]) for c in result["checks"]] == rows
     assert page.count("data:image/png;base64,") >= 3
+
+
+def test_plots_leave_the_callers_matplotlib_alone(tmp_path: Path) -> None:
+    """A report draws through matplotlib's object API: pyplot is not imported and the backend is not switched."""
+    import subprocess
+    import sys
+
+    # the raw rcParams entry: matplotlib.get_backend() itself would import pyplot to resolve it
+    code = ("import sys, matplotlib; raw = lambda: dict.__getitem__(matplotlib.rcParams, 'backend'); before = raw(); "
+            "from mjpoincare.report import write_report; "
+            "from mjpoincare import api; r = api.validate('slotted-skate'); write_report(r.to_dict(), sys.argv[1]); "
+            "assert 'matplotlib.pyplot' not in sys.modules, 'pyplot imported'; "
+            "assert raw() == before, (before, raw())")
+    done = subprocess.run([sys.executable, "-c", code, str(tmp_path)], capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert list(tmp_path.glob("*.html"))

@@ -193,12 +193,10 @@ def _progress(message: str) -> None:
 
 
 def _plot(rows: list[dict[str, Any]], reference: list[dict[str, float]], key: str, path: str, name: str) -> None:
-    import matplotlib
+    from matplotlib.figure import Figure
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(figsize=(7, 4.5))
+    fig = Figure(figsize=(7, 4.5))
+    ax = fig.subplots()
     walls = np.array([r["wall_s"] for r in rows])
     errors = np.array([r[key] for r in rows])
     front = np.array([r["pareto"] for r in rows])
@@ -218,4 +216,3 @@ def _plot(rows: list[dict[str, Any]], reference: list[dict[str, float]], key: st
     fig.tight_layout()
     Path(path).parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=120)
-    plt.close(fig)

@@ -3,7 +3,8 @@
 It shows the check table, the empirical return map (x_k+1 against x_k, analytic map drawn over it),
 the fitted eigenvalues in the complex plane with the unit circle and the analytic values, the
 basin map over the analytic regions, and the convergence (time against error) plot when a bench
-result ``renders/bench-<scenario>.json`` exists. Plots use matplotlib (Agg).
+result ``renders/bench-<scenario>.json`` exists. Plots use matplotlib's object API (no pyplot: the caller's
+backend is left alone).
 """
 
 from __future__ import annotations
@@ -15,10 +16,7 @@ import json
 from pathlib import Path
 from typing import Any
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
+from matplotlib.figure import Figure
 
 from mjpoincare.result import write_text
 
@@ -26,16 +24,16 @@ COLORS = {"rolling": "tab:green", "standing": "tab:blue", "runaway": "tab:red", 
           "undetermined": "tab:gray"}
 
 
-def _png(fig: plt.Figure) -> str:
+def _png(fig: Figure) -> str:
     buffer = io.BytesIO()
     fig.savefig(buffer, format="png", dpi=110)
-    plt.close(fig)
     return base64.b64encode(buffer.getvalue()).decode()
 
 
 def return_map_figure(plot: dict[str, Any]) -> str:
     """x_k+1 against x_k from the simulation, with the analytic map and the diagonal."""
-    fig, ax = plt.subplots(figsize=(5, 4))
+    fig = Figure(figsize=(5, 4))
+    ax = fig.subplots()
     ax.plot(plot["analytic_x"], plot["analytic_y"], "k-", lw=1, label="analytic map")
     ax.plot(plot["analytic_x"], plot["analytic_x"], ":", color="gray", lw=1, label="x_k+1 = x_k")
     ax.plot(plot["x"], plot["x_next"], "o", ms=4, color="tab:red", label="MuJoCo samples")
@@ -50,7 +48,8 @@ def eigenvalue_figure(fit: dict[str, Any], analytic: list[Any]) -> str:
     """Fitted eigenvalues (with bootstrap error bars) and analytic ones in the complex plane."""
     import numpy as np
 
-    fig, ax = plt.subplots(figsize=(4.5, 4.5))
+    fig = Figure(figsize=(4.5, 4.5))
+    ax = fig.subplots()
     t = np.linspace(0, 2 * np.pi, 200)
     ax.plot(np.cos(t), np.sin(t), color="gray", lw=1)
     for (re, im), (sre, sim) in zip(fit["eigenvalues"], fit["eigenvalue_std"], strict=True):
@@ -68,7 +67,8 @@ def eigenvalue_figure(fit: dict[str, Any], analytic: list[Any]) -> str:
 
 def basin_figure(table: list[dict[str, Any]], bands: list[list[Any]]) -> str:
     """Simulated end states over the analytic regions of attraction (shaded bands)."""
-    fig, ax = plt.subplots(figsize=(8, 2.2))
+    fig = Figure(figsize=(8, 2.2))
+    ax = fig.subplots()
     for lo, hi, outcome in bands:
         ax.axvspan(lo, hi, color=COLORS[outcome], alpha=0.15)
     for row in table:
@@ -86,7 +86,8 @@ def bench_figure(bench: dict[str, Any]) -> str:
     """Wall time against the first accuracy check's error, from a saved bench result."""
     rows = bench["rows"]
     key = next(k for k in rows[0] if k.endswith("_error"))
-    fig, ax = plt.subplots(figsize=(6, 4))
+    fig = Figure(figsize=(6, 4))
+    ax = fig.subplots()
     ax.loglog([r["wall_s"] for r in rows], [r[key] for r in rows], "o")
     for r in rows:
         ax.annotate(r["config"], (r["wall_s"], r[key]), fontsize=6)

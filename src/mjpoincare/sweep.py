@@ -209,16 +209,14 @@ def run_regions(name: str, grid: str, assignments: Mapping[str, str], preset: st
 
 
 def _plot_regions(result: dict[str, Any], simulated: np.ndarray, analytic: np.ndarray, path: str) -> None:
-    import matplotlib
-
-    matplotlib.use("Agg")
     from pathlib import Path
 
-    import matplotlib.pyplot as plt
     from matplotlib.colors import ListedColormap
+    from matplotlib.figure import Figure
 
     cmap = ListedColormap(["#d9d9d9", "#f4a6a6", "#9fd49f", "#7fb3e6", "#f7d07a"])  # nan, unstable, stable, wobble..
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.5), sharey=True)
+    fig = Figure(figsize=(11, 4.5))
+    axes = fig.subplots(1, 2, sharey=True)
     x, y = result["x"], result["y"]
     for i, (ax, label) in enumerate(zip(axes, ("V > 0 (forward)", "V < 0 (backward)"), strict=True)):
         ax.pcolormesh(x, y, simulated[i] + 1, cmap=cmap, vmin=0, vmax=4, shading="nearest")
@@ -236,4 +234,3 @@ def _plot_regions(result: dict[str, Any], simulated: np.ndarray, analytic: np.nd
     fig.tight_layout(rect=(0, 0.04, 1, 1))
     Path(path).parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=110)
-    plt.close(fig)

@@ -217,17 +217,16 @@ BASIN_COLORS = {"A": "#4c9be8", "B": "#6cc36c", "C": "#f2c14e", "D+": "#e8864c",
 
 def plot_basins(result: dict[str, Any], path: str) -> None:
     """The map (simulated labels) over the reference's eventual-outcome boundaries, and the convergence lines."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
     from matplotlib.colors import ListedColormap
+    from matplotlib.figure import Figure
+    from matplotlib.patches import Rectangle
 
     names = list(BASIN_COLORS)
     th, xd = np.asarray(result["theta_dot0"]), np.asarray(result["x_dot0"])
     sim = np.asarray(result["simulated"])
     codes = np.vectorize(lambda s: names.index(s) if s in names else names.index(""))(sim)
-    fig, (ax, bx) = plt.subplots(1, 2, figsize=(13, 5))
+    fig = Figure(figsize=(13, 5))
+    ax, bx = fig.subplots(1, 2)
     ax.pcolormesh(th, xd, codes, cmap=ListedColormap(list(BASIN_COLORS.values())), vmin=-0.5,
                   vmax=len(names) - 0.5, shading="nearest")
     rth, rxd = np.asarray(result["reference_theta_dot0"]), np.asarray(result["reference_x_dot0"])
@@ -247,7 +246,7 @@ def plot_basins(result: dict[str, Any], path: str) -> None:
     ax.set_ylabel("post-impact slip speed x_dot0 (nondimensional)")
     ax.set_title(f"mu = {result['mu']:g}: simulated outcome after {BASIN_STEPS} steps\nblack: reference region of "
                  "attraction (solid), backward roll (dashed); x: type differs from the reference", fontsize=8)
-    handles = [plt.Rectangle((0, 0), 1, 1, color=c) for k, c in BASIN_COLORS.items() if k]
+    handles = [Rectangle((0, 0), 1, 1, color=c) for k, c in BASIN_COLORS.items() if k]
     ax.legend(handles, [k for k in BASIN_COLORS if k], fontsize=7, loc="upper right")
     for name, style in (("slip", "tab:green"), ("no_slip", "tab:blue")):
         line = result["lines"][name]
@@ -272,7 +271,6 @@ def plot_basins(result: dict[str, Any], path: str) -> None:
     fig.tight_layout()
     Path(path).parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=110)
-    plt.close(fig)
 
 
 def run_basin_map(grid: str, assignments: Mapping[str, str], preset: str | None, json_path: str | None,
