@@ -5,6 +5,8 @@
 # resolution); pip installs through it as constraints, so CI and a new user get the versions the suite was tested on.
 #   make lock         regenerate requirements/lock.txt from pyproject.toml
 #   make test-latest  the tests against the newest versions pyproject.toml allows (finds dependency drift)
+#   make margins      the regression gate's margin table: every gated check's error and its spread under seed,
+#                     threads, starts x(1+1e-12) and the oldest numpy/scipy allowed (renders/margins*.json)
 PYTHON ?= python3
 VENV := .venv
 BIN := $(VENV)/bin
@@ -12,7 +14,9 @@ STAMP := $(VENV)/.installed
 LOCK := requirements/lock.txt
 LATEST := .venv-latest
 
-.PHONY: validate test test-latest lock bench gate clean
+OLDEST := .venv-oldest
+
+.PHONY: validate test test-latest lock margins bench gate clean
 
 $(STAMP): pyproject.toml $(LOCK)
 	@$(PYTHON) -c 'import sys; sys.exit(0 if sys.version_info >= (3, 10) else "mjpoincare needs Python >= 3.10")'
@@ -35,6 +39,13 @@ test-latest:
 	$(LATEST)/bin/python -m pip list --format freeze | grep -iE '^(mujoco|numpy|scipy|dm-control)=='
 	$(LATEST)/bin/python -m pytest -q
 
+margins: $(STAMP)
+	$(PYTHON) -m venv $(OLDEST)
+	$(OLDEST)/bin/python -m pip install --quiet --upgrade pip
+	$(OLDEST)/bin/python -m pip install --quiet "numpy==1.26.4" "scipy==1.11.4" -e .
+	$(OLDEST)/bin/mjpoincare margins --base-only --json renders/margins-oldest.json || true
+	$(BIN)/mjpoincare margins --compare renders/margins-oldest.json --json renders/margins.json
+
 lock: $(STAMP)
 	$(BIN)/python -m pip install --quiet uv
 	$(BIN)/uv pip compile pyproject.toml --extra dev --universal --python-version 3.10 --quiet -o $(LOCK)
@@ -53,4 +64,4 @@ gate:
 	.venv-mujoco-$(MUJOCO)/bin/mjpoincare validate --json renders/gate-mujoco-$(MUJOCO).json
 
 clean:
-	rm -rf $(VENV) $(LATEST) .venv-mujoco-* build *.egg-info
+	rm -rf $(VENV) $(LATEST) $(OLDEST) .venv-mujoco-* build *.egg-info

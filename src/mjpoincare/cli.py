@@ -143,7 +143,7 @@ def _cmd_margins(args: argparse.Namespace) -> int:
         except (OSError, ValueError, KeyError) as err:
             raise ParameterError(f"--compare {path} is not a margins JSON file ({err})") from None
         compare.update({(r["case"], r["check"]): float("nan") if r["error"] is None else r["error"] for r in other})
-    rows = gate.margin_rows(cases, compare)
+    rows = gate.margin_rows(cases, compare, perturb=not args.base_only)
     if args.json != "-":
         print(gate.margin_table(rows))
     if args.json:
@@ -247,6 +247,8 @@ def build_parser() -> argparse.ArgumentParser:
     margins.add_argument("--json", metavar="PATH|-", help="write the margin table as JSON (- for stdout)")
     margins.add_argument("--compare", action="append", default=[], metavar="JSON", help="a margins JSON from another "
                          "environment (e.g. the oldest numpy/scipy): its errors count into the spread")
+    margins.add_argument("--base-only", action="store_true", help="only each case's own run, no perturbations (to "
+                         "record another environment's errors for --compare)")
     margins.set_defaults(func=_cmd_margins)
 
     render = sub.add_parser("render", help="render a scenario off-screen to a video (.mp4, .gif) or still (.png)")

@@ -150,15 +150,15 @@ def case(label: str) -> GateCase:
     return found
 
 
-def margin_rows(cases: Iterable[GateCase], compare: Mapping[tuple[str, str], float] | None = None
-                ) -> list[dict[str, object]]:
-    """For every check of every case: error, spread (largest change of the error under :data:`PERTURBATIONS`, and
-    against ``compare``'s errors from another environment, keyed by (case label, check)), tolerance, the ratio
-    (error + spread) / tolerance, and the check's status in the gate."""
+def margin_rows(cases: Iterable[GateCase], compare: Mapping[tuple[str, str], float] | None = None, *,
+                perturb: bool = True) -> list[dict[str, object]]:
+    """For every check of every case: error, spread (largest change of the error under :data:`PERTURBATIONS` unless
+    not ``perturb``, and against ``compare``'s errors from another environment, keyed by (case label, check)),
+    tolerance, the ratio (error + spread) / tolerance, and the check's status in the gate."""
     rows: list[dict[str, object]] = []
     for case in cases:
         base = case.run()
-        variants = [case.run(seed, **extra) for _, seed, extra in PERTURBATIONS]
+        variants = [case.run(seed, **extra) for _, seed, extra in PERTURBATIONS] if perturb else []
         misses = dict(case.misses)
         for check in base.checks:
             others = [next((c.error for c in v.checks if c.name == check.name), math.nan) for v in variants]
