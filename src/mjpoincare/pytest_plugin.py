@@ -311,16 +311,9 @@ def _failure_lines(check: Check, result: Result, request: Request) -> tuple[str,
 
 
 def _fmt(value: Any) -> str:
-    """Numbers to 6 significant digits, arrays and lists element-wise, complex as ``a+bj``."""
-    if hasattr(value, "tolist"):
-        value = value.tolist()
-    if isinstance(value, list | tuple):
-        return "[" + ", ".join(_fmt(v) for v in value) + "]"
-    if isinstance(value, complex):
-        return f"{value.real:.6g}{value.imag:+.6g}j" if value.imag else f"{value.real:.6g}"
-    if isinstance(value, float):
-        return f"{value:.6g}"
-    return str(value)
+    from mjpoincare.result import format_value  # loaded with the results it formats, never without --mjpoincare
+
+    return format_value(value)
 
 
 def pytest_terminal_summary(terminalreporter: Any, config: pytest.Config) -> None:

@@ -58,8 +58,8 @@ class Result:
                 + " ".join(f"{k}={v}" for k, v in self.params.items()))
         rows = [("check", "analytic", "simulated", "error", "tolerance", "verdict")]
         for c in self.checks:
-            rows.append((c.name, _fmt(c.analytic), _fmt(c.simulated), f"{_fmt(c.error)} {c.kind[:3]}",
-                         f"{c.tolerance:.3g}", "PASS" if c.passed else "FAIL"))
+            rows.append((c.name, format_value(c.analytic), format_value(c.simulated),
+                         f"{format_value(c.error)} {c.kind[:3]}", f"{c.tolerance:.3g}", "PASS" if c.passed else "FAIL"))
         widths = [max(len(r[i]) for r in rows) for i in range(len(rows[0]))]
         lines = [head] + ["  ".join(cell.ljust(w) for cell, w in zip(r, widths, strict=True)).rstrip()
                           for r in rows]
@@ -67,18 +67,19 @@ class Result:
         lines.append(f"wall {t['wall_s']:.2f} s, {t['steps']:.3g} steps, {t['steps_per_s']:.3g} steps/s "
                      f"(MuJoCo alone {t['rollout_steps_per_s']:.3g} steps/s)")
         for name, item in self.extras.get("reported", {}).items():  # figures a check table shows but does not judge
-            lines.append(f"reported {name}: {_fmt(float(item['value']))} {item['unit']} ({item['note']})")
+            lines.append(f"reported {name}: {format_value(float(item['value']))} {item['unit']} ({item['note']})")
         if self.diverged:
             lines.append(f"DIVERGED trajectories: {self.diverged}")
         lines.extend(f"mujoco warning: {w}" for w in self.warnings)
         return "\n".join(lines)
 
 
-def _fmt(value: Any) -> str:
+def format_value(value: Any) -> str:
+    """A value as the check table prints it: 6 significant digits, arrays and lists element-wise, complex ``a+bj``."""
     if hasattr(value, "tolist") and not isinstance(value, float | complex):
         value = value.tolist()
-    if isinstance(value, list):
-        return "[" + ", ".join(_fmt(v) for v in value) + "]"
+    if isinstance(value, list | tuple):
+        return "[" + ", ".join(format_value(v) for v in value) + "]"
     if isinstance(value, complex):
         return f"{value.real:.5g}{value.imag:+.5g}j" if value.imag else f"{value.real:.6g}"
     if isinstance(value, float):
