@@ -7,9 +7,13 @@ thread count and starts x(1 + 1e-12), and against the oldest numpy/scipy allowed
 
 from __future__ import annotations
 
+import json
+from pathlib import Path
+
 import pytest
 
 from mjpoincare import scenarios
+from mjpoincare.cli import main
 from mjpoincare.gate import GATE, MARGIN, GateCase, margin_rows
 
 pytestmark = pytest.mark.mujoco
@@ -50,3 +54,19 @@ def test_margin_rows_measure_the_spread() -> None:
     assert [r["check"] for r in rows] == [c.name for c in case.run().checks]
     assert all(r["spread"] >= 0 for r in rows)
     assert all(r["ratio"] <= MARGIN for r in rows if r["status"] == "gated")
+
+
+def test_margins_command(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """``mjpoincare margins`` on one case: the table, the JSON whole, exit 0 when every gated check holds its margin;
+    a --case that matches nothing and a bad --compare file are refused with exit 2 before any simulation."""
+    out = tmp_path / "margins.json"
+    assert main(["margins", "--case", "slotted-skate[fast]", "--json", str(out)]) == 0
+    table = capsys.readouterr().out
+    assert "(err+spread)/tol" in table and "sigma4_forward" in table
+    payload = json.loads(out.read_text())
+    assert payload["margin"] == MARGIN and {r["case"] for r in payload["rows"]} == {"slotted-skate[fast]"}
+    assert main(["margins", "--case", "no-such-case"]) == 2
+    bad = tmp_path / "bad.json"
+    bad.write_text("{}")
+    assert main(["margins", "--case", "slotted-skate[fast]", "--compare", str(bad)]) == 2
+    assert capsys.readouterr().err.count("\n") == 2
