@@ -208,11 +208,12 @@ def test_gait_b_loses_stability_near_mu_011():
 
 def test_gait_c():
     """Slipping impact, post-impact forward slip -> stick, unstable; impact angle 4.5 deg at mu = 0.14 (paper
-    "~4 deg"); one multiplier is structurally ~0 (the slip -> stick transition collapses x_dot)."""
+    "~4 deg"); one multiplier is structurally ~0 (the slip -> stick transition collapses x_dot). 002 prints no
+    other number for Gait C: the values pinned here are this solver's, confirmed by the independent time-stepping
+    computation (tests/test_theory_compass_biped_time_stepping.py)."""
     g = cf.paper_gait("C", 0.14)
     rec = g.record
     assert g.kind == "C" and rec.impact == "slipping" and rec.phases == ("slip+", "stick")
-    assert g.z == pytest.approx([0.0790379, 0.0437766, -0.4317612, 0.6341740], abs=2e-6)
     assert math.degrees(g.z[0]) == pytest.approx(4.5285, abs=1e-3)
     assert np.abs(g.eigenvalues)[:3] == pytest.approx([1.82354, 1.06956, 0.05797], rel=1e-3)
     assert abs(g.eigenvalues[3]) < 1e-3
@@ -246,7 +247,11 @@ def test_printed_e_makes_gait_i_fall_backwards():
     rec = cf.step(g.biped, g.z, printed)
     assert rec.failure == "backward" and rec.period < 0.4
     q_eff = cf.ConstantTorque(*cf.GAIT_I_TORQUES).generalised_force(np.zeros(4), np.zeros(4), 0.0)
-    assert q_eff == pytest.approx((PAPER.g * PAPER.k * ALPHA, PAPER.g * PAPER.m * PAPER.b * ALPHA), rel=0.015)
+    # the gravity replacement g K alpha = 2.1893, g m b alpha = 0.5473 N m, against 002's torques printed to 0.01
+    # N m (half a unit, 0.005, is the printed precision): Q1 = 2.19 holds it; Q2 = 0.54 is 0.0073 N m (1.3 %)
+    # below, beyond the printed precision (a finding: 002's tau2 is not exactly the gravity replacement)
+    assert abs(q_eff[0] - PAPER.g * PAPER.k * ALPHA) < 0.005
+    assert 0.005 < PAPER.g * PAPER.m * PAPER.b * ALPHA - q_eff[1] < 0.01
     assert printed.generalised_force(np.zeros(4), np.zeros(4), 0.0)[0] == pytest.approx(-2.19, abs=1e-12)
 
 
@@ -264,6 +269,7 @@ def test_gait_i():
     assert rec.actuator_work == pytest.approx((2.73 - 0.54 + 0.54) * 2 * g.z[0], rel=1e-9)
     assert rec.friction_work == pytest.approx(0.0, abs=1e-9)
     assert cf.cost_of_transport(g.biped, rec) == pytest.approx(0.01747, rel=1e-3)  # paper 0.017
+    # no printed value; confirmed by time stepping (tests/test_theory_compass_biped_time_stepping.py)
     assert cf.critical_friction(g.biped, g.z, g.actuation).stance == pytest.approx(0.19456, rel=1e-4)
 
 
@@ -275,7 +281,9 @@ def test_gait_i_loses_stability_near_mu_0103():
 
 
 def test_gait_ii():
-    """Open loop (-0.69, 0.12) N m, slipping impact: unstable; c_mt = 0.0044 as in 002."""
+    """Open loop (-0.69, 0.12) N m, slipping impact: unstable; c_mt = 0.0044 as in 002. W and S differ from 002's
+    0.1 J and 0.23 m; the independent time-stepping computation agrees with these values
+    (tests/test_theory_compass_biped_time_stepping.py::test_gait_ii_step_and_work_differ_from_002)."""
     g = cf.paper_gait("II", 0.2)
     rec = g.record
     assert g.kind == "C" and rec.impact == "slipping"
@@ -289,7 +297,8 @@ def test_gait_ii():
 @pytest.mark.parametrize(("mu", "rho", "length"), [(0.2, 0.56742, 0.24069), (0.09, 0.86265, 0.25092)])
 def test_gait_iii(mu, rho, length):
     """PD (kp = kd = 15, Q = tau) tracking passive Gait C (mu = 0.14) on level ground: stable, slipping impact,
-    S ~ 0.24 m (paper ~0.23); |lambda|max 0.57..0.86 on [0.09, 0.2] (paper < 0.5)."""
+    S ~ 0.24 m (paper ~0.23); |lambda|max 0.57..0.86 on [0.09, 0.2] (paper < 0.5; confirmed by the independent
+    time-stepping computation, tests/test_theory_compass_biped_time_stepping.py)."""
     g = cf.paper_gait("III", mu)
     rec = g.record
     assert g.kind == "C" and rec.phases == ("slip+", "stick")
