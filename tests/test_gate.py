@@ -1,5 +1,6 @@
 """The regression gate (:data:`mjpoincare.gate.GATE`): every gated check passes, every expected miss misses (strict
-xfail carrying its measured number), and every scenario's defaults are in the gate at every preset it offers.
+xfail whose reason quotes its declared error) by the error it declares, every check of every case's run is gated,
+an expected miss or reported, and every scenario's defaults are in the gate at every preset it offers.
 
 Which checks are gated, and the margin each holds by, comes from ``mjpoincare margins`` (error + spread under seed,
 thread count and starts x(1 + 1e-12), and against the oldest numpy/scipy allowed, within half the tolerance).
@@ -7,6 +8,7 @@ thread count and starts x(1 + 1e-12), and against the oldest numpy/scipy allowed
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from pathlib import Path
 
@@ -14,17 +16,17 @@ import pytest
 
 from mjpoincare import scenarios
 from mjpoincare.cli import main
-from mjpoincare.gate import GATE, MARGIN, GateCase, margin_rows
+from mjpoincare.gate import DRIFT, GATE, MARGIN, GateCase, Miss, case, margin_rows
 
 pytestmark = pytest.mark.mujoco
 
 
 def _params() -> list[object]:
     out: list[object] = []
-    for case in GATE:
-        out += [pytest.param(case, name, id=f"{case.label}::{name}") for name in case.gated]
-        out += [pytest.param(case, name, id=f"{case.label}::{name}", marks=pytest.mark.xfail(strict=True, reason=why))
-                for name, why in case.misses]
+    for c in GATE:
+        out += [pytest.param(c, name, id=f"{c.label}::{name}") for name in c.gated]
+        out += [pytest.param(c, miss.check, id=f"{c.label}::{miss.check}",
+                             marks=pytest.mark.xfail(strict=True, reason=miss.reason(c.preset))) for miss in c.misses]
     return out
 
 
@@ -35,25 +37,62 @@ def test_gated_check(case: GateCase, name: str) -> None:
     assert check.passed, result.table()
 
 
+@pytest.mark.parametrize(("case", "miss"), [pytest.param(c, m, id=f"{c.label}::{m.check}")
+                                            for c in GATE for m in c.misses])
+def test_expected_miss_measures_what_it_declares(case: GateCase, miss: Miss) -> None:
+    """The run's error lies within 10 % of the miss's declared number or range (its xfail reason quotes them), and
+    the tolerance the reason quotes is the check's."""
+    check = next(c for c in case.run().checks if c.name == miss.check)
+    low, high = miss.bounds
+    assert check.tolerance == miss.tolerance, f"{case.label}::{miss.check}: tolerance {check.tolerance:g}"
+    assert low / DRIFT <= check.error <= high * DRIFT, (
+        f"{case.label}::{miss.check}: measured {check.error:.4g}, declared {low:g}-{high:g}: update gate.GATE")
+
+
+@pytest.mark.parametrize("case", [pytest.param(c, id=c.label) for c in GATE])
+def test_every_check_of_the_run_is_gated_missed_or_reported(case: GateCase) -> None:
+    """Each case names every check its run has, once: gated, an expected miss, or reported because it passes here
+    without the margin (with its number in the margins table)."""
+    declared = [*case.gated, *(m.check for m in case.misses), *case.reported]
+    assert len(declared) == len(set(declared)), f"{case.label}: a check is declared twice"
+    assert set(declared) == {c.name for c in case.run().checks}, case.label
+
+
 @pytest.mark.parametrize("name", list(scenarios.REGISTRY))
-def test_every_preset_of_every_scenario_is_gated_on_its_defaults(name: str) -> None:
-    """Each preset's default run is a gate case whose every check is gated, an expected miss, or reported because
-    it passes here without the margin (named in the case, with its number in the margins table)."""
+def test_every_preset_of_every_scenario_is_in_the_gate_on_its_defaults(name: str) -> None:
     for preset in scenarios.get(name).presets:
-        case = next((c for c in GATE if c.scenario == name and c.preset == preset and not c.values), None)
-        assert case is not None, f"{name} --preset {preset} is not in the gate"
-        covered = set(case.gated) | {m for m, _ in case.misses} | set(case.reported)
-        assert {c.name for c in case.run().checks} <= covered, f"{case.label}: ungated checks"
+        assert any(c.scenario == name and c.preset == preset and not c.values for c in GATE), (
+            f"{name} --preset {preset} is not in the gate")
 
 
 def test_margin_rows_measure_the_spread() -> None:
-    """The margins command's rows on the cheapest case: one row per check, the spread measured under every
-    perturbation, and the gated checks within the margin."""
-    case = next(c for c in GATE if c.label == "slotted-skate[fast]")
-    rows = margin_rows([case])
-    assert [r["check"] for r in rows] == [c.name for c in case.run().checks]
-    assert all(r["spread"] >= 0 for r in rows)
+    """The margins command's rows on the cheapest case: one row per check; the starts x(1 + 1e-12) perturbation
+    moves sigma4's error (spread > 0) while a count stays put; another environment's error counts into the spread;
+    the gated checks hold the margin."""
+    gated = case("slotted-skate[fast]")
+    rows = margin_rows([gated])
+    assert [r["check"] for r in rows] == [c.name for c in gated.run().checks]
+    by_check = {r["check"]: r for r in rows}
+    assert by_check["sigma4_forward"]["spread"] > 0 and by_check["reversals"]["spread"] == 0
+    heading = by_check["heading"]
+    other = margin_rows([gated], {(gated.label, "heading"): heading["error"] + 1e-3}, perturb=False)
+    assert next(r["spread"] for r in other if r["check"] == "heading") == pytest.approx(1e-3)
     assert all(r["ratio"] <= MARGIN for r in rows if r["status"] == "gated")
+
+
+def test_margins_show_and_hold_an_expected_miss_by_its_declared_error(capsys: pytest.CaptureFixture[str]) -> None:
+    """An expected miss's row carries its declared error and reason, and the table prints the declared error beside
+    the measured one; declared twice the measured error, the same miss is stale and loses its hold."""
+    missed = case("rimless-wheel[accurate,spokes=8,slope=0.2]")
+    (miss,) = missed.misses
+    row = next(r for r in margin_rows([missed], perturb=False) if r["check"] == miss.check)
+    assert row["status"] == "expected miss" and row["holds"]
+    assert row["declared"] == list(miss.bounds) and row["miss"] == miss.reason("accurate")
+    stale = dataclasses.replace(missed, misses=(dataclasses.replace(miss, measured=2 * row["error"]),))
+    assert not next(r["holds"] for r in margin_rows([stale], perturb=False) if r["check"] == miss.check)
+    assert main(["margins", "--case", missed.label, "--base-only"]) == 0
+    line = next(x for x in capsys.readouterr().out.splitlines() if miss.check in x).split()
+    assert line[2:4] == [f"{row['error']:.3g}", f"{miss.bounds[0]:g}"]
 
 
 def test_margins_command(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:

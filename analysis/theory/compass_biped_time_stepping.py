@@ -23,12 +23,16 @@ switch, and the impact law split into its sticking and slipping cases (eqs 37-40
   M (v+ - v) = h F(q, v, t) + J^T P, q+ = q + h v+, with the stance foot's impulse P = (P_t, P_n) solving the
   Signorini-Coulomb complementarity problem 0 <= P_n _|_ g/h + v_n+ >= 0, |P_t| <= mu P_n, P_t = -mu P_n sgn(v_t+)
   while sliding (maximal dissipation), enumerated over its four cases (free, stick, slide+, slide-). The stick/slip
-  phases are whatever case each step's problem takes; no mode logic, no switching events.
+  phases are whatever case each step's problem takes; no mode logic and no force law per mode. A step in which the
+  case changes is shortened to end where the case it leaves stops being valid (its complementarity margin crosses
+  0, :func:`case_margin`), so that the switch does not leave an O(h) error that depends on where it falls in the
+  step grid (which would make the map's central differences noisy).
 * **Heel strike.** The swing foot's contact is armed once the foot is ahead of the stance foot and above the slope
   (002 Sec. 4.1 ignores the scuffing before that); the step in which the armed foot would pass the slope is
   shortened so that it lands exactly (secant on the step fraction), and the plastic frictional impact is the same
   complementarity problem with h = 0 for both feet at once (inelastic: v_n+ >= 0 _|_ P_n >= 0 at each foot, Coulomb
-  cone), 16 cases enumerated. Whether the impact sticks or slips, and whether the old stance foot lifts off, are
+  cone), 16 cases enumerated. Before it, the stance foot's velocity is made consistent at the landing configuration
+  (:func:`_consistent`), for the same reason. Whether the impact sticks or slips, and whether the old stance foot lifts off, are
   outputs of that problem, not assumptions.
 
 The scheme is first order in h (:func:`stride` at several h; :func:`richardson`), so this module checks the

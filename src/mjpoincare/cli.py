@@ -241,7 +241,8 @@ def build_parser() -> argparse.ArgumentParser:
     stress.set_defaults(func=_cmd_stress)
 
     margins = sub.add_parser("margins", help="the regression gate's checks under perturbations that must not matter "
-                             "(seed, threads, starts x(1+1e-12)): error, spread, tolerance, margin")
+                             "(seed, threads, starts x(1+1e-12)): error, spread, tolerance, margin, and an expected "
+                             "miss's declared error beside its measured one")
     margins.add_argument("--case", action="append", default=[], metavar="TEXT", help="only cases whose label "
                          "contains TEXT (repeatable), e.g. rimless-wheel[fast")
     margins.add_argument("--json", metavar="PATH|-", help="write the margin table as JSON (- for stdout)")

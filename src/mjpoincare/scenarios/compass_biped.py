@@ -168,9 +168,10 @@ class GaitController:
         self.samples: list[list[np.ndarray]] = [[] for _ in range(batch)]
         self.sample_times: list[list[float]] = [[] for _ in range(batch)]
         self.strikes: list[list[tuple[float, float]]] = [[] for _ in range(batch)]  # (time, new stance foot x)
-        self.scuffs = np.zeros(batch, int)  # swings in which the (switched-off) swing foot dipped below the slope
-        self.early_contacts = np.zeros(batch, int)  # swing-foot touchdowns behind the stance foot (must be 0)
-        self._scuffed = np.zeros(batch, bool)
+        # per swing, while the swing foot's contact is off: its lowest height above the slope (m, along the normal;
+        # < 0: below the slope) and the stance foot's height at that row (< 0: sunk into the slope)
+        self._lowest = np.full((batch, 2), np.inf)
+        self.swing_low: list[list[tuple[float, float]]] = [[] for _ in range(batch)]
         # the released trailing foot: (release time, height then, lowest height since), and per strike the depth it
         # went below its release height within RELEASE_WINDOW and its upward speed at the end of the window
         self._release: list[tuple[float, float, float] | None] = [None] * batch
@@ -208,33 +209,34 @@ class GaitController:
             if np.isnan(chunk.time[b, 1]):
                 continue
             st, sw = self.stance[b], 1 - self.stance[b]
-            x_st, _ = self._feet(chunk, b, st)
+            x_st, h_st = self._feet(chunk, b, st)
             x_sw, h_sw = self._feet(chunk, b, sw)
             length = self.bp.l
             if self._release[b] is not None:
                 self._watch_release(chunk, b, sw, h_sw)
             strike = False
             if not self.swing_enabled[b]:
-                self._scuffed[b] |= bool(np.nanmin(h_sw[1:]) < 0.0)
                 ready = np.nonzero((x_sw[1:] > x_st[1:] + self.enable_ahead * length)
                                    & (h_sw[1:] > self.enable_clear * length))[0]
+                last = int(ready[0]) + 1 if ready.size else steps
+                i = int(np.nanargmin(h_sw[1 : last + 1])) + 1
+                if h_sw[i] < self._lowest[b, 0]:
+                    self._lowest[b] = h_sw[i], h_st[i]
                 if ready.size:
-                    restart[b] = int(ready[0]) + 1
+                    restart[b] = last
                     models[b].geom_contype[self.feet[sw]] = 1
                     self.swing_enabled[b] = True
-                    self.scuffs[b] += int(self._scuffed[b])
-                    self._scuffed[b] = False
+                    self.swing_low[b].append((float(self._lowest[b, 0]), float(self._lowest[b, 1])))
+                    self._lowest[b] = np.inf
             else:
                 predicted = h_sw[1:] + 2.0 * (h_sw[1:] - h_sw[:-1])  # two steps ahead: before any contact starts
                 hits = np.nonzero(predicted <= 0.0)[0]
                 if hits.size:
                     k = int(hits[0]) + 1
                     restart[b], strike = k, True
-                    self.early_contacts[b] += int(x_sw[k] <= x_st[k])
                     models[b].geom_contype[self.feet[st]] = 0  # release the trailing foot before impact
                     self._actuate(models[b], sw)
                     self.strikes[b].append((float(chunk.time[b, k]), float(x_sw[k])))
-                    h_st = self._feet(chunk, b, st)[1]
                     self._release[b] = (float(chunk.time[b, k]), float(h_st[k]), float(h_st[k]))
             self._sample(chunk, b, st, sw, int(restart[b]))
             if strike:
