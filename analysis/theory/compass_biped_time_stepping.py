@@ -32,8 +32,8 @@ switch, and the impact law split into its sticking and slipping cases (eqs 37-40
   shortened so that it lands exactly (secant on the step fraction), and the plastic frictional impact is the same
   complementarity problem with h = 0 for both feet at once (inelastic: v_n+ >= 0 _|_ P_n >= 0 at each foot, Coulomb
   cone), 16 cases enumerated. Before it, the stance foot's velocity is made consistent at the landing configuration
-  (:func:`_consistent`), for the same reason. Whether the impact sticks or slips, and whether the old stance foot lifts off, are
-  outputs of that problem, not assumptions.
+  (:func:`_consistent`), for the same reason. Whether the impact sticks or slips, and whether the old stance foot
+  lifts off, are outputs of that problem, not assumptions.
 
 The scheme is first order in h (:func:`stride` at several h; :func:`richardson`), so this module checks the
 event-driven gaits' fixed points, multipliers, step lengths, work and phase times to the accuracy its step allows.
