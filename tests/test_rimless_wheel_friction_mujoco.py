@@ -104,13 +104,14 @@ def test_mu_sweep_batches_and_resumes(tmp_path: Path, capsys: pytest.CaptureFixt
 
 
 def test_basin_map_small(tmp_path: Path) -> None:
-    """An 8 x 5 map and the x_dot0 = 0 lines: the sticking starts inside the window converge, the slowest rolls back;
-    the PNG and JSON are written."""
+    """An 8 x 5 map and the x_dot0 = 0 lines: the region of attraction agrees with the reference (exit 0: measured 0 %
+    of the reference points differ, against the 5 % the exit code allows), the sticking starts inside the window
+    converge, the slowest rolls back; the PNG and JSON are written."""
     png, js = tmp_path / "basins.png", tmp_path / "basins.json"
     code = basins.run_basin_map("theta_dot0=0.05:1.2:8,x_dot0=0:0.04:5", {}, "coarse", str(js), str(png), workers=1)
     result = json.loads(js.read_text())
     assert png.stat().st_size > 10_000
-    assert code in (0, 1)
+    assert code == 0 and result["diverged"] == 0
     line = result["lines"]["slip"]
     assert line["simulated"][0] == line["reference"][0] == "backward"
     assert all(s not in basins.FAILURES for s in line["simulated"][1:6])

@@ -65,15 +65,21 @@ def test_error_shrinks_as_timestep_is_refined() -> None:
 
 
 def test_json_to_stdout_is_clean(capsys: pytest.CaptureFixture[str]) -> None:
-    code = main(["validate", "rimless-wheel", "--set", "spokes=8", "--set", "slope=0.08", "--json", "-"])
-    out = capsys.readouterr().out
-    payload = json.loads(out)
-    assert payload["params"]["spokes"] == 8
-    assert code == (0 if payload["passed"] else 1)
+    """A failing run (the gate's n = 8, slope 0.2 accurate case, whose step period is a strict expected miss and
+    every other check gated) prints only its JSON to stdout and exits 1, failing exactly the gate's misses."""
+    missed = gate.case("rimless-wheel[accurate,spokes=8,slope=0.2]")
+    code = main(["validate", "rimless-wheel", "--preset", "accurate", "--set", "spokes=8", "--set", "slope=0.2",
+                 "--json", "-"])
+    payload = json.loads(capsys.readouterr().out)
+    assert payload["params"]["spokes"] == 8 and payload["params"]["slope"] == 0.2
+    assert {c["name"] for c in payload["checks"] if not c["passed"]} == {m.check for m in missed.misses}
+    assert code == 1 and not payload["passed"]
 
 
-def test_json_file_written_whole(tmp_path: Path) -> None:
-    """The default validation (every default scenario) writes one JSON list, whole, and no temp file."""
+def test_json_file_written_whole_and_the_exit_code_agrees_with_it(tmp_path: Path) -> None:
+    """The default validation (every default scenario) writes one JSON list, whole, and no temp file; the exit code
+    is the payload's verdict (the verdicts themselves are the gate's: some default checks pass without the margin,
+    so this test does not fix them)."""
     target = tmp_path / "out" / "result.json"
     code = main(["validate", "--json", str(target)])
     payload = json.loads(target.read_text())

@@ -87,8 +87,12 @@ def test_validate_messages(L0: float, Delta: float, msg: str) -> None:
 
 
 def test_validate_accepts_any_finite_L0() -> None:
+    """L0 is signed (seed 000 Sec. 3): a skate with any finite L0 passes the check and has a map, in both
+    directions."""
     for l0 in (-50.0, -1.0, 0.0, 2.5):
-        ss.validate(SlottedSkate(l0, 0.7))
+        sk = SlottedSkate(l0, 0.7)
+        ss.validate(sk)
+        assert all(0 < ss.sigma4(sk, forward) < math.inf for forward in (True, False)), l0
 
 
 def test_section_and_feasibility_errors() -> None:
