@@ -55,9 +55,11 @@ def test_gait_b_starts_stay_on_the_sticking_impact_branch() -> None:
 
 
 def test_gait_b_phase_times_reference() -> None:
-    """Gait B's phase switches (002: slip+ -> stick 0.0894 s, stick -> slip- 0.7202 s) as the stance-foot speed
-    threshold sees them on both sides: 0.0878 s and 0.7309 s for the exact foot (the slip- speed grows slowly, so
-    the threshold crosses 10 ms after the switch in the exact model too)."""
+    """Gait B's phase switches as the stance-foot speed threshold reads them from the exact foot, 0.0878 s and
+    0.7309 s: what the MuJoCo check compares against. The exact model switches at 0.0894 s (slip+ -> stick) and
+    0.7202 s (stick -> slip-), the event-driven solution that the time-stepping scheme confirms
+    (tests/test_theory_compass_biped_time_stepping.py); 002 plots them in Fig. 4.2b without printing them. The
+    threshold reads the first 1.6 ms early and the second 10.7 ms late (the slip- speed grows slowly)."""
     check = _checks("b")["phase_times"]
     assert check.analytic == pytest.approx([0.0878, 0.7309], abs=2e-4)
 
@@ -71,7 +73,7 @@ def test_gait_c_found_unstable() -> None:
 def test_exact_steps_read_by_the_simulation_classifier() -> None:
     """The phase labels the checks compare against: the exact foot through the same 5 mm/s detector. Gait B keeps
     002's three phases (switches seen 1.6 ms early and 10.7 ms late); Gait II's 5.2 ms slip+ ends inside the first
-    5 ms that the detector skips, so it reads 'stick' (its slipping impact is the impact_kind check's)."""
+    5 ms that the detector skips, so it reads 'stick' (that slip is the impact_slip check's)."""
     p_b = resolve_inputs("compass-biped-friction", {"gait": "b"}, "fast")[2]
     p_ii = resolve_inputs("compass-biped-friction", {"gait": "ii"}, "fast")[2]
     b = stance.classified_pattern(sc.gait(p_b), 1e-4)
@@ -79,6 +81,16 @@ def test_exact_steps_read_by_the_simulation_classifier() -> None:
     assert [t for _, t in b[1:]] == pytest.approx([0.0878, 0.7309], abs=2e-4)
     assert sc.gait(p_ii).record.phases == ("slip+", "stick")
     assert [lab for lab, _ in stance.classified_pattern(sc.gait(p_ii), 1e-4)] == ["stick"]
+
+
+def test_gait_ii_impact_slip_reference() -> None:
+    """Gait II's slip after its slipping impact (002 Sec. 5) ends 5.2 ms after the impact, past the 5 ms window
+    that impact_slip compares: the exact foot's slide over that window is all but < 1 um of the whole stance's
+    slip (the step record's slip_distance, 0.22 mm)."""
+    check = _checks("ii")["impact_slip"]
+    record = sc.gait(resolve_inputs("compass-biped-friction", {"gait": "ii"}, "fast")[2]).record
+    assert record.phases == ("slip+", "stick") and record.phase_times[1] > stance.RELEASE_SKIP
+    assert 0.0 < record.slip_distance - check.analytic < 1e-6
 
 
 @pytest.mark.parametrize(

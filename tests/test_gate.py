@@ -41,10 +41,12 @@ def test_gated_check(case: GateCase, name: str) -> None:
                                             for c in GATE for m in c.misses])
 def test_expected_miss_measures_what_it_declares(case: GateCase, miss: Miss) -> None:
     """The run's error lies within 10 % of the miss's declared number or range (its xfail reason quotes them), and
-    the tolerance the reason quotes is the check's."""
+    the tolerance the reason quotes is the check's (to the 3 digits it is declared with: some tolerances are
+    computed per run from the exact model and the contact settings)."""
     check = next(c for c in case.run().checks if c.name == miss.check)
     low, high = miss.bounds
-    assert check.tolerance == miss.tolerance, f"{case.label}::{miss.check}: tolerance {check.tolerance:g}"
+    assert check.tolerance == pytest.approx(miss.tolerance, rel=5e-3), (
+        f"{case.label}::{miss.check}: tolerance {check.tolerance:g}")
     assert low / DRIFT <= check.error <= high * DRIFT, (
         f"{case.label}::{miss.check}: measured {check.error:.4g}, declared {low:g}-{high:g}: update gate.GATE")
 

@@ -111,7 +111,7 @@ _SKATE = ("sigma4_forward sigma4_fit_forward stability_forward sigma4_backward s
           "energy_loss heading reversals collisions_before_reversal final_speed final_reversals stable")
 _WHEEL_3D = ("pitch_rate bank heading_eigenvalue wobble_modulus wobble_angle lambda5 lambda2 planar_pitch_rate "
              "planar_bank stable")
-_BIPED = "fixed_point step_period step_length swing_foot_contacts trailing_foot_release stable"
+_BIPED = "fixed_point step_period step_length stable"
 _FRICTION_WHEEL = "gait_type midstance_rate eigenvalue impact_kind phase_sequence slip_onset stable"
 
 #: The gate, as measured by ``mjpoincare margins`` (MuJoCo 4.0.0; numpy 2.4.6 / scipy 1.17.1 and 1.26.4 / 1.11.4).
@@ -130,9 +130,9 @@ GATE: tuple[GateCase, ...] = (
         Miss(check=name, measured=measured, tolerance=1e-3, mechanism="the n = 6 wheel hops at each impact")
         for name, measured in (("omega_post_impact", 5.36e-3), ("impact_coefficient", 3.96e-3),
                                ("step_period", 1.23e-2))], spokes=6, slope=0.22),
-    _case("compass-biped", "fast", _BIPED, reported="eigenvalues"),
-    _case("compass-biped", "fast", _BIPED, reported="eigenvalues", tau_ankle=0.5, tau_hip=0.2),
-    _case("compass-biped", "accurate", "eigenvalues " + _BIPED),
+    _case("compass-biped", "fast", _BIPED, reported="eigenvalues trailing_foot_release"),
+    _case("compass-biped", "fast", _BIPED, reported="eigenvalues trailing_foot_release", tau_ankle=0.5, tau_hip=0.2),
+    _case("compass-biped", "accurate", "eigenvalues " + _BIPED, reported="trailing_foot_release"),
     _case("slotted-skate", "fast", _SKATE.replace("sigma4_backward ", ""), reported="sigma4_backward"),
     _case("slotted-skate", "fast", _SKATE.replace("sigma4_forward sigma4_fit_forward ", ""),
           reported="sigma4_forward sigma4_fit_forward", l0=-1.4142135623730951, delta=0.7071067811865476),
@@ -153,21 +153,23 @@ GATE: tuple[GateCase, ...] = (
              "rigid theory has no hop)")]),
     _case("rimless-wheel-friction", "coarse", _FRICTION_WHEEL),
     _case("compass-biped-friction", "fast", "fixed_point step_period speed friction_ratio_window critical_friction "
-          "phase_sequence impact_kind stable", reported="eigenvalues step_length"),
+          "phase_sequence impact_kind stable", reported="eigenvalues step_length impact_slip"),
     _case("compass-biped-friction", "fast", "fixed_point step_period step_length speed phase_sequence phase_times "
           "impact_kind stable", [
               Miss(check="eigenvalues", measured=(0.109, 0.131), tolerance=0.03, mechanism="the soft impact starts "
                    "the slip+ late and the sliding foot rises at ~mu v_t (MuJoCo's convex contact); the error "
-                   "shrinks with the contact time (docs/findings.md)")], gait="b"),
+                   "shrinks with the contact time (docs/findings.md)")], reported="impact_slip", gait="b"),
     _case("compass-biped-friction", "fast", "step_length phase_sequence phase_times impact_kind stable", [
         Miss(check=name, measured=measured, tolerance=tolerance, mechanism="the unstable gait is fitted over its "
              "first 2 steps after the fast preset's soft slipping impact; the error shrinks at the accurate preset's "
              "shorter contact (docs/findings.md)")
-        for name, measured, tolerance in (("fixed_point", 9.12e-3, 5e-3), ("eigenvalues", 0.0574, 0.03))],
+        for name, measured, tolerance in (("fixed_point", 9.12e-3, 5e-3), ("eigenvalues", 0.0574, 0.03))] + [
+        Miss(check="impact_slip", measured=1.94e-4, tolerance=7.24e-5, mechanism="the foot leaves the soft slipping "
+             "impact at 0.50 m/s (exact x_dot+ 0.577 m/s) and slides 0.19 mm less in the first 5 ms")],
         reported="step_period speed", gait="c"),
     _case("compass-biped-friction", "fast", "fixed_point eigenvalues step_period speed cost_of_transport "
-          "phase_sequence impact_kind stable", reported="step_length", gait="i"),
-    _case("compass-biped-friction", "fast", "phase_sequence impact_kind stable", [
+          "phase_sequence impact_kind stable", reported="step_length impact_slip", gait="i"),
+    _case("compass-biped-friction", "fast", "phase_sequence impact_kind impact_slip stable", [
         Miss(check=name, measured=measured, tolerance=tolerance, mechanism="the fast preset's 1 ms contact is as "
              "long as the 5 ms slip+ after the slipping impact (docs/findings.md)")
         for name, measured, tolerance in (("fixed_point", 0.0148, 5e-3), ("eigenvalues", 0.367, 0.03),
@@ -177,10 +179,12 @@ GATE: tuple[GateCase, ...] = (
     _case("compass-biped-friction", "fast", "fixed_point step_period step_length speed phase_sequence phase_times "
           "impact_kind stable", [
               Miss(check="eigenvalues", measured=0.0348, tolerance=0.03, mechanism="not isolated; the error halves "
-                   "at the accurate preset's shorter contact (docs/findings.md)")], reported="cost_of_transport",
+                   "at the accurate preset's shorter contact (docs/findings.md)"),
+              Miss(check="impact_slip", measured=8.84e-5, tolerance=6.41e-5, mechanism="the foot leaves the soft "
+                   "slipping impact at 0.18-0.19 m/s (exact x_dot+ 0.253 m/s)")], reported="cost_of_transport",
           gait="iii"),
     _case("compass-biped-friction", "accurate", "fixed_point eigenvalues step_period step_length speed "
-          "friction_ratio_window critical_friction phase_sequence impact_kind stable"),
+          "friction_ratio_window critical_friction phase_sequence impact_kind stable", reported="impact_slip"),
 )
 
 

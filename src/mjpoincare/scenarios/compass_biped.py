@@ -5,8 +5,9 @@ model as Goswami et al. (1996/98); see :mod:`mjpoincare.analysis.theory.compass_
 exact hybrid model, finite-difference eigenvalues).
 
 Contact protocol, as the analytic model assumes (003 Sec. 4.1): the swing foot's contact is off
-from heel strike until the foot is ahead of the stance foot and clear of the ground (so it never
-scuffs mid-swing), and the trailing foot's contact is switched off just before the next heel strike
+from heel strike until the foot is ahead of the stance foot and clear of the ground (it passes
+through the slope mid-swing, as the exact model's foot does; how deep is reported, without a
+verdict), and the trailing foot's contact is switched off just before the next heel strike
 (so the impact impulse acts at the new foot only). The switching is done by a chunk controller on
 per-trajectory model copies (:func:`mjpoincare.simulate.event_rollout`): MuJoCo steps natively
 between events and each event restarts from the recorded state where it happened.
@@ -24,6 +25,8 @@ import time
 
 import mujoco
 import numpy as np
+from scipy.integrate import solve_ivp
+from scipy.optimize import minimize_scalar
 
 from mjpoincare import settings as sim_settings
 from mjpoincare.analysis import checks
@@ -34,7 +37,7 @@ from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios.base import Evaluation, Scenario, Soak, StressCase, Values
 from mjpoincare.settings import rollout_options
-from mjpoincare.simulate import Chunk, KeptRows, RolloutReport, event_rollout, initial_states
+from mjpoincare.simulate import STATE_SPEC, Chunk, KeptRows, RolloutReport, event_rollout, initial_states
 
 PARAMS: tuple[Param, ...] = (
     Param("m_h", 10.0, "hip mass, kg", float, 0.0, 1e6, low_open=True),
@@ -61,7 +64,8 @@ TOLERANCES: dict[str, dict[str, float]] = {
     "fast": {"fixed_point": 5e-3, "eigenvalues": 0.03, "step_period": 5e-3, "step_length": 5e-3},
 }
 WHY = {
-    "accurate": "0.2 ms overdamped contact and 20 us steps: impact window ~1 ms; 1e-3 is the issue's target",
+    "accurate": "0.2 ms overdamped contact and 20 us steps: impact window ~1 ms; 1e-3 is the accuracy the accurate "
+                "preset promises",
     "fast": "1 ms overdamped contact and 0.1 ms steps: the impact onset jitters on the step grid (one-step map "
             "errors ~1e-3 against the exact map), which limits the eigenvalues to a few 1e-2",
 }
@@ -81,6 +85,9 @@ PERTURBATION = 0.03
 ENABLE_AHEAD = 0.05  # swing-foot contact switches on once the foot is this far (x l) ahead of the stance foot
 ENABLE_CLEAR = 2e-3  # ... and this high (x l) above the slope
 RELEASE_WINDOW = 0.02  # s: the released trailing foot is followed this long after heel strike
+#: Steps of free fall the released trailing foot is allowed before its dip fails ``trailing_foot_release``: twice the
+#: controller's release lead (the new foot is predicted at the slope 2 steps ahead; see :func:`release_tolerance`).
+RELEASE_FALL_STEPS = 4
 CHUNK_SECONDS = 0.05  # native steps between controller looks: 5x fewer Python calls than 10 ms, same results
 FIT_DEGREE = 3  # cubic: over the +-0.03 spread a quadratic fit's Jacobian absorbs the cubic terms (see STARTS)
 
@@ -300,11 +307,64 @@ def _run(model: mujoco.MjModel, bp: theory.CompassBiped, starts: np.ndarray, ste
     return controller, report
 
 
-def _simulate(p: Values, s: Values) -> tuple[GaitController, RolloutReport, theory.CompassBiped]:
+def _simulate(p: Values, s: Values) -> tuple[GaitController, RolloutReport, theory.CompassBiped, mujoco.MjModel]:
     bp = biped(p)
     model = build(p, s)
     controller, report = _run(model, bp, initial_section_states(bp, model.opt.timestep), STEPS, s)
-    return controller, report, bp
+    return controller, report, bp, model
+
+
+def lowest_swing_height(bp: theory.CompassBiped, x_plus: np.ndarray) -> float:
+    """The exact model's lowest swing-foot height above the slope (m, along its normal; < 0: below it, the mid-swing
+    scuffing that 003 Sec. 4.1 ignores) over the passive swing (003 eq 4.19) from the post-impact state ``x_plus``
+    to the heel strike: 003 eqs 4.1-4.3 on 401 samples, the lowest refined by a bounded scalar search."""
+    period = theory.step_period(bp, x_plus)
+    sol = solve_ivp(lambda _t, y: [y[2], y[3], *theory.swing_dynamics(bp, y[:2], y[2:])], (0.0, period),
+                    np.asarray(x_plus, dtype=float), method="DOP853", rtol=theory.RTOL, atol=theory.ATOL,
+                    dense_output=True)
+
+    def height(t: float) -> float:
+        return theory.swing_foot_height(bp, sol.sol(t)[:2])
+
+    grid = np.linspace(0.0, period, 401)
+    i = int(np.argmin([height(t) for t in grid]))
+    found = minimize_scalar(height, bounds=(grid[max(i - 1, 0)], grid[min(i + 1, grid.size - 1)]), method="bounded",
+                            options={"xatol": 1e-10})
+    return float(min(found.fun, height(grid[i])))
+
+
+def swing_foot_report(controller: GaitController, exact_depth: float) -> dict[str, object]:
+    """The reported swing-foot depth (no verdict: the exact model lets the foot pass through the slope, 003 Sec.
+    4.1): the deepest the switched-off swing foot went below the slope over the run, beside ``exact_depth`` (the
+    exact gait's own dip) and the stance foot's depth in the slope at the same rows."""
+    lows = [low for swings in controller.swing_low for low in swings]
+    value = -min((h for h, _ in lows), default=math.nan)
+    gait = -min((h for h, _ in controller.swing_low[0]), default=math.nan)
+    sink = -min((h for _, h in lows), default=math.nan)
+    return {"value": value, "unit": "m", "note": (
+        f"deepest the switched-off swing foot went below the slope over the run's {len(lows)} swings (perturbed "
+        f"starts included; from the fixed point {gait:.4g} m); the exact gait's swing dips {exact_depth:.4g} m; "
+        f"MuJoCo's stance foot was up to {sink:.3g} m deep in the slope then (the soft contact's penetration under "
+        "the load and left over from the impact)")}
+
+
+def release_tolerance(model: mujoco.MjModel, bp: theory.CompassBiped, x_star: np.ndarray, foot_radius: float
+                      ) -> tuple[float, float]:
+    """(a, depth): the released trailing foot's slope-normal acceleration a (m/s^2, < 0 downward) at the exact
+    pre-impact state of the gait from ``x_star`` (MuJoCo's own, with no contact and the gait's torques), and the
+    depth it falls from rest in RELEASE_FALL_STEPS semi-implicit Euler steps, |a| dt^2 n (n + 1)/2."""
+    m = copy.copy(model)
+    controller = GaitController(m, bp, 1, foot_radius)
+    controller.configure([m])
+    m.geom_contype[controller.feet[0]] = 0
+    data = mujoco.MjData(m)
+    mujoco.mj_setState(m, data, post_impact_states(m, bp, theory.step(bp, x_star).x_minus[None, :], foot_radius)[0],
+                       STATE_SPEC)
+    mujoco.mj_forward(m, data)
+    q, w = float(data.qpos[2]), float(data.qvel[2])
+    accel = float(data.qacc[1]) + (bp.l - foot_radius) * (math.sin(q) * float(data.qacc[2]) + math.cos(q) * w * w)
+    n = RELEASE_FALL_STEPS
+    return accel, max(0.0, -accel) * m.opt.timestep**2 * n * (n + 1) / 2
 
 
 def _regress_at(y_star: np.ndarray, ys: np.ndarray, values: np.ndarray) -> float:
@@ -316,7 +376,7 @@ def _regress_at(y_star: np.ndarray, ys: np.ndarray, values: np.ndarray) -> float
 
 def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     """Simulate the perturbed gaits, fit the legs-parallel return map and check it against the theory."""
-    controller, report, bp = _simulate(p, s)
+    controller, report, bp, model = _simulate(p, s)
     tol = TOLERANCES.get(preset, TOLERANCES["fast"])
     why = WHY.get(preset, WHY["fast"])
     x_star = theory.fixed_point(bp)
@@ -349,15 +409,22 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
                                "fitted fixed point"))
     out.append(checks.relative("step_length", theory.step_length(bp, x_star), length_sim, tol["step_length"], "m",
                                "distance between successive stance feet, regressed at the fitted fixed point"))
-    out.append(checks.Check("swing_foot_contacts", 0.0, float(controller.early_contacts.sum()),
-                            float(controller.early_contacts.sum()), 0.0, "count", "",
-                            "touchdowns of the swing foot behind the stance foot (scuffing): the model forbids them"))
+    accel, release_tol = release_tolerance(model, bp, x_star, float(s["foot_radius"]))
     depth = max(controller.release_depth, default=math.nan)
-    out.append(checks.Check("trailing_foot_release", 0.0, depth, depth, 1e-6, "max-abs", "m",
+    out.append(checks.Check("trailing_foot_release", 0.0, depth, depth, release_tol, "max-abs", "m",
                             "deepest the released trailing foot went below its height at release within 20 ms of "
-                            "heel strike: > 0 would mean the contact the model ignores was still pushing"))
+                            f"heel strike, against its free fall from rest over {RELEASE_FALL_STEPS} steps, |a| dt^2 "
+                            f"n(n+1)/2 (semi-implicit Euler; a = {accel:.3g} m/s^2, its unsupported acceleration at "
+                            "the exact pre-impact state): the new foot reaches the slope 2 steps after the release "
+                            "and its contact reverses the trailing foot within the next step, 3 |a| dt^2 from rest; "
+                            "measured over 250 releases each: mean 3.1 |a| dt^2, max 5.6 (fast), mean 2.9, max 5.9 "
+                            "(accurate; the spread is the foot's speed at release, up to ~1e-3 m/s either way). A "
+                            "deeper dip: the foot was released steps early, or kept falling after the heel strike, "
+                            "whose impact law (003 eqs 4.15-4.17) has it lift off unloaded"))
+    exact_depth = -lowest_swing_height(bp, x_star)
+    extras["reported"] = {"swing_foot_depth": swing_foot_report(controller, exact_depth)}
+    extras["swing_foot"] = _swing_foot_detail(bp, controller, float(s["foot_radius"]), exact_depth)
     extras["fit"] = fit.to_dict()
-    extras["scuffs_avoided"] = int(controller.scuffs.sum())
     extras["trailing_foot"] = {"analytic_liftoff_velocity": theory.step(bp, x_star).liftoff_velocity,
                                "measured_vertical_speed_20ms": float(np.mean(controller.release_speed))
                                if controller.release_speed else math.nan, "releases": len(controller.release_depth)}
@@ -368,6 +435,22 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
                             "analytic_x": grid, "analytic_y": np.full_like(grid, np.nan),
                             "analytic_eigenvalues": lam}
     return Evaluation(out, report, extras)
+
+
+def _swing_foot_detail(bp: theory.CompassBiped, controller: GaitController, foot_radius: float, exact_depth: float
+                       ) -> dict[str, object]:
+    """Trajectory 0's swings (it starts on the exact fixed point): the switched-off swing foot's depth below the
+    slope and below the stance foot, and the exact depth of the same swing, from the post-impact state its
+    legs-parallel sample pulls back to (003 eq 4.19), scaled by (l - r)/l (MuJoCo's legs reach the slope at l - r
+    from the foot sphere's centre)."""
+    lows = controller.swing_low[0]
+    scale = (bp.l - foot_radius) / bp.l
+    same = [-scale * lowest_swing_height(bp, theory.post_impact_from_parallel(bp, y))
+            for y in controller.samples[0][: len(lows)]]
+    return {"exact_depth": exact_depth, "depth": [-h for h, _ in lows],
+            "depth_below_stance_foot": [h_st - h for h, h_st in lows], "exact_depth_same_swing": same,
+            "note": "trajectory 0 (from the exact fixed point), per swing, m; below the slope = below the stance foot "
+                    "+ the stance foot's depth in the slope"}
 
 
 def _step_summary(bp: theory.CompassBiped, x_star: np.ndarray) -> dict[str, float]:

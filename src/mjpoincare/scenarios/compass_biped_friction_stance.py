@@ -1,7 +1,7 @@
-"""Stance measurements of ``compass-biped-friction`` (issue #7) from MuJoCo's recorded rows, and the checks built
-on them: the stance foot's motion and the contact force ratio per step, the stance phases (stick / slip+ / slip-)
-and the impact kind, each read the same way from the exact step of Gamus & Or (2015, seed 002, Secs. 4-5, eq 27)
-through :func:`mjpoincare.analysis.theory.compass_biped_friction.stance_foot_motion`.
+"""Stance measurements of ``compass-biped-friction`` from MuJoCo's recorded rows, and the checks built on them: the
+stance foot's motion and the contact force ratio per step, the stance phases (stick / slip+ / slip-), the impact
+kind and the slide just after the impact, each read the same way from the exact step of Gamus & Or (2015, seed
+002, Secs. 4-5, eq 27) through :func:`mjpoincare.analysis.theory.compass_biped_friction.stance_foot_motion`.
 """
 
 from __future__ import annotations
@@ -81,6 +81,18 @@ def impact_velocity(stance: dict[str, np.ndarray], timeconst: float) -> float:
     return float(v[min(int(np.searchsorted(t, IMPACT_TIMECONSTS * timeconst)), len(t) - 1)])
 
 
+def impact_slip(stance: dict[str, np.ndarray]) -> float:
+    """How far the new stance foot slides along the slope in the first RELEASE_SKIP after it meets the slope (the
+    window :func:`phases` skips): from the touchdown, where its height crosses 0 (interpolated between rows), to
+    RELEASE_SKIP later (m, > 0 forward)."""
+    t, h, x = stance["t"], stance["height"], stance["x"]
+    i = int(np.argmax(h <= 0.0))
+    frac = h[i - 1] / (h[i - 1] - h[i]) if i > 0 else 0.0
+    t_on = t[i - 1] + frac * (t[i] - t[i - 1]) if i > 0 else t[0]
+    x_on = x[i - 1] + frac * (x[i] - x[i - 1]) if i > 0 else x[0]
+    return float(np.interp(t_on + RELEASE_SKIP, t, x) - x_on)
+
+
 def phases(stance: dict[str, np.ndarray], dt: float) -> list[tuple[str, float]]:
     """Stance phases (stick / slip+ / slip-) and start times from the stance foot's tangential velocity (rows
     within RELEASE_SKIP of either heel strike dropped), flicker shorter than MERGE_PHASE_S merged."""
@@ -107,7 +119,7 @@ def classified_pattern(g: theory.Gait, dt: float) -> list[tuple[str, float]]:
     """The exact step's stance phases as :func:`phases` sees them: its stance-foot speed (002 eq 27,
     :func:`mjpoincare.analysis.theory.compass_biped_friction.stance_foot_motion`) sampled every ``dt`` and classified
     by the same threshold, windows and merging as the simulated rows (Gait II's 5.2 ms slip+ ends inside the first
-    RELEASE_SKIP: seen as "stick" on both sides; its slipping impact is the impact_kind check's)."""
+    RELEASE_SKIP: seen as "stick" on both sides; that slip is the impact_slip check's)."""
     t = dt * np.arange(1, math.floor(g.record.period / dt) + 1)
     _, v = theory.stance_foot_motion(g.biped, g.z, t, g.actuation)
     return phases({"t": t, "v_t": v}, dt)
@@ -137,7 +149,8 @@ def stance_checks(g: theory.Gait, name: str, stances: list[dict[str, np.ndarray]
                   tol: dict[str, float], extras: dict[str, object]) -> list[checks.Check]:
     """Checks on the settled stances of trajectory 0 (``stances`` from :func:`stance_rows`): Gait A's friction
     ratio and mu_c (002 Sec. 4.1); every gait's phase sequence and switch times against the exact step classified
-    the same way, and its impact kind (002 Sec. 4.2); measured values go into ``extras``."""
+    the same way, its impact kind (002 Sec. 4.2) and the foot's slide in the window the phase labels skip; measured
+    values go into ``extras``."""
     rec = g.record
     out: list[checks.Check] = []
     if name == "A":
@@ -173,7 +186,9 @@ def stance_checks(g: theory.Gait, name: str, stances: list[dict[str, np.ndarray]
                                 float(len(seq_ok) - sum(seq_ok)), 0.0, "count", "",
                                 f"settled steps whose stance phases differ from the exact step's "
                                 f"{' -> '.join(expected)} (002: {' -> '.join(rec.phases)}; both labelled by the stance "
-                                f"foot speed > {V_SLIP} m/s, {RELEASE_SKIP * 1e3:g} ms after each strike excluded)"))
+                                f"foot speed > {V_SLIP} m/s from {RELEASE_SKIP * 1e3:g} ms after a strike to "
+                                f"{RELEASE_SKIP * 1e3:g} ms before the next: a slip that ends sooner after the impact "
+                                "is impact_slip's)"))
         if len(expected) > 1 and all(seq_ok):
             times_sim = np.mean([[t0 for _, t0 in pat] for pat in patterns], axis=0)[1:]
             times_th = np.array([t0 for _, t0 in exact[1:]])
@@ -191,8 +206,19 @@ def stance_checks(g: theory.Gait, name: str, stances: list[dict[str, np.ndarray]
                                 f"settled heel strikes whose kind differs from 002's {rec.impact} impact (slipping: "
                                 f"the new stance foot's speed {IMPACT_TIMECONSTS:g} contact time constants after the "
                                 f"strike above {V_SLIP} m/s)"))
+        slips = [impact_slip(st) for st in stances]
+        slip_th = float(theory.stance_foot_motion(g.biped, g.z, [RELEASE_SKIP], g.actuation)[0][0])
+        v_pre = float((theory.swing_jacobian(g.biped, rec.q_pre) @ np.asarray(rec.qd_pre)[: theory.NQ])[0])
+        jump = abs(v_pre - float(g.z[3]))
+        out.append(checks.absolute(
+            "impact_slip", slip_th, float(np.mean(slips)), jump * timeconst / 2, "m",
+            f"the new stance foot's slide over its first {RELEASE_SKIP * 1e3:g} ms on the slope (the window the phase "
+            f"labels skip), MuJoCo's from its touchdown vs the exact foot's from the impact (002 eq 27; {rec.impact} "
+            f"impact, x_dot+ = {g.z[3]:.3g} m/s): the exact impulse is instantaneous, MuJoCo's soft contact relaxes "
+            "the contact velocity at the rate 2/timeconst, so the foot keeps the speed the exact impact takes off, "
+            f"|v_t- - x_dot+| = {jump:.3g} m/s (v_t- the exact foot's before it), for about timeconst/2 longer"))
         extras["impact"] = {"analytic": rec.impact, "x_dot_plus_analytic": float(g.z[3]), "measured": kinds,
-                            "x_dot_plus_measured": v_impact}
+                            "x_dot_plus_measured": v_impact, "slip_analytic": slip_th, "slip_measured": slips}
         extras["phases"] = {"analytic": list(zip(rec.phases, rec.phase_times, strict=True)),
                             "measured": patterns, "slip_distance_analytic": rec.slip_distance,
                             "slip_distance_measured": slip, "max_stance_foot_height": lift}
