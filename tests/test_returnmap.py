@@ -3,11 +3,18 @@
 from __future__ import annotations
 
 import json
+import math
 from collections.abc import Callable
 
 import numpy as np
 import pytest
-from mjpoincare.analysis.returnmap import ReturnMapFit, convergence_ratio, fit_return_map, sample_pairs
+from mjpoincare.analysis.returnmap import (
+    ReturnMapFit,
+    convergence_ratio,
+    fit_drifting_cycle,
+    fit_return_map,
+    sample_pairs,
+)
 
 RHO, THETA, REAL = 0.9, 0.4, 0.3
 
@@ -321,3 +328,93 @@ def test_errors_bad_arguments_and_missing_fixed_point() -> None:
         fit_return_map(x, x[:-1])
     with pytest.raises(ValueError, match="did not converge"):
         fit_return_map(x, x**2 + 1.0, degree=2)  # x^2 + 1 = x has no real root
+
+
+# --- fit_drifting_cycle: a family of fixed points -------------------------------------------------
+
+
+def curved_family_map(k: float, lam: float, drift: float, anchor: float) -> Callable[[np.ndarray], np.ndarray]:
+    """Quadratic map of (s, y) whose fixed points are the curve y = s^2/2, moved by ``drift`` times the curve's
+    tangent (1, anchor) at s = ``anchor``: there F(x) = x + drift t exactly, DF = [[1 - k s, k], [(1 - lam) s, lam]],
+    multipliers 1 (along the curve) and lam - k s."""
+    def f(x: np.ndarray) -> np.ndarray:
+        s, y = x[:, 0], x[:, 1]
+        g = 0.5 * s**2
+        return np.stack([s + k * (y - g), g + lam * (y - g)], axis=1) + drift * np.array([1.0, anchor])
+
+    return f
+
+
+def test_drifting_cycle_on_a_linear_family() -> None:
+    """Affine map with a line of fixed points p0 + s v and a drift c along it: the cycle at x[0] = anchor is
+    p0 + (anchor - p0[0]) v, the drift is c and the multipliers are 1, 0.8, 0.5, for the affine and quadratic fit."""
+    v, p0, drift, anchor = np.array([1.0, 0.3, -0.2]), np.array([0.1, 1.0, -0.5]), 2e-3, 0.25
+    basis = np.column_stack([v, [0.2, 1.0, 0.1], [-0.1, 0.3, 1.0]])
+    matrix = basis @ np.diag([1.0, 0.8, 0.5]) @ np.linalg.inv(basis)
+    x = cloud(p0, 60, seed=0, spread=0.1)
+    x_next = p0 + (x - p0) @ matrix.T + drift * v
+    for degree in (1, 2):
+        fit = fit_drifting_cycle(x, x_next, 3.0 * v, anchor, degree=degree, bootstrap=0)
+        np.testing.assert_allclose(fit.fixed_point, p0 + (anchor - p0[0]) * v, atol=1e-10)
+        assert fit.fixed_point[0] == anchor
+        assert fit.drift == pytest.approx(drift, abs=1e-12)
+        np.testing.assert_allclose(fit.jacobian, matrix, atol=1e-9)
+        np.testing.assert_allclose(fit.eigenvalues, [1.0, 0.8, 0.5], atol=1e-9)
+        assert fit.degree == degree and fit.n_pairs == 60 and fit.replicates == 0
+        assert np.isnan(fit.fixed_point_std).all() and math.isnan(fit.drift_std)
+
+
+def test_drifting_cycle_quadratic_fit_follows_a_curved_family() -> None:
+    """On a curved family the quadratic fit recovers the cycle, drift and Jacobian at the anchor; the affine fit,
+    over samples spread 0.2, misses the transverse multiplier lam - k s by more than 1e-3."""
+    k, lam, drift, anchor = 0.5, 0.6, 1e-3, 0.3
+    fixed = np.array([anchor, 0.5 * anchor**2])
+    x = cloud(fixed, 80, seed=1, spread=0.2)
+    x_next = curved_family_map(k, lam, drift, anchor)(x)
+    tangent = np.array([1.0, anchor])
+    quadratic = fit_drifting_cycle(x, x_next, tangent, anchor, degree=2, bootstrap=0)
+    np.testing.assert_allclose(quadratic.fixed_point, fixed, atol=1e-10)
+    assert quadratic.drift == pytest.approx(drift, abs=1e-12)
+    np.testing.assert_allclose(quadratic.jacobian, [[1 - k * anchor, k], [(1 - lam) * anchor, lam]], atol=1e-9)
+    np.testing.assert_allclose(quadratic.eigenvalues, [1.0, lam - k * anchor], atol=1e-9)
+    affine = fit_drifting_cycle(x, x_next, tangent, anchor, degree=1, bootstrap=0)
+    assert abs(affine.eigenvalues[1] - (lam - k * anchor)) > 1e-3
+
+
+def test_drifting_cycle_bootstrap_and_labels() -> None:
+    """Noisy pairs: the bootstrap spreads are finite and of the noise's size, deterministic given the seed, labelled
+    by the ``label`` callable's names; replicates whose label raises are dropped."""
+    k, lam, drift, anchor = 0.5, 0.6, 1e-3, 0.3
+    x = cloud(np.array([anchor, 0.5 * anchor**2]), 200, seed=2, spread=0.2)
+    x_next = curved_family_map(k, lam, drift, anchor)(x) + 1e-4 * np.random.default_rng(3).normal(size=x.shape)
+    tangent = np.array([1.0, anchor])
+
+    def label(jac: np.ndarray) -> dict[str, float]:
+        return {"trace": float(np.trace(jac)), "det": float(np.linalg.det(jac))}
+
+    fit = fit_drifting_cycle(x, x_next, tangent, anchor, bootstrap=50, seed=4, label=label)
+    again = fit_drifting_cycle(x, x_next, tangent, anchor, bootstrap=50, seed=4, label=label)
+    assert fit.replicates == 50 and set(fit.label_std) == {"trace", "det"}
+    assert 1e-6 < fit.drift_std < 1e-4 and 1e-6 < fit.label_std["trace"] < 1e-3
+    assert fit.fixed_point_std[0] < 1e-12 < 1e-6 < fit.fixed_point_std[1] < 1e-4  # x[0] is the anchor
+    assert np.all(np.abs(fit.eigenvalue_std) < 1e-3)
+    assert fit.drift == pytest.approx(drift, abs=5 * fit.drift_std)
+    assert fit.label_std == again.label_std and np.array_equal(fit.fixed_point_std, again.fixed_point_std)
+
+    def refuse(jac: np.ndarray) -> dict[str, float]:
+        raise ValueError("unlabelled")
+
+    dropped = fit_drifting_cycle(x, x_next, tangent, anchor, bootstrap=10, label=refuse)
+    assert dropped.replicates == 0 and dropped.label_std == {} and math.isnan(dropped.drift_std)
+    np.testing.assert_array_equal(dropped.fixed_point, fit_drifting_cycle(x, x_next, tangent, anchor,
+                                                                          bootstrap=0).fixed_point)
+
+
+def test_drifting_cycle_errors() -> None:
+    x = cloud(np.zeros(3), 10, seed=0)  # a 3-D quadratic has 10 coefficients per coordinate
+    with pytest.raises(ValueError, match="too few pairs"):
+        fit_drifting_cycle(x, x, np.array([1.0, 0.0, 0.0]), 0.0)
+    with pytest.raises(ValueError, match="degree"):
+        fit_drifting_cycle(x, x, np.array([1.0, 0.0, 0.0]), 0.0, degree=4)
+    with pytest.raises(ValueError, match="same shape"):
+        fit_drifting_cycle(x, x[:-1], np.array([1.0, 0.0, 0.0]), 0.0)

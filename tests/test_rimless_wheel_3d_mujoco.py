@@ -1,7 +1,7 @@
 """Regression: MuJoCo's 3D rimless wheel against Coleman, Chatterjee & Ruina (1997) (planar cycles, eqs 12-14;
 3D eigenvalues, Sec. 8.1 Table 2), in both impact modes.
 
-These run the real pipeline (rollouts, mid-stance sections, 5-D affine fit, checks) at the fast preset. The
+These run the real pipeline (rollouts, mid-stance sections, 5-D quadratic fit, checks) at the fast preset. The
 tolerances are the scenario's own (:data:`mjpoincare.scenarios.rimless_wheel_3d.TOLERANCES`); nothing here loosens
 them. Runtime: about 20 s on 2 cores.
 """
@@ -15,6 +15,7 @@ from pathlib import Path
 import mujoco
 import numpy as np
 import pytest
+from mjpoincare.analysis.rigid_body_kinematics import matrix_to_quat
 from mjpoincare.analysis.theory import rimless_wheel_3d as theory
 
 from mjpoincare import gate
@@ -119,12 +120,27 @@ def test_model_file_and_rebuild() -> None:
     assert (ideal.nq, ideal.nv, ideal.nmocap) == (4, 3, 1)
 
 
-def test_section_state_matches_the_theory() -> None:
-    """euler_section reads (psi, phi, rates) of R = Rz Rx Ry as the hybrid reference defines them."""
+def test_start_quaternions_are_mujocos() -> None:
+    """The start and post-impact orientations written into qpos are the quaternions MuJoCo itself would give the
+    stance-spoke frames (mju_mat2Quat), on every branch of the conversion."""
     w = theory.RimlessWheel3D(16, 0.125, 0.5, math.pi / 10)
-    x = rw3.fit_starts(w, 2e-3)[3]
-    R = rw3.hybrid.pose(x[0], x[1], 0.1)
-    omega = rw3.hybrid.angular_velocity(x[0], x[1], x[2:])
-    theta, values = rw3.euler_section(rw3.matrix_to_quat(R), R.T @ omega)
-    assert float(theta) == pytest.approx(0.1, abs=1e-12)
-    np.testing.assert_allclose(values, x, atol=1e-12)
+    poses = [rw3.hybrid.pose(x[0], x[1], theta) for x in rw3.fit_starts(w, 2e-3) for theta in (0.0, 0.2, 3.0)]
+    for R in [*poses, np.diag([1.0, -1.0, -1.0]), np.diag([-1.0, 1.0, -1.0]), np.diag([-1.0, -1.0, 1.0])]:
+        expected = np.empty(4)
+        mujoco.mju_mat2Quat(expected, np.ascontiguousarray(R).ravel())
+        np.testing.assert_allclose(matrix_to_quat(R), expected, rtol=0, atol=1e-15)
+
+
+def test_reference_bench_integrates_at_the_given_tolerance() -> None:
+    """reference_bench passes rtol to the exact reference: a loose tolerance changes its errors, the default
+    tolerance of later calls is untouched."""
+    _, _, params, _ = resolve_inputs("rimless-wheel-3d", {"impact": "ideal"}, None)
+    loose = rw3.reference_bench(params, 1e-3)
+    assert loose["rtol"] == 1e-3
+    w = theory.RimlessWheel3D(16, 0.125, 0.5, math.pi / 10)
+    x0 = rw3.hybrid.midstance_fixed_point(w) + 1e-3
+    assert not np.array_equal(rw3.hybrid.midstance_map(w, x0, rtol=1e-3, atol=1e-3)[0],
+                              rw3.hybrid.midstance_map(w, x0)[0])
+    tight = rw3.reference_bench(params, rw3.hybrid.RTOL)
+    assert loose["pitch_rate_error"] != tight["pitch_rate_error"]
+    assert tight["lambda2_error"] < 1e-4

@@ -211,7 +211,8 @@ class _Leg:
     sol: object
 
 
-def _integrate(md: _Model, y0: Vector, midstance: bool, dense: bool = False) -> _Leg:
+def _integrate(md: _Model, y0: Vector, midstance: bool, dense: bool = False, *, rtol: float = RTOL,
+               atol: float = ATOL) -> _Leg:
     """Integrate a stance from y0 until the impact event (or the mid-stance crossing when ``midstance``)."""
     events = _events(md)
     if midstance:
@@ -221,8 +222,8 @@ def _integrate(md: _Model, y0: Vector, midstance: bool, dense: bool = False) -> 
         (0.0, MAX_STANCE_TIME),
         y0,
         method="DOP853",
-        rtol=RTOL,
-        atol=ATOL,
+        rtol=rtol,
+        atol=atol,
         events=events,
         dense_output=dense,
     )
@@ -408,15 +409,17 @@ def midstance_state(w: RimlessWheel3D, x_post: ArrayLike) -> Vector:
     return _section_state(leg.y_end)[0]
 
 
-def midstance_map(w: RimlessWheel3D, x: ArrayLike) -> tuple[Vector, float]:
+def midstance_map(w: RimlessWheel3D, x: ArrayLike, *, rtol: float = RTOL, atol: float = ATOL
+                  ) -> tuple[Vector, float]:
     """Return map of the mid-stance section theta = 0 (upward): (psi, phi, psi_dot, phi_dot, theta_dot) -> next
-    crossing, and the elapsed time. Conjugate to :func:`step` (same eigenvalues)."""
+    crossing, and the elapsed time. Conjugate to :func:`step` (same eigenvalues). ``rtol``, ``atol``: DOP853's
+    tolerances."""
     md = _model(w)
     xs = np.asarray(x, dtype=float)
-    first = _integrate(md, _start(xs[0], xs[1], 0.0, xs[2:]), midstance=False)
+    first = _integrate(md, _start(xs[0], xs[1], 0.0, xs[2:]), midstance=False, rtol=rtol, atol=atol)
     R, Omega = _unpack(first.y_end)
     R_plus, Omega_plus, _ = _impact(md, R, Omega)
-    second = _integrate(md, _pack(R_plus, Omega_plus), midstance=True)
+    second = _integrate(md, _pack(R_plus, Omega_plus), midstance=True, rtol=rtol, atol=atol)
     return _section_state(second.y_end)[0], first.time + second.time
 
 

@@ -1,18 +1,18 @@
 """Scenario ``rimless-wheel-3d``: the 3D rimless spoked wheel on a slope, two impact modes.
 
-Analytic reference: Coleman, Chatterjee & Ruina (1997), "Motions of a rimless spoked wheel: a simple 3D system with
-impacts" (seed 001; the OCR is garbled, every formula is re-derived in reference note 001 and in
-:mod:`mjpoincare.analysis.theory.rimless_wheel_3d`): the planar cycle at any heading psi (eqs 12-14: bank
-tan phi* = -sin psi tan alpha, effective slope sin gamma = sin alpha cos psi, pitch rate theta_dot*), the collision
-coefficient mu (eq 6), and the eigenvalues of the 3D return map (Sec. 8.1, Table 2: 1, 0.9884 e^(+-0.3989 i),
-0.9613, 0.9011 = mu^2 for n = 16, alpha = 0.125, psi = pi/10, J = 1/2), computed exactly by the event-driven
-reference :mod:`mjpoincare.analysis.theory.rimless_wheel_3d_hybrid` (DOP853 at 1e-12 plus the vector impact law).
+Analytic reference: 001 = Coleman, Chatterjee & Ruina (1997), "Motions of a rimless spoked wheel: a simple 3D system
+with impacts" (every formula used is re-derived in :mod:`mjpoincare.analysis.theory.rimless_wheel_3d`): the planar
+cycle at any heading psi (eqs 12-14: bank tan phi* = -sin psi tan alpha, effective slope sin gamma = sin alpha cos psi,
+pitch rate theta_dot*), the collision coefficient mu (eq 6), and the eigenvalues of the 3D return map (Sec. 8.1,
+Table 2: 1, 0.9884 e^(+-0.3989 i), 0.9613, 0.9011 = mu^2 for n = 16, alpha = 0.125, psi = pi/10, J = 1/2), computed
+exactly by the event-driven reference :mod:`mjpoincare.analysis.theory.rimless_wheel_3d_hybrid` (DOP853 at 1e-12
+plus the vector impact law).
 
 Two impact modes (``--set impact=contact|ideal``), reported side by side:
 
 * ``contact``: a free body with n foot spheres on a plane; MuJoCo's contact solver realises every impact (elliptic
-  cone, condim 3, an over-damped solref: a damping ratio of 1 acts like a restitution of ~0.1 and biases the heading,
-  reference note 001 Sec. 5). This is what users run.
+  cone, condim 3, an over-damped solref: a damping ratio of 1 acts like a restitution of ~0.1 and biases the
+  heading). This is what users run.
 * ``ideal``: the stance foot is a ball joint under a mocap "pivot" body, contact is disabled, and MuJoCo integrates
   the stance only. An event controller (:func:`mjpoincare.simulate.event_rollout`) stops each trajectory exactly at
   the guard theta = pi/n (two fractional steps of the model's own integrator from the last state before it), applies
@@ -22,14 +22,14 @@ Two impact modes (``--set impact=contact|ideal``), reported side by side:
   MuJoCo's contact model adds.
 
 Poincare section (both modes): mid-stance, the stance spoke's pitch theta (3-1-2 angles R = Rz(psi) Rx(phi)
-Ry(theta) of the stance-spoke frame; the stance spoke is the lowest foot, i.e. theta wrapped to [-pi/n, pi/n))
-crossing 0 upwards, linearly interpolated; the state there is (psi, phi, psi_dot, phi_dot, theta_dot). Mid-stance is
-far from the soft impact; its map is conjugate to the paper's post-impact map (same eigenvalues). The 5-D map is
-fitted by affine least squares (:func:`~mjpoincare.analysis.returnmap.fit_return_map`) over a batch of small
-perturbations of the planar cycle (note 001 Sec. 5: least squares over many +-1e-3 starts, not finite differences). The
-heading is neutral (eigenvalue 1), so the fixed point is a one-parameter family: the simulated fixed point is the
-fitted map's fixed point restricted to psi = ``heading``, and the residual of the heading row there is the heading
-drift per impact.
+Ry(theta) of the stance-spoke frame, :mod:`mjpoincare.analysis.rigid_body_kinematics`; the stance spoke is the
+lowest foot, i.e. theta wrapped to [-pi/n, pi/n)) crossing 0 upwards, linearly interpolated; the state there is
+(psi, phi, psi_dot, phi_dot, theta_dot). Mid-stance is far from the soft impact; its map is conjugate to the paper's
+post-impact map (same eigenvalues). The 5-D map is fitted by quadratic least squares over a batch of small
+perturbations of the planar cycle (many starts, not finite differences). The heading is neutral (eigenvalue 1), so the
+fixed point is a one-parameter family: the simulated fixed point is the fitted map's cycle at psi = ``heading``
+(:func:`~mjpoincare.analysis.returnmap.fit_drifting_cycle`), and its drift along the family is the heading drift per
+impact.
 
 Units: SI with the paper's scaling. The wheel has mass 1 kg (every checked quantity is independent of it), spoke
 length ``leg_length`` l (default 1 m) and gravity ``gravity`` g (default 9.81 m/s^2); angular rates are reported in
@@ -43,15 +43,14 @@ import math
 import time
 from collections.abc import Mapping
 from dataclasses import dataclass
-from itertools import combinations_with_replacement
 
 import mujoco
 import numpy as np
-from scipy.optimize import linear_sum_assignment
 
 from mjpoincare import settings as sim_settings
 from mjpoincare.analysis import checks
-from mjpoincare.analysis.returnmap import sample_pairs
+from mjpoincare.analysis.returnmap import DriftingCycleFit, fit_drifting_cycle, sample_pairs
+from mjpoincare.analysis.rigid_body_kinematics import euler_state, matrix_to_quat, quat_to_matrix
 from mjpoincare.analysis.sections import Crossings, level_crossings, wrap_phase
 from mjpoincare.analysis.theory import rimless_wheel_3d as theory
 from mjpoincare.analysis.theory import rimless_wheel_3d_hybrid as hybrid
@@ -132,8 +131,7 @@ WHY: dict[str, dict[str, str]] = {
 
 FIT_STARTS = 24  # random directions around the planar cycle (plus the cycle itself)
 FIT_IMPACTS = 12  # mid-stance samples per fitting trajectory
-#: Size of the 5-D offsets of the fitting starts (rad and sqrt(g/l) units; note 001 Sec. 5 suggests +-1e-3), per
-#: impact mode; see :func:`fit_starts`.
+#: Size of the 5-D offsets of the fitting starts (rad and sqrt(g/l) units), per impact mode; see :func:`fit_starts`.
 PERTURBATION: dict[str, float] = {"ideal": 5e-4, "contact": 3e-3}
 PLANAR_IMPACTS = 40  # planar-cycle runs: mu^2 = 0.90 per impact leaves 1.5 % of a start offset after 40 impacts
 PLANAR_HEADINGS = (0.0, 0.5)  # extra headings of the planar-cycle check (besides ``heading``)
@@ -161,7 +159,7 @@ def check_params(p: Values) -> None:
 
     001 Sec. 2-5 (:func:`mjpoincare.analysis.theory.rimless_wheel_3d.validate`): spokes >= 3, J > 0, |heading| < pi/2,
     mu_collision > 0, effective slope above the existence threshold (eq 10, corrected). The stance normal force must
-    stay positive (no flight; not in the paper, note 001 Sec. 1), and in contact mode ``mu`` must cover the friction
+    stay positive (no flight; not in the paper), and in contact mode ``mu`` must cover the friction
     the gait needs: the impact impulse ratio on the banked cycle and the stance max |F_t|/N of the exact reference.
     """
     w = wheel(p)
@@ -239,47 +237,7 @@ def _ideal(p: Values) -> bool:
     return str(p["impact"]) == "ideal"
 
 
-# --- kinematics (vectorised) ------------------------------------------------------------------------------------
-
-
-def quat_to_matrix(quat: np.ndarray) -> np.ndarray:
-    """Rotation matrices (..., 3, 3) of unit quaternions (..., 4) in MuJoCo's (w, x, y, z) order."""
-    q = quat / np.linalg.norm(quat, axis=-1, keepdims=True)
-    w, x, y, z = q[..., 0], q[..., 1], q[..., 2], q[..., 3]
-    return np.stack([
-        np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)], axis=-1),
-        np.stack([2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)], axis=-1),
-        np.stack([2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)], axis=-1),
-    ], axis=-2)
-
-
-def matrix_to_quat(R: np.ndarray) -> np.ndarray:
-    """MuJoCo quaternion (w, x, y, z) of one rotation matrix."""
-    quat = np.empty(4)
-    mujoco.mju_mat2Quat(quat, np.ascontiguousarray(R, dtype=float).ravel())
-    return quat
-
-
-def euler_section(quat: np.ndarray, omega_body: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Pitch theta (...) and (psi, phi, psi_dot, phi_dot, theta_dot) (..., 5) of body orientations and body-frame
-    angular velocities, in R = Rz(psi) Rx(phi) Ry(theta) (001 Sec. 2; hybrid module's conventions).
-
-    phi = asin R21, theta = atan2(-R20, R22), psi = atan2(-R01, R11); with the world angular velocity
-    omega = R Omega = psi_dot e_z + phi_dot x' + theta_dot y'': phi_dot = omega . x', theta_dot cos(phi) =
-    omega . (-sin psi, cos psi, 0), psi_dot = omega_z - theta_dot sin(phi). Every spoke's frame differs from the
-    body frame by a rotation about the axle, so psi, phi and the rates are the same for all spokes and the stance
-    spoke's pitch is theta wrapped to [-pi/n, pi/n).
-    """
-    R = quat_to_matrix(quat)
-    phi = np.arcsin(np.clip(R[..., 2, 1], -1.0, 1.0))
-    theta = np.arctan2(-R[..., 2, 0], R[..., 2, 2])
-    psi = np.arctan2(-R[..., 0, 1], R[..., 1, 1])
-    omega = np.einsum("...ij,...j->...i", R, omega_body)
-    cpsi, spsi = np.cos(psi), np.sin(psi)
-    phi_dot = omega[..., 0] * cpsi + omega[..., 1] * spsi
-    theta_dot = (-omega[..., 0] * spsi + omega[..., 1] * cpsi) / np.cos(phi)
-    psi_dot = omega[..., 2] - theta_dot * np.sin(phi)
-    return theta, np.stack([psi, phi, psi_dot, phi_dot, theta_dot], axis=-1)
+# --- state mapping ----------------------------------------------------------------------------------------------
 
 
 def _nondim(x: np.ndarray, unit: float) -> np.ndarray:
@@ -313,11 +271,14 @@ def section_start_states(model: mujoco.MjModel, p: Values, s: Values, x: np.ndar
     return initial_states(model, np.array(qpos), np.array(qvel))
 
 
-def _orientation(chunk: Chunk, ideal: bool) -> tuple[np.ndarray, np.ndarray]:
-    """(quaternions, body angular velocities) of a chunk."""
-    if ideal:
-        return chunk.qpos, chunk.qvel
-    return chunk.qpos[..., 3:7], chunk.qvel[..., 3:6]
+def _section(chunk: Chunk, ideal: bool) -> tuple[np.ndarray, np.ndarray]:
+    """Pitch theta (B, T) and section state (psi, phi, psi_dot, phi_dot, theta_dot) (B, T, 5) of a chunk's rows.
+
+    The body frame is spoke 0's; every other spoke's frame differs from it by a rotation about the axle, so psi, phi
+    and the rates are the same for all spokes and the stance spoke's pitch is theta wrapped to [-pi/n, pi/n).
+    """
+    q = euler_state(chunk.qpos, chunk.qvel) if ideal else euler_state(chunk.qpos[..., 3:7], chunk.qvel[..., 3:6])
+    return q[..., 2], q[..., [0, 1, 3, 4, 5]]
 
 
 # --- simulation: contact mode -----------------------------------------------------------------------------------
@@ -333,7 +294,7 @@ class _ContactRecorder:
         self.max_clearance = np.zeros(batch)
 
     def __call__(self, chunk: Chunk) -> None:
-        theta, values = euler_section(*_orientation(chunk, False))
+        theta, values = _section(chunk, False)
         phase = wrap_phase(theta, self.beta)
         self.mid = self.mid.concat(level_crossings(chunk.time, phase, values, max_jump=self.beta))
         lowest = chunk.qpos[..., 2] - (self.length - self.radius) * np.cos(values[..., 1]) * np.cos(phase)
@@ -366,7 +327,7 @@ class IdealImpactController:
 
     def __call__(self, chunk: Chunk, models: list[mujoco.MjModel]) -> tuple[np.ndarray, dict[int, np.ndarray]]:
         steps = chunk.time.shape[1] - 1
-        theta, values = euler_section(*_orientation(chunk, True))
+        theta, values = _section(chunk, True)
         with np.errstate(invalid="ignore"):
             over = theta[:, 1:] >= self.beta
         restart = np.full(chunk.time.shape[0], steps)
@@ -394,7 +355,7 @@ class IdealImpactController:
                 mujoco.mj_step(model, d)
             finally:
                 model.opt.timestep = dt
-            miss = float(euler_section(d.qpos, d.qvel)[0]) - beta
+            miss = float(euler_state(d.qpos, d.qvel)[2]) - beta
             frac -= miss / rise
         self.guard_error = max(self.guard_error, abs(miss))
         R = quat_to_matrix(np.array(d.qpos))
@@ -431,18 +392,32 @@ def _step_seconds(p: Values) -> float:
     return theory.step_period(wheel(p)) / rate_unit(p)
 
 
+def _nstep(p: Values, dt: float, impacts: int) -> int:
+    """Native steps that cover ``impacts`` + 1.2 step periods."""
+    return math.ceil((impacts + 1.2) * _step_seconds(p) / dt)
+
+
+def _event_chunk(p: Values, dt: float) -> int:
+    """Steps per chunk of the ideal mode's event rollout."""
+    return max(10, round(EVENT_CHUNK_FRACTION * _step_seconds(p) / dt))
+
+
+def _batches(p: Values, w: theory.RimlessWheel3D) -> tuple[tuple[np.ndarray, int], tuple[np.ndarray, int]]:
+    """(nondimensional starts, impacts) of the fit batch and of the planar batch (one cycle per planar heading)."""
+    planar = np.array([hybrid.midstance_fixed_point(wheel_at(w, h)) for h in planar_headings(p)])
+    return (fit_starts(w, PERTURBATION[str(p["impact"])]), FIT_IMPACTS), (planar, PLANAR_IMPACTS)
+
+
 def _run(p: Values, s: Values, model: mujoco.MjModel, x0: np.ndarray, impacts: int) -> _Run:
     """Simulate the starts x0 (nondimensional mid-stance states) for ``impacts`` + 1 step periods."""
     state0 = section_start_states(model, p, s, x0)
     dt = model.opt.timestep
-    seconds = (impacts + 1.2) * _step_seconds(p)
-    nstep = math.ceil(seconds / dt)
+    nstep = _nstep(p, dt, impacts)
     options = rollout_options(s)
     if _ideal(p):
         controller = IdealImpactController(p, len(x0))
-        chunk = max(10, round(EVENT_CHUNK_FRACTION * _step_seconds(p) / dt))
         report = event_rollout([copy.copy(model) for _ in x0], state0, nstep, controller, **options,
-                               chunk_steps=chunk)
+                               chunk_steps=_event_chunk(p, dt))
         return _Run(_first_samples(controller.mid, len(x0), impacts, p), report, guard_error=controller.guard_error)
     recorder = _ContactRecorder(p, s, len(x0))
     report = rollout_batch(model, state0, nstep, recorder, **options,
@@ -476,14 +451,15 @@ def fit_starts(w: theory.RimlessWheel3D, size: float, starts: int = FIT_STARTS) 
 
 def planar_headings(p: Values) -> list[float]:
     """Headings of the planar-cycle check: PLANAR_HEADINGS and ``heading``, where a rolling cycle exists."""
-    out = []
-    for h in sorted({float(p["heading"]), *PLANAR_HEADINGS}):
-        try:
-            theory.validate(wheel(p, h))
-        except ValueError:
-            continue
-        out.append(h)
-    return out
+    return [h for h in sorted({float(p["heading"]), *PLANAR_HEADINGS}) if _cycle_exists(wheel(p, h))]
+
+
+def _cycle_exists(w: theory.RimlessWheel3D) -> bool:
+    try:
+        theory.validate(w)
+    except ValueError:
+        return False
+    return True
 
 
 # --- fit --------------------------------------------------------------------------------------------------------
@@ -495,124 +471,42 @@ BOOTSTRAP = 100
 
 @dataclass(frozen=True)
 class MapFit:
-    """Polynomial least-squares fit x_k+1 = F(x_k) of the 5-D mid-stance map (nondimensional) and what is read from it.
+    """The fitted 5-D mid-stance map (nondimensional) read at its cycle at psi = heading, the named eigenvalues of its
+    Jacobian there (001 Sec. 8.1; None if they cannot be told apart) and the report's ``fit`` entry.
 
-    The planar cycles form a family neutral in psi (eigenvalue 1, 001 Table 1), so F has no isolated fixed point (and
-    :func:`~mjpoincare.analysis.returnmap.fit_return_map`, which looks for one, does not apply); a biased map makes the
-    cycle drift along the family instead. ``fixed_point`` is the cycle at psi = heading and ``drift`` its heading change
-    per impact: F(x) = x + c t with t = d x*/d psi (t[0] = 1) and x[0] = heading, solved for (x[1:], c) by Newton.
-    ``A`` = DF there, the Jacobian whose eigenvalues are checked.
+    The planar cycles form a family neutral in psi (eigenvalue 1, 001 Table 1), so the map has no isolated fixed
+    point; a biased map makes the cycle drift along the family (``cycle.drift``, per impact).
     """
 
-    A: np.ndarray
-    fixed_point: np.ndarray
-    drift: float
+    cycle: DriftingCycleFit
     eigen: hybrid.Eigen3D | None
     fit: dict[str, object]
 
 
-def _monomials(degree: int) -> list[tuple[int, ...]]:
-    return [t for order in range(degree + 1) for t in combinations_with_replacement(range(5), order)]
-
-
-def _features(z: np.ndarray, terms: list[tuple[int, ...]]) -> np.ndarray:
-    return np.stack([np.prod(z[..., list(t)], axis=-1) for t in terms], axis=-1)
-
-
-def _feature_gradient(z: np.ndarray, terms: list[tuple[int, ...]]) -> np.ndarray:
-    grad = np.zeros((len(terms), 5))
-    for row, term in enumerate(terms):
-        for position, var in enumerate(term):
-            grad[row, var] += np.prod(z[list(term[:position] + term[position + 1 :])])
-    return grad
-
-
-def _drifting_cycle(coef: np.ndarray, terms: list[tuple[int, ...]], centre: np.ndarray, scale: np.ndarray,
-                    heading: float, t: np.ndarray, start: tuple[np.ndarray, float] | None = None
-                    ) -> tuple[np.ndarray, float, np.ndarray]:
-    """(x, c, DF(x)) with F(x) = x + c t, x[0] = heading, for the map F(x) = features((x - centre)/scale) coef,
-    by Newton from ``start`` (x, c) (default: the samples' centre, no drift)."""
-    def value(x: np.ndarray) -> np.ndarray:
-        return _features((x - centre) / scale, terms) @ coef
-
-    def jac(x: np.ndarray) -> np.ndarray:
-        return (coef.T @ _feature_gradient((x - centre) / scale, terms)) / scale[None, :]
-
-    if start is None:
-        x, drift = np.array(centre, dtype=float), 0.0
-    else:
-        x, drift = np.array(start[0], dtype=float), float(start[1])
-    x[0] = heading
-    for _ in range(50):
-        step = np.linalg.solve(np.column_stack([(jac(x) - np.eye(5))[:, 1:], -t]), -(value(x) - x - drift * t))
-        x[1:] += step[:4]
-        drift += step[4]
-        if not np.all(np.isfinite(x)):
-            break
-        if np.linalg.norm(step) <= 1e-13 * (1.0 + np.linalg.norm(x)):
-            return x, float(drift), jac(x)
-    raise ValueError("no cycle of the fitted map near the samples (Newton did not converge)")
-
-
-def fit_map(sequences: list[np.ndarray], heading: float, tangent: np.ndarray, seed: int = 0,
-            degree: int = FIT_DEGREE, bootstrap: int = BOOTSTRAP) -> MapFit:
+def fit_map(sequences: list[np.ndarray], heading: float, tangent: np.ndarray, seed: int = 0) -> MapFit:
     """Least-squares polynomial map (degree 2: the curvature of the map would otherwise bias the slopes by ~size^2
     times the quadratic terms, which is what limits an affine fit near lambda5 = 1 and at few spokes), its drifting
-    cycle at ``heading``, its Jacobian there and the named eigenvalues (001 Sec. 8.1), with bootstrap standard
-    deviations over the pairs (seed ``seed``)."""
+    cycle at ``heading`` along the family with tangent ``tangent`` (d x*/d psi), its Jacobian there and the named
+    eigenvalues (001 Sec. 8.1), with bootstrap standard deviations over the pairs (seed ``seed``)."""
     x, x_next = sample_pairs(sequences)
-    terms = _monomials(degree)
-    if len(x) <= len(terms):
-        raise ValueError(f"too few pairs ({len(x)}) for a degree-{degree} map in 5-D ({len(terms)} coefficients)")
-    centre, spread = x.mean(axis=0), x.std(axis=0)
-    scale = np.where(spread > 0.0, spread, 1.0)
-    t = tangent / tangent[0]
-    linear = _monomials(1)  # the affine map's drifting cycle: Newton's start (one step from the centre)
-    c_lin, *_ = np.linalg.lstsq(_features((x - centre) / scale, linear), x_next, rcond=None)
-    start = _drifting_cycle(c_lin, linear, centre, scale, heading, t)[:2]
+    cycle = fit_drifting_cycle(x, x_next, tangent, heading, degree=FIT_DEGREE, bootstrap=BOOTSTRAP, seed=seed,
+                               label=lambda jac: _eigen_values(hybrid.identify_eigenvalues(jac, tangent)))
     try:
-        phi = _features((x - centre) / scale, terms)
-        coef, *_ = np.linalg.lstsq(phi, x_next, rcond=None)
-        point, drift, A = _drifting_cycle(coef, terms, centre, scale, heading, t, start)
-    except ValueError:  # a noisy quadratic term can leave the fitted map without a cycle near the samples
-        terms, degree = linear, 1
-        phi = _features((x - centre) / scale, terms)
-        coef = c_lin
-        point, drift, A = _drifting_cycle(coef, terms, centre, scale, heading, t, start)
-    try:
-        eigen: hybrid.Eigen3D | None = hybrid.identify_eigenvalues(A, tangent)
+        eigen: hybrid.Eigen3D | None = hybrid.identify_eigenvalues(cycle.jacobian, tangent)
     except ValueError:
         eigen = None
-    values = np.linalg.eigvals(A).astype(complex)
-    values = values[np.lexsort((-values.imag, -np.abs(values)))]
-    rng = np.random.default_rng(seed)
-    replicas: list[list[float]] = []
-    spectra: list[np.ndarray] = []
-    for _ in range(bootstrap):
-        rows = rng.integers(0, len(x), size=len(x))
-        try:
-            c_rep, *_ = np.linalg.lstsq(phi[rows], x_next[rows], rcond=None)
-            p_rep, d_rep, a_rep = _drifting_cycle(c_rep, terms, centre, scale, heading, t, (point, drift))
-            e_rep = hybrid.identify_eigenvalues(a_rep, tangent)
-        except (ValueError, np.linalg.LinAlgError):
-            continue
-        replicas.append([*p_rep, d_rep, *_eigen_values(e_rep).values()])
-        raw = np.linalg.eigvals(a_rep)
-        spectra.append(raw[linear_sum_assignment(np.abs(values[:, None] - raw[None, :]))[1]])
-    std = np.std(replicas, axis=0, ddof=1) if len(replicas) >= 2 else np.full(11, np.nan)
-    spectra_std = (np.std(np.real(spectra), axis=0, ddof=1) + 1j * np.std(np.imag(spectra), axis=0, ddof=1)
-                   if len(spectra) >= 2 else np.full(5, np.nan + 1j * np.nan))
     out: dict[str, object] = {
-        "fixed_point": point, "fixed_point_std": std[:5], "drift_per_impact": drift, "drift_std": std[5],
-        "jacobian": A, "eigenvalues": values, "eigenvalue_std": spectra_std,
+        "fixed_point": cycle.fixed_point, "fixed_point_std": cycle.fixed_point_std,
+        "drift_per_impact": cycle.drift, "drift_std": cycle.drift_std, "jacobian": cycle.jacobian,
+        "eigenvalues": cycle.eigenvalues, "eigenvalue_std": cycle.eigenvalue_std,
         "named_eigenvalues": _eigen_values(eigen) if eigen is not None else None,
-        "named_eigenvalue_std": dict(zip(EIGEN_DOCS, std[6:].tolist(), strict=True)),
-        "residual_rms": np.sqrt(np.mean((x_next - phi @ coef) ** 2, axis=0)), "n_pairs": len(x), "degree": degree,
-        "bootstrap_replicas": len(replicas),
+        "named_eigenvalue_std": {name: cycle.label_std.get(name, math.nan) for name in EIGEN_DOCS},
+        "residual_rms": cycle.residual_rms, "n_pairs": cycle.n_pairs, "degree": cycle.degree,
+        "bootstrap_replicas": cycle.replicates,
         "note": "state (psi, phi, psi_dot, phi_dot, theta_dot) at mid-stance, rates in sqrt(g/l); fixed_point is the "
                 "fitted map's cycle at psi = heading, drifting along the family of planar cycles by drift_per_impact",
     }
-    return MapFit(A, point, drift, eigen, out)
+    return MapFit(cycle, eigen, out)
 
 
 def family_tangent(w: theory.RimlessWheel3D, h: float = 1e-6) -> np.ndarray:
@@ -651,7 +545,7 @@ def _tolerance(tol: Mapping[str, float], name: str) -> float:
 def _fit_checks(w: theory.RimlessWheel3D, fitted: MapFit | None, ref: hybrid.Eigen3D, unit: float,
                 tol: Mapping[str, float], why: str) -> list[checks.Check]:
     x_ref = hybrid.midstance_fixed_point(w)
-    point = fitted.fixed_point if fitted is not None else np.full(5, math.nan)
+    point = fitted.cycle.fixed_point if fitted is not None else np.full(5, math.nan)
     out = [
         checks.relative("pitch_rate", x_ref[4] * unit, point[4] * unit, tol["pitch_rate"], "rad/s",
                         "mid-stance pitch rate of the planar cycle at the heading (001 eq 14 + the stance energy "
@@ -715,10 +609,9 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     unit = rate_unit(p)
     model = build(p, s)
     ref = hybrid.midstance_eigenvalues(w)
-    fit_run = _run(p, s, model, fit_starts(w, PERTURBATION[mode]), FIT_IMPACTS)
+    fit_batch, planar_batch = _batches(p, w)
+    fit_run, planar_run = _run(p, s, model, *fit_batch), _run(p, s, model, *planar_batch)
     headings = planar_headings(p)
-    planar_run = _run(p, s, model, np.array([hybrid.midstance_fixed_point(wheel_at(w, h)) for h in headings]),
-                      PLANAR_IMPACTS)
     report = fit_run.report.merge(planar_run.report)
     extras: dict[str, object] = {}
     sequences = [_nondim(seq, unit) for seq in fit_run.sequences]
@@ -731,12 +624,12 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
         out = _fit_checks(w, fitted, ref, unit, tol, why)
         extras["fit"] = fitted.fit
         extras["heading_drift"] = {
-            "per_impact_fit": fitted.drift, "per_100_impacts_fit": 100.0 * fitted.drift,
+            "per_impact_fit": fitted.cycle.drift, "per_100_impacts_fit": 100.0 * fitted.cycle.drift,
             "note": "psi_k+1 - psi_k (rad) of the fitted map's cycle at psi = heading, which drifts along the family "
                     "of planar cycles (A x + b = x + c dx*/dpsi); the heading is neutral, so any bias per impact "
                     "accumulates: reported, never compared with the start heading"}
         extras["reported"] = {"heading_drift_per_100_impacts": {
-            "value": 100.0 * fitted.drift, "unit": "rad",
+            "value": 100.0 * fitted.cycle.drift, "unit": "rad",
             "note": "fitted cycle's drift along the neutral heading family; reported, not judged"}}
         extras["return_map"] = _return_map_plot(w, sequences, unit, ref)
         try:
@@ -796,41 +689,29 @@ def _return_map_plot(w: theory.RimlessWheel3D, sequences: list[np.ndarray], unit
 def probe(p: Values, s: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
     """The model and the (initial states, steps) of each rollout batch :func:`evaluate` runs (ideal mode: without
     the impact controller, a cost reference only)."""
-    w = wheel(p)
     model = build(p, s)
-    dt = model.opt.timestep
-    batches = []
-    for x0, impacts in ((fit_starts(w, PERTURBATION[str(p["impact"])]), FIT_IMPACTS),
-                        (np.array([hybrid.midstance_fixed_point(wheel_at(w, h)) for h in planar_headings(p)]),
-                         PLANAR_IMPACTS)):
-        batches.append((section_start_states(model, p, s, x0), math.ceil((impacts + 1.2) * _step_seconds(p) / dt)))
-    return model, batches
+    return model, [(section_start_states(model, p, s, x0), _nstep(p, model.opt.timestep, impacts))
+                   for x0, impacts in _batches(p, wheel(p))]
 
 
 def reference_bench(p: Values, rtol: float) -> dict[str, float]:
-    """The exact hybrid reference (solve_ivp DOP853 at ``rtol``) from the same starts through the same fit: its
-    error is the floor the experiment design (perturbation size, affine fit) sets."""
+    """The exact hybrid reference (solve_ivp DOP853 at relative and absolute tolerance ``rtol``) from the same starts
+    through the same fit: its error is the floor the experiment design (perturbation size, quadratic fit) sets."""
     w = wheel(p)
     ref = hybrid.midstance_eigenvalues(w)
-    saved = hybrid.RTOL, hybrid.ATOL
     start = time.perf_counter()
-    try:
-        hybrid.RTOL, hybrid.ATOL = rtol, rtol
-        sequences = []
-        for x in fit_starts(w, PERTURBATION[str(p["impact"])]):
-            seq = []
-            for _ in range(FIT_IMPACTS):
-                x = hybrid.midstance_map(w, x)[0]
-                seq.append(x)
-            sequences.append(np.array(seq))
-    finally:
-        hybrid.RTOL, hybrid.ATOL = saved
+    sequences = []
+    for x in fit_starts(w, PERTURBATION[str(p["impact"])]):
+        seq = []
+        for _ in range(FIT_IMPACTS):
+            x = hybrid.midstance_map(w, x, rtol=rtol, atol=rtol)[0]
+            seq.append(x)
+        sequences.append(np.array(seq))
     fitted = fit_map(sequences, w.heading, family_tangent(w))
     wall = time.perf_counter() - start
-    x_ref = hybrid.midstance_fixed_point(w)
-    out: dict[str, float] = {"rtol": rtol, "wall_s": wall,
-                             "pitch_rate_error": abs(fitted.fixed_point[4] - x_ref[4]) / x_ref[4],
-                             "bank_error": abs(fitted.fixed_point[1] - x_ref[1])}
+    x_ref, point = hybrid.midstance_fixed_point(w), fitted.cycle.fixed_point
+    out: dict[str, float] = {"rtol": rtol, "wall_s": wall, "pitch_rate_error": abs(point[4] - x_ref[4]) / x_ref[4],
+                             "bank_error": abs(point[1] - x_ref[1])}
     simulated = _eigen_values(fitted.eigen) if fitted.eigen is not None else {}
     for name, value in _eigen_values(ref).items():
         out[f"{name}_error"] = abs(simulated.get(name, math.nan) - value)
@@ -847,14 +728,6 @@ def soak(p: Values, s: Values, impacts: int) -> Soak:
                       if abs(x[0]) < math.pi / 2 and _cycle_exists(wheel_at(w, float(x[0]))) else math.nan
                       for x in seq])
     return Soak(ratio, 1.0, "mid-stance pitch rate / eq 14 at the sample's heading", run.report)
-
-
-def _cycle_exists(w: theory.RimlessWheel3D) -> bool:
-    try:
-        theory.validate(w)
-    except ValueError:
-        return False
-    return True
 
 
 STRESS_CASES = (
@@ -890,15 +763,14 @@ def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray 
         return states[0]
     controller = IdealImpactController(p, 1)
     kept = KeptRows(controller, tag=lambda: controller.pivot[0].copy())
-    chunk = max(10, round(EVENT_CHUNK_FRACTION * _step_seconds(p) / model.opt.timestep))
-    event_rollout([copy.copy(model)], state0, nstep, kept, threads=1, chunk_steps=chunk)
+    event_rollout([copy.copy(model)], state0, nstep, kept, threads=1, chunk_steps=_event_chunk(p, model.opt.timestep))
     return kept.states(nstep), kept.tagged(nstep)[:, None, :]
 
 
 RIMLESS_WHEEL_3D = Scenario(
     name="rimless-wheel-3d",
     summary="3D rimless wheel: planar cycles at any heading, 5 eigenvalues of the 3D map; contact or ideal impacts",
-    source="Coleman, Chatterjee & Ruina 1997 (eqs 6, 10-15, Sec. 8.1 Table 2, eq 32); reference note 001",
+    source="Coleman, Chatterjee & Ruina 1997 (eqs 6, 10-15, Sec. 8.1 Table 2, eq 32)",
     params=PARAMS,
     presets=PRESETS,
     check_params=check_params,

@@ -5,13 +5,15 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from mjpoincare.analysis.checks import jsonable
+from mjpoincare.analysis.stick_slip_phases import outcome, steps_to_converge
+from mjpoincare.analysis.stick_slip_reference import labelled_steps
 from mjpoincare.analysis.theory import rimless_wheel_friction as theory
 from mjpoincare.params import ParameterError
 from mjpoincare.result import write_json
@@ -20,12 +22,10 @@ from mjpoincare.scenarios.rimless_wheel_friction import (
     MU_NO_SLIP,
     friction_wheel,
     gait_start,
-    outcome,
     period_seconds,
     rate_unit,
     reference_gait,
     run_batch,
-    steps_to_converge,
 )
 from mjpoincare.simulate import RolloutReport
 
@@ -39,30 +39,12 @@ REFERENCE_STRIDE = 4  # the reference map is evaluated on every 4th grid point i
 FAILURES = ("backward", "detached", "painleve", "impact", "chatter", "unsettled", "")
 
 
-def reference_steps(w: theory.FrictionWheel, start: Sequence[float], n: int) -> tuple[str, np.ndarray, np.ndarray]:
-    """``n`` steps of the reference (:func:`theory.step`) from the post-impact state ``start``: (label, mid-stance
-    rates, types); label = the failure, else the type of the last step."""
-    z: tuple[float, float] | None = (float(start[0]), float(start[1]))
-    mids, kinds = [], []
-    label = ""
-    for _ in range(n):
-        rec = theory.step(w, z)  # type: ignore[arg-type]
-        if rec.failure is not None:
-            label = rec.failure
-            break
-        mids.append(rec.midstance[0])
-        kinds.append(theory.classify_record(rec) or "")
-        label = kinds[-1]
-        z = rec.post
-    return label, np.array(mids), np.array(kinds, dtype=str)
-
-
 def _basin_reference_job(p: dict[str, Any], mu: float, theta_dot0: list[float], x_dot0: float, n: int,
                          eventual: bool) -> list[dict[str, Any]]:
     w = friction_wheel({**p, "mu": mu})
     out = []
     for th in theta_dot0:
-        label, mids, kinds = reference_steps(w, (th, x_dot0), n)
+        label, mids, kinds = labelled_steps(w, (th, x_dot0), n)
         row: dict[str, Any] = {"mu": mu, "theta_dot0": th, "x_dot0": x_dot0, "label": label,
                                "converge_steps": steps_to_converge(mids, kinds, label, CONVERGE_TOL)}
         if eventual:

@@ -13,6 +13,8 @@ from typing import Any
 import numpy as np
 
 from mjpoincare.analysis.checks import jsonable
+from mjpoincare.analysis.force_ratio import critical_ratio, ratio_profile
+from mjpoincare.analysis.stick_slip_phases import Steps, outcome, settled_rows
 from mjpoincare.analysis.theory import rimless_wheel_friction as theory
 from mjpoincare.params import ParameterError
 from mjpoincare.result import write_json
@@ -20,17 +22,13 @@ from mjpoincare.scenarios.base import Values
 from mjpoincare.scenarios.rimless_wheel_friction import (
     D_SIM_STEPS,
     FIT_OFFSETS,
-    Steps,
+    SETTLED_STEPS,
     attractors,
     cached_boundaries,
-    critical_ratio,
     fit_steps,
     friction_wheel,
     gait_start,
-    outcome,
-    ratio_profile,
     run_batch,
-    settled_rows,
 )
 
 # --- friction sweep (002 Sec. 3.3, Fig. 3.5) ---------------------------------------------------------------------
@@ -86,8 +84,8 @@ def sweep_batch(p: Values, s: Values, preset: str, refs: list[dict[str, Any]], s
         ratio = math.nan
         if sim == "A":  # the force ratio the A gait needs along its stance: MuJoCo's mu_c (002 eq 23)
             phi = math.pi / int(p["spokes"])
-            pooled = settled_rows(rows, steps, range(i * n, (i + 1) * n), "A")
-            ratio = critical_ratio(*ratio_profile(rows, pooled, phi), phi)
+            pooled = settled_rows(rows, steps, range(i * n, (i + 1) * n), "A", SETTLED_STEPS)
+            ratio = critical_ratio(*ratio_profile(rows.theta, rows.force_t, rows.force_n, pooled, phi), phi)
         out.append({**ref, "simulated": sim, "simulated_before_failure": before, "critical_ratio": ratio,
                     "simulated_velocity_only": outcome(steps, middle, velocity_only=True),
                     "agree": sim == ref["reference"], "eigenvalue_simulated": lam,
