@@ -1,6 +1,7 @@
 """Compass-gait theory (003 Kiša 2020 Ch. 4; Goswami et al. 1996/98) against independent point-mass mechanics
 (Lagrangian by finite differences, angular momenta by cross products, Newton's law by differentiated momentum)
-and against the numbers of the reference card (shared/reference/003, Sec. 2.6, computed by separate scripts)."""
+and against the numbers of the reference card (docs/notes/003-rimless-wheel-and-compass-gait.md, Sec. 2.6, computed by
+separate scripts)."""
 
 from __future__ import annotations
 

@@ -1,6 +1,7 @@
 """Compass biped with Coulomb friction (002 Gamus & Or 2015, Secs. 4-5, eqs 27-30, Appendix A): the eq-27 model
 against its Lagrangian, the passive Gaits A, B, C and the actuated Gaits I, II, III against reference card 002
-Sec. 3 and the paper, and Gait A against the independent passive compass biped of issue #6."""
+Sec. 3 and the paper, and Gait A against the independent passive compass biped of 003 Ch. 4
+(analysis.theory.compass_biped)."""
 
 from __future__ import annotations
 

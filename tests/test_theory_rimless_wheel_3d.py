@@ -1,5 +1,5 @@
 """3D rimless wheel theory (001 = Coleman, Chatterjee & Ruina 1997) against the reference note's oracles
-(shared/reference/001-rimless-wheel-3d.md, Sec. 3-4) and against the independent 3D hybrid integrator."""
+(docs/notes/001-rimless-wheel-3d.md, Sec. 3-4) and against the independent 3D hybrid integrator."""
 
 from __future__ import annotations
 

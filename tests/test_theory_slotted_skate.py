@@ -1,6 +1,7 @@
 """Slotted-skate theory (seed 000, Coleman & Holmes 1999) against an independent rigid-body reference
 (stance ODE + Cartesian impulse at the new peg, ``simulate_exact``), impulse algebra done here from momentum
-balance, and the numbers of the reference card (shared/reference/000, Sec. 3, computed by separate scripts)."""
+balance, and the numbers of the reference card (docs/notes/000-slotted-skate.md, Sec. 3, computed by separate
+scripts)."""
 
 from __future__ import annotations
 

@@ -54,7 +54,7 @@ Gaits (002 Secs. 4-5; :func:`paper_gait`, seeds in :data:`GAIT_SEEDS`, values in
 
 * A (sticking throughout) and B (sticking impact, slip+ -> stick -> slip-) reproduce reference card 002 Sec. 3.2;
   B loses stability at mu = 0.11035 (card 0.1104, 002 "~0.11"). Gait A equals the passive biped of
-  :mod:`.compass_biped` (issue #6) in that module's angles.
+  :mod:`.compass_biped` (003 Ch. 4) in that module's angles.
 * C (slipping impact with forward slip, slip+ -> stick, stuck before the heel strike) was not found by reference
   card 002; it is found here by :func:`search_gaits` (grid on the pre-impact section, then Newton): unstable
   (|lambda|max 1.82 at mu = 0.14, 1.53 at 0.2), impact angle 4.53 deg at mu = 0.14 (002: "4 deg" in Fig. 4.2a)

@@ -2,7 +2,7 @@
 
 Source: seed 001 = Coleman, Chatterjee & Ruina (1997), "Motions of a rimless spoked wheel: a simple 3D system with
 impacts", Dyn. Stab. Sys. 12(3) (the OCR is garbled; every formula here was re-derived, see
-``shared/reference/001-rimless-wheel-3d.md``). Equation numbers are the paper's.
+``docs/notes/001-rimless-wheel-3d.md``). Equation numbers are the paper's.
 
 Units and conventions: m = l = g = 1, so rates are in sqrt(g/l) and times in sqrt(l/g). The wheel is one rigid
 planar body (hub + n massless spokes of length 1, point feet); ``J`` = D/(m l^2) is the polar (axle) moment, the

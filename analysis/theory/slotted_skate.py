@@ -1,7 +1,8 @@
 """Discrete Chaplygin sleigh ("slotted skate"): stance closed forms, plastic peg impact, exact return map.
 
 Source: seed 000 = M. J. Coleman & P. Holmes (1999), *Motions and stability of a piecewise holonomic system: the
-discrete Chaplygin sleigh*, eqs (2.1), (3.1)-(3.15), (4.1), (B.1)-(B.13); re-derived note shared/reference/000.
+discrete Chaplygin sleigh*, eqs (2.1), (3.1)-(3.15), (4.1), (B.1)-(B.13);
+re-derived in docs/notes/000-slotted-skate.md.
 
 Conventions (the paper's nondimensional units; m = rho = v0 = 1 makes SI numbers equal paper numbers): lengths
 are divided by the radius of gyration rho = sqrt(I/m), speeds by v0, time tau = t v0 / rho, energy E = T/(m v0^2),
