@@ -68,18 +68,20 @@ def jsonable(value: Any) -> Any:
 def relative(name: str, analytic: float, simulated: float, tolerance: float, unit: str, why: str) -> Check:
     """A check on the relative error ``|simulated - analytic| / |analytic|``."""
     error = abs(simulated - analytic) / abs(analytic) if math.isfinite(simulated) else math.nan
-    return Check(name, analytic, simulated, error, tolerance, "relative", unit, why)
+    return Check(name=name, analytic=analytic, simulated=simulated, error=error, tolerance=tolerance, kind="relative",
+                 unit=unit, why=why)
 
 
 def absolute(name: str, analytic: complex | float, simulated: complex | float, tolerance: float,
              unit: str, why: str) -> Check:
     """A check on the absolute error ``|simulated - analytic|`` (complex values: modulus of the difference)."""
     error = abs(simulated - analytic) if np.isfinite(simulated) else math.nan
-    return Check(name, analytic, simulated, float(error), tolerance, "absolute", unit, why)
+    return Check(name=name, analytic=analytic, simulated=simulated, error=float(error), tolerance=tolerance,
+                 kind="absolute", unit=unit, why=why)
 
 
 def fraction(name: str, agree: int, total: int, tolerance: float, why: str) -> Check:
     """A check on the fraction of cases that disagree (analytic 0 disagreements)."""
     error = (total - agree) / total if total else math.nan
-    return Check(name, 0.0, (total - agree) / total if total else math.nan, error, tolerance, "fraction",
-                 "", why)
+    return Check(name=name, analytic=0.0, simulated=(total - agree) / total if total else math.nan, error=error,
+                 tolerance=tolerance, kind="fraction", unit="", why=why)

@@ -50,7 +50,7 @@ def test_unskip_collisions_makes_every_geom_collide() -> None:
 @pytest.mark.mujoco
 def test_scaling_reports_ceiling_and_speedup(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     out = tmp_path / "scaling.json"
-    assert main(["bench", "rimless-wheel", "--scaling", "--values", "0.1,0.15", "--repeats", "1",
+    assert main(["bench", "rimless-wheel", "--scaling", "--param", "slope", "--values", "0.1,0.15", "--repeats", "1",
                  "--json", str(out)]) == 0
     assert "machine ceiling" in capsys.readouterr().out
     payload = json.loads(out.read_text())
@@ -59,4 +59,15 @@ def test_scaling_reports_ceiling_and_speedup(tmp_path: Path, capsys: pytest.Capt
 
 
 def test_scaling_refuses_one_worker() -> None:
-    assert main(["bench", "rimless-wheel", "--scaling", "--workers", "1"]) == 2
+    assert main(["bench", "rimless-wheel", "--scaling", "--param", "slope", "--workers", "1"]) == 2
+
+
+@pytest.mark.parametrize(("command", "needle"), [
+    (["bench", "slotted-skate", "--scaling"], "bench --scaling needs --param NAME"),
+    (["bench", "slotted-skate", "--param", "Omega0"], "--param Omega0 is for bench --scaling only"),
+    (["bench", "slotted-skate", "--scaling", "--param", "slope"], "unknown parameter 'slope'"),
+])
+def test_scaling_param_has_no_default(command: list[str], needle: str, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(command) == 2
+    err = capsys.readouterr().err
+    assert needle in err and err.count("\n") == 1, err

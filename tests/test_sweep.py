@@ -69,3 +69,43 @@ def test_bad_engine_and_resume_without_file_are_refused() -> None:
     assert main([*base, "--engine", "ray"]) == 2
     assert main([*base, "--workers", "0"]) == 2
     assert main([*base, "--resume"]) == 2
+
+
+def _no_simulation(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Fail the test if a rollout starts (every rollout goes through ``simulate._native_chunk``)."""
+    from mjpoincare import simulate
+
+    def refuse(*_: object, **__: object) -> None:
+        raise AssertionError("simulated before refusing")
+
+    monkeypatch.setattr(simulate, "_native_chunk", refuse)
+
+
+@pytest.mark.parametrize(("command", "needle"), [
+    (["sweep", "rimless-wheel", "--grid", "x=0:1:2,y=0.1:1:2"], "--grid: rimless-wheel has no region map"),
+    (["sweep", "slotted-skate", "--param", "slope", "--values", "0.1"], "unknown parameter 'slope'"),
+])
+def test_a_facet_the_scenario_lacks_is_refused(command: list[str], needle: str, monkeypatch: pytest.MonkeyPatch,
+                                               capsys: pytest.CaptureFixture[str]) -> None:
+    _no_simulation(monkeypatch)
+    assert main(command) == 2
+    err = capsys.readouterr().err
+    assert needle in err and err.count("\n") == 1, err
+
+
+def test_the_scenario_facets_are_dispatched(monkeypatch: pytest.MonkeyPatch) -> None:
+    """``--grid`` and a scenario's own ``--param`` sweep reach the hooks it declares, with its default PNG path and at
+    least two processes for the friction wheel's reference (the hooks are replaced: no simulation)."""
+    from mjpoincare.scenarios import rimless_wheel_friction_basins as basins
+    from mjpoincare.scenarios import rimless_wheel_friction_sweep as mu_sweep
+
+    _no_simulation(monkeypatch)
+    calls: list[tuple[object, ...]] = []
+    monkeypatch.setattr(basins, "run_basin_map", lambda *a, **k: calls.append((*a, k)) or 0)
+    monkeypatch.setattr(mu_sweep, "run_mu_sweep", lambda *a, **k: calls.append((*a, k)) or 0)
+    grid = "theta_dot0=0.05:1.2:8,x_dot0=0:0.04:5"
+    assert main(["sweep", "rimless-wheel-friction", "--grid", grid]) == 0
+    assert calls.pop() == (grid, {}, None, None, "renders/basins-rimless-wheel-friction.png", {"workers": 2})
+    assert main(["sweep", "rimless-wheel-friction", "--param", "mu", "--values", "0.3,1.1", "--workers", "3"]) == 0
+    assert calls.pop() == (["0.3", "1.1"], {}, None, None, {"resume": False, "workers": 3})
+

@@ -29,6 +29,10 @@ def _cmd_list(_: argparse.Namespace) -> int:
         print(f"  presets: {', '.join(scenario.presets)} (default {scenario.default_preset})")
         for p in scenario.params:
             print(f"  {p.name} = {p.default}  ({p.doc}; {p.range_text()})")
+        if scenario.region_map:
+            print(f"  sweep --grid {scenario.region_map.grid}")
+        for param in scenario.param_sweeps:
+            print(f"  sweep --param {param}: the scenario's own sweep")
     return EXIT_PASS
 
 
@@ -68,6 +72,10 @@ def _cmd_bench(args: argparse.Namespace) -> int:
     from mjpoincare.bench import run_bench, run_skips
     from mjpoincare.result import check_output_path
 
+    if args.scaling and not args.param:
+        raise ParameterError("bench --scaling needs --param NAME (the swept parameter or setting)")
+    if args.param and not args.scaling:
+        raise ParameterError(f"--param {args.param} is for bench --scaling only")
     if args.scaling:
         from mjpoincare.scaling import run_scaling
 
@@ -86,32 +94,27 @@ def _cmd_bench(args: argparse.Namespace) -> int:
 
 
 def _cmd_sweep(args: argparse.Namespace) -> int:
+    from mjpoincare import scenarios
     from mjpoincare.result import check_output_path
-    from mjpoincare.sweep import parse_values, run_regions, run_sweep
+    from mjpoincare.sweep import parse_values, run_sweep
 
+    scenario = scenarios.get(args.scenario)
     check_output_path(args.json, "--json")
     if args.grid:
-        output = args.output.format(scenario=args.scenario)
-        check_output_path(output.replace("regions-", "basins-") if args.scenario == "rimless-wheel-friction"
-                          else output, "--output")
+        facet = scenario.region_map
+        if facet is None:
+            with_map = [s.name for s in scenarios.REGISTRY.values() if s.region_map]
+            raise ParameterError(f"--grid: {scenario.name} has no region map (scenarios with one: "
+                                 f"{', '.join(with_map)})")
+        output = (args.output or facet.output).format(scenario=scenario.name)
+        check_output_path(output, "--output")
         _require_viz("sweep --grid", "matplotlib")
-
-    if args.scenario == "rimless-wheel-friction" and (args.grid or args.param == "mu"):
-        from mjpoincare.scenarios import rimless_wheel_friction_basins as basins
-        from mjpoincare.scenarios import rimless_wheel_friction_sweep as mu_sweep
-
-        if args.grid:  # --grid theta_dot0=A:B:N,x_dot0=A:B:N: regions of attraction
-            return basins.run_basin_map(args.grid, parse_assignments(args.set), args.preset, args.json,
-                                     args.output.replace("regions-", "basins-"), workers=max(args.workers, 2))
-        if not args.values:
-            raise ParameterError("sweep --param mu needs --values START:STOP:COUNT")
-        return mu_sweep.run_mu_sweep(parse_values(args.values), parse_assignments(args.set), args.preset, args.json,
-                                resume=args.resume, workers=max(args.workers, 2))
-    if args.grid:
-        return run_regions(args.scenario, args.grid, parse_assignments(args.set), args.preset, args.json,
-                           args.output)
+        return facet.run(args.grid, parse_assignments(args.set), args.preset, args.json, output, workers=args.workers)
     if not (args.param and args.values):
         raise ParameterError("sweep needs --param and --values (or --grid)")
+    if args.param in scenario.param_sweeps:
+        return scenario.param_sweeps[args.param](parse_values(args.values), parse_assignments(args.set), args.preset,
+                                                 args.json, resume=args.resume, workers=args.workers)
     return run_sweep(args.scenario, args.param, parse_values(args.values), parse_assignments(args.set), args.preset,
                      args.json, args.locate, workers=args.workers, engine=args.engine, scheduler=args.scheduler,
                      resume=args.resume)
@@ -205,7 +208,7 @@ def build_parser() -> argparse.ArgumentParser:
                        "sensors, contact off, solver budget, threads) buys in speed, and the error with and without")
     bench.add_argument("--scaling", action="store_true", help="instead: a sweep's speedup from 1 to --workers "
                        "processes beside the machine's ceiling for independent MuJoCo work (best of --repeats)")
-    bench.add_argument("--param", default="slope", help="--scaling: the swept parameter")
+    bench.add_argument("--param", help="--scaling (required there): the swept parameter or setting")
     bench.add_argument("--values", default="0.08:0.2:16", help="--scaling: its values, v1,v2,... or START:STOP:N")
     bench.add_argument("--workers", type=int, default=2, help="--scaling: processes to scale to")
     bench.add_argument("--repeats", type=int, default=3, help="--scaling: best of this many runs of each")
@@ -213,12 +216,13 @@ def build_parser() -> argparse.ArgumentParser:
 
     sweep = sub.add_parser("sweep", help="validate over a list of values of one parameter")
     sweep.add_argument("scenario", help="scenario name")
-    sweep.add_argument("--param", help="parameter or setting to sweep, e.g. slope")
+    sweep.add_argument("--param", help="parameter or setting to sweep (a scenario's own sweep where it has one: "
+                       "mjpoincare list)")
     sweep.add_argument("--values", help="v1,v2,... or START:STOP:COUNT")
-    sweep.add_argument("--grid", help="slotted-skate stability regions: x=START:STOP:N,y=START:STOP:N with "
-                       "x = l0/delta and y = 1/delta^2 (the paper's Fig. 2 axes); rimless-wheel-friction regions of "
-                       "attraction: theta_dot0=START:STOP:N,x_dot0=START:STOP:N")
-    sweep.add_argument("-o", "--output", default="renders/regions-{scenario}.png", help="PNG of the region map")
+    sweep.add_argument("--grid", help="instead: the scenario's region map over two axes, AXIS=START:STOP:N,"
+                       "AXIS=START:STOP:N (its axes: mjpoincare list)")
+    sweep.add_argument("-o", "--output", help="PNG of the region map (default: the scenario's, e.g. "
+                       "renders/regions-{scenario}.png)")
     sweep.add_argument("--set", action="append", default=[], metavar="NAME=VALUE")
     sweep.add_argument("--preset", default=None)
     sweep.add_argument("--json", metavar="PATH|-", help="write the sweep table as JSON")

@@ -29,8 +29,8 @@ def resolve_inputs(name: str, assignments: Mapping[str, str], preset: str | None
 def stability_check(diverged: int, warnings: int) -> Check:
     """A run is stable when no trajectory diverged (NaN or MuJoCo reset) and MuJoCo raised no warning."""
     count = float(diverged + warnings)
-    return Check("stable", 0.0, count, count, 0.0, "count", "",
-                 "diverged trajectories + MuJoCo warnings: any is a failure, never silent")
+    return Check(name="stable", analytic=0.0, simulated=count, error=count, tolerance=0.0, kind="count", unit="",
+                 why="diverged trajectories + MuJoCo warnings: any is a failure, never silent")
 
 
 def run_validation(name: str, assignments: Mapping[str, str] | None = None, preset: str | None = None,

@@ -6,9 +6,9 @@ benchmark and the renderer alike; :mod:`mjpoincare.scenarios` keeps the registry
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Protocol, TypeVar
 
 import mujoco
 import numpy as np
@@ -18,6 +18,24 @@ from mjpoincare.params import Param, ParameterError, Value
 from mjpoincare.simulate import RolloutReport
 
 Values = Mapping[str, Value]
+T = TypeVar("T")
+
+
+class MissingTolerances(LookupError):
+    """A scenario offers a preset for which it declares no tolerances (a bug in the scenario, not in its input)."""
+
+
+def at_preset(table: Mapping[str, T], scenario: str, preset: str) -> T:
+    """``table[preset]``: a scenario's tolerances (or the reasons for them) at ``preset``.
+
+    A preset the table does not name raises :class:`MissingTolerances` naming the scenario and the preset: a run is
+    never judged against another preset's tolerances.
+    """
+    try:
+        return table[preset]
+    except KeyError:
+        raise MissingTolerances(f"scenario {scenario!r} declares no tolerances for preset {preset!r} "
+                                f"(declared: {', '.join(table)})") from None
 
 
 @dataclass
@@ -53,6 +71,38 @@ class Soak:
     rollout: RolloutReport
 
 
+class RegionMapRun(Protocol):
+    """Runs a region map: parses ``grid`` (refusing bad input with :class:`ParameterError` before any simulation),
+    prints a summary, writes the PNG ``output`` and, when ``json_path`` is given, the JSON; returns the exit code."""
+
+    def __call__(self, grid: str, assignments: Mapping[str, str], preset: str | None, json_path: str | None,
+                 output: str, *, workers: int) -> int: ...
+
+
+@dataclass(frozen=True)
+class RegionMap:
+    """The ``mjpoincare sweep SCENARIO --grid`` facet: a map over a grid of two axes, simulated against the reference.
+
+    Attributes:
+        grid: the ``--grid`` syntax, e.g. ``x=START:STOP:N,y=START:STOP:N`` (shown by ``mjpoincare list``).
+        output: the PNG path when ``-o`` is not given (``{scenario}`` is filled in).
+        run: the map itself (:class:`RegionMapRun`).
+    """
+
+    grid: str
+    output: str
+    run: RegionMapRun
+
+
+class ParamSweep(Protocol):
+    """A scenario's own sweep of one parameter (``mjpoincare sweep SCENARIO --param NAME``) in place of the generic
+    one validation per value: checks ``values`` before any simulation, prints its table, writes ``json_path``
+    (``resume`` skips the values that file holds) and returns the exit code."""
+
+    def __call__(self, values: Sequence[str], assignments: Mapping[str, str], preset: str | None,
+                 json_path: str | None, *, resume: bool, workers: int) -> int: ...
+
+
 @dataclass(frozen=True)
 class Scenario:
     """A validation scenario.
@@ -84,6 +134,10 @@ class Scenario:
             simulator-setting edges (timestep ladder, integrators, solvers, cones, contact softness) are generic.
         soak: ``(params, settings, impacts) -> Soak``: ``impacts`` impacts from the fixed point (None: the scenario
             has no limit cycle to soak on).
+        region_map: the optional ``sweep --grid`` facet (:class:`RegionMap`; None: the scenario has no region map,
+            and ``--grid`` is refused).
+        param_sweeps: the scenario's own sweeps by parameter name (:class:`ParamSweep`), run by ``sweep --param NAME``
+            in place of the generic sweep; every other parameter or setting gets the generic sweep.
     """
 
     name: str
@@ -105,6 +159,8 @@ class Scenario:
     default_preset: str = "fast"
     stress_cases: tuple[StressCase, ...] = ()
     soak: Callable[[Values, Values, int], Soak] | None = None
+    region_map: RegionMap | None = None
+    param_sweeps: Mapping[str, ParamSweep] = field(default_factory=dict)
 
     def preset(self, name: str | None) -> tuple[str, Values]:
         """The preset's name and setting overrides (the default preset when ``name`` is None)."""

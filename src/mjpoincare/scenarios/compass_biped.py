@@ -35,7 +35,7 @@ from mjpoincare.analysis.sections import level_crossings
 from mjpoincare.analysis.theory import compass_biped as theory
 from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
-from mjpoincare.scenarios.base import Evaluation, Scenario, Soak, StressCase, Values
+from mjpoincare.scenarios.base import Evaluation, Scenario, Soak, StressCase, Values, at_preset
 from mjpoincare.settings import rollout_options
 from mjpoincare.simulate import STATE_SPEC, Chunk, KeptRows, RolloutReport, event_rollout, initial_states
 
@@ -377,8 +377,8 @@ def _regress_at(y_star: np.ndarray, ys: np.ndarray, values: np.ndarray) -> float
 def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     """Simulate the perturbed gaits, fit the legs-parallel return map and check it against the theory."""
     controller, report, bp, model = _simulate(p, s)
-    tol = TOLERANCES.get(preset, TOLERANCES["fast"])
-    why = WHY.get(preset, WHY["fast"])
+    tol = at_preset(TOLERANCES, COMPASS_BIPED.name, preset)
+    why = at_preset(WHY, COMPASS_BIPED.name, preset)
     x_star = theory.fixed_point(bp)
     lam = theory.eigenvalues(bp, x_star)
     sequences = [np.array(seq) for seq in controller.samples]
@@ -393,13 +393,15 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
         return Evaluation(out, report, extras)
     y_star = fit.fixed_point
     x_sim = theory.post_impact_from_parallel(bp, y_star)
-    out.append(checks.Check("fixed_point", x_star, x_sim, float(np.max(np.abs(x_sim - x_star))),
-                            tol["fixed_point"], "max-abs", "rad, rad/s",
-                            "post-impact state (theta_st, theta_sw, dtheta_st, dtheta_sw), thesis frame, from the "
+    out.append(checks.Check(name="fixed_point", analytic=x_star, simulated=x_sim,
+                            error=float(np.max(np.abs(x_sim - x_star))), tolerance=tol["fixed_point"], kind="max-abs",
+                            unit="rad, rad/s",
+                            why="post-impact state (theta_st, theta_sw, dtheta_st, dtheta_sw), thesis frame, from the "
                             "fitted legs-parallel fixed point pulled back by the exact swing flow; " + why))
     matched = _match(lam, fit.eigenvalues)
-    out.append(checks.Check("eigenvalues", lam, matched, float(np.max(np.abs(matched - lam))), tol["eigenvalues"],
-                            "max-abs", "", "3 multipliers of the 3-D section map (Newton shooting + finite "
+    out.append(checks.Check(name="eigenvalues", analytic=lam, simulated=matched,
+                            error=float(np.max(np.abs(matched - lam))), tolerance=tol["eigenvalues"], kind="max-abs",
+                            unit="", why="3 multipliers of the 3-D section map (Newton shooting + finite "
                             "differences on the exact model) vs the cubic fit of the MuJoCo samples"))
     ys, dts, lengths = _step_data(controller)
     period_sim = _regress_at(y_star, ys, dts) if len(dts) > 4 else math.nan
@@ -411,8 +413,9 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
                                "distance between successive stance feet, regressed at the fitted fixed point"))
     accel, release_tol = release_tolerance(model, bp, x_star, float(s["foot_radius"]))
     depth = max(controller.release_depth, default=math.nan)
-    out.append(checks.Check("trailing_foot_release", 0.0, depth, depth, release_tol, "max-abs", "m",
-                            "deepest the released trailing foot went below its height at release within 20 ms of "
+    out.append(checks.Check(name="trailing_foot_release", analytic=0.0, simulated=depth, error=depth,
+                            tolerance=release_tol, kind="max-abs", unit="m",
+                            why="deepest the released trailing foot went below its height at release within 20 ms of "
                             f"heel strike, against its free fall from rest over {RELEASE_FALL_STEPS} steps, |a| dt^2 "
                             f"n(n+1)/2 (semi-implicit Euler; a = {accel:.3g} m/s^2, its unsupported acceleration at "
                             "the exact pre-impact state): the new foot reaches the slope 2 steps after the release "

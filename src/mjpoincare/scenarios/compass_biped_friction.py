@@ -45,7 +45,7 @@ from mjpoincare.analysis.theory import compass_biped_friction as theory
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios import compass_biped as cb
 from mjpoincare.scenarios import compass_biped_friction_stance as stance
-from mjpoincare.scenarios.base import Evaluation, Scenario, StressCase, Values
+from mjpoincare.scenarios.base import Evaluation, Scenario, StressCase, Values, at_preset
 from mjpoincare.settings import rollout_options
 from mjpoincare.simulate import Chunk, KeptRows, RolloutReport, event_rollout, initial_states
 
@@ -395,8 +395,8 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     g = gait(p)
     name = gait_name(p)
     model = build(p, s)
-    tol = TOLERANCES.get(preset, TOLERANCES["fast"])
-    why = WHY.get(preset, WHY["fast"])
+    tol = at_preset(TOLERANCES, COMPASS_BIPED_FRICTION.name, preset)
+    why = at_preset(WHY, COMPASS_BIPED_FRICTION.name, preset)
     steps, degree, settle = design(g)
     c, report, _ = _run(p, s, model, initial_section_states(g, model.opt.timestep), steps)
     out: list[checks.Check] = []
@@ -411,13 +411,15 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
                                    f"no return map: {err}"))
         return Evaluation(out, report, extras)
     y_star = fit.fixed_point
-    out.append(checks.Check("fixed_point", y_star_th, y_star, float(np.max(np.abs(y_star - y_star_th))),
-                            tol["fixed_point"], "max-abs", "rad, rad/s",
-                            "legs-parallel state (theta1, theta1_dot, -theta2_dot), 002 eq 27 frame, of the fitted "
+    out.append(checks.Check(name="fixed_point", analytic=y_star_th, simulated=y_star,
+                            error=float(np.max(np.abs(y_star - y_star_th))), tolerance=tol["fixed_point"],
+                            kind="max-abs", unit="rad, rad/s",
+                            why="legs-parallel state (theta1, theta1_dot, -theta2_dot), 002 eq 27 frame, of the fitted "
                             "map vs the analytic step from z*; " + why))
     matched = _match(lam, fit.eigenvalues)
-    out.append(checks.Check("eigenvalues", lam, matched, float(np.max(np.abs(matched - lam))), tol["eigenvalues"],
-                            "max-abs", "", "the 3 largest multipliers of 002's post-impact map (Newton + finite "
+    out.append(checks.Check(name="eigenvalues", analytic=lam, simulated=matched,
+                            error=float(np.max(np.abs(matched - lam))), tolerance=tol["eigenvalues"], kind="max-abs",
+                            unit="", why="the 3 largest multipliers of 002's post-impact map (Newton + finite "
                             f"differences) vs the degree-{degree} fit of the MuJoCo legs-parallel samples (bootstrap "
                             f"std of the fitted multipliers {float(np.max(np.abs(fit.eigenvalue_std))):.2g}: an "
                             "error well above it is MuJoCo's map, not the sampling); " + why))

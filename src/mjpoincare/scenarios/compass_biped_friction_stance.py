@@ -182,9 +182,9 @@ def stance_checks(g: theory.Gait, name: str, stances: list[dict[str, np.ndarray]
         exact = classified_pattern(g, dt)
         expected = [lab for lab, _ in exact]
         seq_ok = [[lab for lab, _ in pat] == expected for pat in patterns]
-        out.append(checks.Check("phase_sequence", 0.0, float(len(seq_ok) - sum(seq_ok)),
-                                float(len(seq_ok) - sum(seq_ok)), 0.0, "count", "",
-                                f"settled steps whose stance phases differ from the exact step's "
+        out.append(checks.Check(name="phase_sequence", analytic=0.0, simulated=float(len(seq_ok) - sum(seq_ok)),
+                                error=float(len(seq_ok) - sum(seq_ok)), tolerance=0.0, kind="count", unit="",
+                                why=f"settled steps whose stance phases differ from the exact step's "
                                 f"{' -> '.join(expected)} (002: {' -> '.join(rec.phases)}; both labelled by the stance "
                                 f"foot speed > {V_SLIP} m/s from {RELEASE_SKIP * 1e3:g} ms after a strike to "
                                 f"{RELEASE_SKIP * 1e3:g} ms before the next: a slip that ends sooner after the impact "
@@ -194,18 +194,20 @@ def stance_checks(g: theory.Gait, name: str, stances: list[dict[str, np.ndarray]
             times_th = np.array([t0 for _, t0 in exact[1:]])
             extras["phase_times"] = {"analytic_002": list(rec.phase_times[1:]), "analytic_classified": times_th,
                                      "measured": times_sim}
-            out.append(checks.Check("phase_times", times_th, times_sim, float(np.max(np.abs(times_sim - times_th))),
-                                    tol["phase_time"], "max-abs", "s", "stance phase switch times after the impact, "
+            out.append(checks.Check(name="phase_times", analytic=times_th, simulated=times_sim,
+                                    error=float(np.max(np.abs(times_sim - times_th))), tolerance=tol["phase_time"],
+                                    kind="max-abs", unit="s", why="stance phase switch times after the impact, "
                                     f"both classified by the stance-foot speed threshold {V_SLIP} m/s (the exact "
                                     "foot's speed on the same time grid): a stick -> slip switch shows only once the "
                                     "slip speed has grown to the threshold, 10 ms after 002's switch for Gait B"))
         v_impact = [impact_velocity(st, timeconst) for st in stances]
         kinds = ["slipping" if abs(v) > V_SLIP else "sticking" for v in v_impact]
         wrong = float(sum(k != rec.impact for k in kinds))
-        out.append(checks.Check("impact_kind", 0.0, wrong, wrong, 0.0, "count", "",
-                                f"settled heel strikes whose kind differs from 002's {rec.impact} impact (slipping: "
-                                f"the new stance foot's speed {IMPACT_TIMECONSTS:g} contact time constants after the "
-                                f"strike above {V_SLIP} m/s)"))
+        out.append(checks.Check(name="impact_kind", analytic=0.0, simulated=wrong, error=wrong, tolerance=0.0,
+                                kind="count", unit="",
+                                why=f"settled heel strikes whose kind differs from 002's {rec.impact} impact "
+                                f"(slipping: the new stance foot's speed {IMPACT_TIMECONSTS:g} contact time constants "
+                                f"after the strike above {V_SLIP} m/s)"))
         slips = [impact_slip(st) for st in stances]
         slip_th = float(theory.stance_foot_motion(g.biped, g.z, [RELEASE_SKIP], g.actuation)[0][0])
         v_pre = float((theory.swing_jacobian(g.biped, rec.q_pre) @ np.asarray(rec.qd_pre)[: theory.NQ])[0])

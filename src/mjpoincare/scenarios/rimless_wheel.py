@@ -32,7 +32,7 @@ from mjpoincare.analysis.theory.rimless_wheel_hybrid import simulate_hybrid
 from mjpoincare.mjlog import captured_mujoco_log
 from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
-from mjpoincare.scenarios.base import Evaluation, Scenario, Soak, StressCase, Values
+from mjpoincare.scenarios.base import Evaluation, Scenario, Soak, StressCase, Values, at_preset
 from mjpoincare.settings import rollout_options
 from mjpoincare.simulate import Chunk, RolloutReport, initial_states, rollout_batch
 
@@ -323,8 +323,8 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     """Run the fitting batch and the basin grid (two rollout batches) and check them against the theory."""
     w = wheel(p)
     model = build(p, s)
-    tol = TOLERANCES.get(preset, TOLERANCES["fast"])
-    why = WHY.get(preset, WHY["fast"])
+    tol = at_preset(TOLERANCES, RIMLESS_WHEEL.name, preset)
+    why = at_preset(WHY, RIMLESS_WHEEL.name, preset)
     fit_speeds = fit_initial_speeds(w)
     fit_rec, fit_report = _simulate(model, w, fit_speeds, _fit_seconds(w), s)
     try:

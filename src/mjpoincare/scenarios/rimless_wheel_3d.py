@@ -57,7 +57,7 @@ from mjpoincare.analysis.theory import rimless_wheel_3d_hybrid as hybrid
 from mjpoincare.mjlog import captured_mujoco_log
 from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
-from mjpoincare.scenarios.base import Evaluation, Scenario, Soak, StressCase, Values
+from mjpoincare.scenarios.base import Evaluation, Scenario, Soak, StressCase, Values, at_preset
 from mjpoincare.settings import rollout_options
 from mjpoincare.simulate import Chunk, KeptRows, RolloutReport, event_rollout, initial_states, rollout_batch
 
@@ -585,11 +585,13 @@ def _planar_checks(p: Values, headings: list[float], run: _Run, tol: Mapping[str
         drift[f"{h:.6g}"] = 100.0 * float(seq[-1, 0] - seq[0, 0]) / (len(seq) - 1)
     where = f"headings {', '.join(f'{h:.4g}' for h in headings)}, last {PLANAR_TAIL} of {PLANAR_IMPACTS} samples"
     out = [
-        checks.Check("planar_pitch_rate", rate_ref, rate_sim, rate_err, tol["planar_pitch_rate"], "max-relative",
-                     "rad/s", f"planar cycle at several headings: mid-stance pitch rate against eq 14 + energy "
+        checks.Check(name="planar_pitch_rate", analytic=rate_ref, simulated=rate_sim, error=rate_err,
+                     tolerance=tol["planar_pitch_rate"], kind="max-relative", unit="rad/s",
+                     why=f"planar cycle at several headings: mid-stance pitch rate against eq 14 + energy "
                      f"integral at the sample's own heading ({where})"),
-        checks.Check("planar_bank", bank_ref, bank_sim, bank_err, tol["planar_bank"], "max-abs", "rad",
-                     f"planar cycle at several headings: bank against eq 12 at the sample's own heading ({where})"
+        checks.Check(name="planar_bank", analytic=bank_ref, simulated=bank_sim, error=bank_err,
+                     tolerance=tol["planar_bank"], kind="max-abs", unit="rad",
+                     why=f"planar cycle at several headings: bank against eq 12 at the sample's own heading ({where})"
                      + ("; impact=ideal: the controller applies the reference's own impact law (001 eqs 4-6, Sec. "
                         "3.2.2), so this agreement tests MuJoCo's integration of the stance only, not its impacts"
                         if _ideal(p) else "")),
@@ -604,8 +606,8 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     """Fit the 5-D mid-stance map from a batch of perturbed cycles; run planar cycles at several headings."""
     w = wheel(p)
     mode = str(p["impact"])
-    tol = TOLERANCES[mode].get(preset, TOLERANCES[mode]["fast"])
-    why = WHY[mode].get(preset, WHY[mode]["fast"])
+    tol = at_preset(TOLERANCES[mode], RIMLESS_WHEEL_3D.name, preset)
+    why = at_preset(WHY[mode], RIMLESS_WHEEL_3D.name, preset)
     unit = rate_unit(p)
     model = build(p, s)
     ref = hybrid.midstance_eigenvalues(w)
@@ -618,8 +620,9 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     try:
         fitted = fit_map(sequences, w.heading, family_tangent(w), seed)
     except (ValueError, np.linalg.LinAlgError) as err:  # too few samples: a diverged or stalled run
-        out = [checks.Check(c.name, c.analytic, math.nan, math.nan, c.tolerance, c.kind, c.unit,
-                            f"no return map: {err}") for c in _fit_checks(w, None, ref, unit, tol, why)]
+        out = [checks.Check(name=c.name, analytic=c.analytic, simulated=math.nan, error=math.nan, tolerance=c.tolerance,
+                            kind=c.kind, unit=c.unit, why=f"no return map: {err}")
+               for c in _fit_checks(w, None, ref, unit, tol, why)]
     else:
         out = _fit_checks(w, fitted, ref, unit, tol, why)
         extras["fit"] = fitted.fit

@@ -19,6 +19,7 @@ from __future__ import annotations
 import copy
 import itertools
 import math
+from collections.abc import Mapping
 
 import mujoco
 import numpy as np
@@ -29,7 +30,7 @@ from mjpoincare.analysis.returnmap import fit_return_map
 from mjpoincare.analysis.theory import slotted_skate as theory
 from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
-from mjpoincare.scenarios.base import Evaluation, Scenario, StressCase, Values
+from mjpoincare.scenarios.base import Evaluation, RegionMap, Scenario, StressCase, Values, at_preset
 from mjpoincare.settings import rollout_options
 from mjpoincare.simulate import Chunk, KeptRows, event_rollout, initial_states
 
@@ -226,7 +227,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     """Peg-switched MuJoCo runs against the exact return map, impact by impact, and sigma_4 for both directions."""
     controller, report = _simulate(p, s)
     sk = skate(p)
-    tol, why = TOLERANCES.get(preset, TOLERANCES["fast"]), WHY.get(preset, WHY["fast"])
+    tol, why = at_preset(TOLERANCES, SLOTTED_SKATE.name, preset), at_preset(WHY, SLOTTED_SKATE.name, preset)
     e_unit, h_unit, t_unit = _nondim(p)
     lo, _rho = float(p["l0"]), float(p["rho"])
     worst = {"energy": 0.0, "heading": 0.0, "duration": 0.0}
@@ -253,8 +254,9 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
         ref = theory.sigma4(sk, forward)
         sim = float(np.median(ratios[forward])) if ratios[forward] else math.nan
         err = float(np.max(np.abs(np.array(ratios[forward]) - ref))) if ratios[forward] else math.nan
-        out.append(checks.Check(f"sigma4_{label}", ref, sim, err, tol["sigma4"], "max-abs", "",
-                                f"H_k+1/H_k over every non-reversing {label} impact (3.10); " + why))
+        out.append(checks.Check(name=f"sigma4_{label}", analytic=ref, simulated=sim, error=err, tolerance=tol["sigma4"],
+                                kind="max-abs", unit="",
+                                why=f"H_k+1/H_k over every non-reversing {label} impact (3.10); " + why))
         if len(pairs[forward]) >= 3:
             h = np.array(pairs[forward])
             fit = fit_return_map(h[:, :1], h[:, 1:], degree=1, seed=seed)
@@ -263,21 +265,26 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
                                        "slope of the affine return map H_k -> H_k+1 fitted by least squares"))
             extras[f"fit_{label}"] = fit.to_dict()
             stable_sim, stable_ref = abs(lam) < 1, abs(ref) < 1
-            out.append(checks.Check(f"stability_{label}", "stable" if stable_ref else "unstable",
-                                    "stable" if stable_sim else "unstable", float(stable_sim != stable_ref), 0.0,
-                                    "mismatch", "", "straight motion stable iff |sigma4| < 1 (3.11-3.12)"))
-    out.append(checks.Check("energy_loss", 0.0, worst["energy"], worst["energy"], tol["energy_loss"], "max-abs",
-                            "m v0^2", "E_k+1 against the map's E+ = E + C1 H^2 (3.7, B.3/B.4), every impact: H "
+            out.append(checks.Check(name=f"stability_{label}", analytic="stable" if stable_ref else "unstable",
+                                    simulated="stable" if stable_sim else "unstable",
+                                    error=float(stable_sim != stable_ref), tolerance=0.0, kind="mismatch", unit="",
+                                    why="straight motion stable iff |sigma4| < 1 (3.11-3.12)"))
+    out.append(checks.Check(name="energy_loss", analytic=0.0, simulated=worst["energy"], error=worst["energy"],
+                            tolerance=tol["energy_loss"], kind="max-abs", unit="m v0^2",
+                            why="E_k+1 against the map's E+ = E + C1 H^2 (3.7, B.3/B.4), every impact: H "
                             "alone is blind to the impact law"))
-    out.append(checks.Check("heading", 0.0, worst["heading"], worst["heading"], tol["heading"], "max-abs", "rad",
-                            "heading at each slot end against the map's theta+ (B.1 quadrature)"))
-    out.append(checks.Check("reversals", 0.0, float(reversal_mismatch), float(reversal_mismatch), 0.0, "count", "",
-                            f"stances whose reversal (B.5) differs from the map ({reversals} reversals seen)"))
+    out.append(checks.Check(name="heading", analytic=0.0, simulated=worst["heading"], error=worst["heading"],
+                            tolerance=tol["heading"], kind="max-abs", unit="rad",
+                            why="heading at each slot end against the map's theta+ (B.1 quadrature)"))
+    out.append(checks.Check(name="reversals", analytic=0.0, simulated=float(reversal_mismatch),
+                            error=float(reversal_mismatch), tolerance=0.0, kind="count", unit="",
+                            why=f"stances whose reversal (B.5) differs from the map ({reversals} reversals seen)"))
     predicted_n, observed_n = _collisions_before_reversal(sk, controller.samples, e_unit, h_unit, lo)
     if predicted_n:
         wrong = sum(int(a != b) for a, b in zip(predicted_n, observed_n, strict=True))
-        out.append(checks.Check("collisions_before_reversal", predicted_n, observed_n, float(wrong), 0.0, "count", "",
-                                "impacts before the first reversing stance (B.6-B.7), per start whose reversal "
+        out.append(checks.Check(name="collisions_before_reversal", analytic=predicted_n, simulated=observed_n,
+                                error=float(wrong), tolerance=0.0, kind="count", unit="",
+                                why="impacts before the first reversing stance (B.6-B.7), per start whose reversal "
                                 "falls inside the simulated stances"))
     out.extend(_final_state_checks(p, s, sk, tol["final_speed"]))
     if "fit_forward" in extras:  # the generic sweep reads "fit" and analytic "eigenvalues": the forward map
@@ -348,8 +355,9 @@ def _final_state_checks(p: Values, s: Values, sk: theory.SlottedSkate, tolerance
         checks.absolute("final_speed", final.V_f, v_last, tolerance, "v0",
                         f"slot speed once the rotation has decayed by {FINAL_DECAY:g} ({n} impacts), against "
                         "(B.10)/(B.12) by the map iterated to the end"),
-        checks.Check("final_reversals", reversals, seen, float(abs(seen - reversals)), 0.0, "count", "",
-                     f"reversals over those {n} impacts: the map's count against the simulation's"),
+        checks.Check(name="final_reversals", analytic=reversals, simulated=seen, error=float(abs(seen - reversals)),
+                     tolerance=0.0, kind="count", unit="",
+                     why=f"reversals over those {n} impacts: the map's count against the simulation's"),
     ]
 
 
@@ -401,6 +409,15 @@ STRESS_CASES = (
 )
 
 
+def _region_map(grid: str, assignments: Mapping[str, str], preset: str | None, json_path: str | None, output: str,
+                *, workers: int) -> int:
+    """``sweep --grid``: the stability regions over the axes of Coleman & Holmes 1999 Fig. 2 (one batched rollout;
+    ``workers`` is not used)."""
+    from mjpoincare.scenarios.slotted_skate_regions import run_regions  # that module imports this one
+
+    return run_regions(grid, assignments, preset, json_path, output)
+
+
 SLOTTED_SKATE = Scenario(
     name="slotted-skate",
     summary="discrete Chaplygin sleigh: pegs as switched equality constraints; sigma4, energy loss, reversals",
@@ -419,6 +436,8 @@ SLOTTED_SKATE = Scenario(
     camera_distance=4.0,
     camera_elevation=-89.0,
     stress_cases=STRESS_CASES,
+    region_map=RegionMap(grid="x=START:STOP:N,y=START:STOP:N with x = l0/delta, y = 1/delta^2",
+                         output="renders/regions-{scenario}.png", run=_region_map),
 )
 
 

@@ -1,0 +1,80 @@
+"""The registry's contract, as dm_control's suite test holds its domains to theirs: every scenario at every preset
+has defaults its own input check accepts, tolerances for that preset, a model that compiles, a probe whose batches
+fit the model, a render frame, and a validation result whose JSON round-trips. The validation results are the
+gate's cached runs (:func:`mjpoincare.gate.case`), so no validation runs twice in a session."""
+
+from __future__ import annotations
+
+import importlib
+import json
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+import mujoco
+import numpy as np
+import pytest
+
+from mjpoincare import gate
+from mjpoincare.result import write_json
+from mjpoincare.scenarios import REGISTRY, Scenario
+from mjpoincare.scenarios.base import MissingTolerances, at_preset
+from mjpoincare.simulate import STATE_SPEC
+from mjpoincare.validation import resolve_inputs
+
+CASES = [pytest.param(name, preset, id=f"{name}[{preset}]") for name, s in REGISTRY.items() for preset in s.presets]
+
+
+def _tolerance_tables(scenario: Scenario) -> list[Mapping[str, Any]]:
+    """The scenario module's preset -> tolerances tables (one, or one per mode as rimless-wheel-3d's)."""
+    table = importlib.import_module(scenario.evaluate.__module__).TOLERANCES
+    return [table] if set(table) & set(scenario.presets) else list(table.values())
+
+
+@pytest.mark.parametrize(("name", "preset"), CASES)
+def test_defaults_pass_check_params_and_tolerances_exist(name: str, preset: str) -> None:
+    scenario = REGISTRY[name]
+    scenario.check_params({p.name: p.default for p in scenario.params})
+    for table in _tolerance_tables(scenario):
+        tolerances = at_preset(table, name, preset)
+        assert tolerances and all(np.isfinite(v) and v >= 0 for v in tolerances.values()), tolerances
+
+
+def test_a_missing_preset_is_an_error_not_a_fallback() -> None:
+    with pytest.raises(MissingTolerances, match="scenario 'x' declares no tolerances for preset 'coarse'"):
+        at_preset({"fast": {"a": 1.0}}, "x", "coarse")
+
+
+@pytest.mark.mujoco
+@pytest.mark.parametrize(("name", "preset"), CASES)
+def test_model_compiles_and_probe_batches_fit_it(name: str, preset: str) -> None:
+    scenario, _, params, settings = resolve_inputs(name, {}, preset)
+    assert isinstance(scenario.build(params, settings), mujoco.MjModel)
+    model, batches = scenario.probe(params, settings)
+    assert batches
+    size = mujoco.mj_stateSize(model, STATE_SPEC)
+    for states, nstep in batches:
+        assert states.ndim == 2 and states.shape[0] >= 1 and states.shape[1] == size, (states.shape, size)
+        assert np.all(np.isfinite(states)) and nstep > 0
+
+
+@pytest.mark.mujoco
+@pytest.mark.parametrize(("name", "preset"), CASES)
+def test_one_render_frame(name: str, preset: str) -> None:
+    from mjpoincare.render import render_frames
+
+    fps = 50
+    frames, timing = render_frames(name, {}, preset, 1.0 / fps, fps, (32, 24))
+    assert frames.shape == (1, 24, 32, 3) and timing["frames"] == 1.0
+    assert frames.std() > 0, "blank frame"
+
+
+@pytest.mark.mujoco
+@pytest.mark.parametrize(("name", "preset"), CASES)
+def test_validation_json_round_trips(name: str, preset: str, tmp_path: Path) -> None:
+    result = gate.case(f"{name}[{preset}]").run()
+    assert result.scenario == name and result.preset == preset
+    payload = result.to_dict()
+    write_json(payload, str(tmp_path / "result.json"))
+    assert json.loads((tmp_path / "result.json").read_text()) == payload
+    assert [c["name"] for c in payload["checks"]] == [c.name for c in result.checks]
