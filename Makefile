@@ -7,6 +7,8 @@
 #   make test-latest  the tests against the newest versions pyproject.toml allows (finds dependency drift)
 #   make margins      the regression gate's margin table: every gated check's error and its spread under seed,
 #                     threads, starts x(1+1e-12) and the oldest numpy/scipy allowed (renders/margins*.json)
+#   make results         every scenario's default validation at each preset into docs/results/json/, then its pages
+#   make results-render  re-render docs/results/*.md from the committed JSON (no simulation)
 PYTHON ?= python3
 VENV := .venv
 BIN := $(VENV)/bin
@@ -16,7 +18,7 @@ LATEST := .venv-latest
 
 OLDEST := .venv-oldest
 
-.PHONY: validate test test-latest lock margins bench gate clean
+.PHONY: validate test test-latest lock margins results results-render bench gate clean
 
 $(STAMP): pyproject.toml $(LOCK)
 	@$(PYTHON) -c 'import sys; sys.exit(0 if sys.version_info >= (3, 10) else "mjpoincare needs Python >= 3.10")'
@@ -45,6 +47,12 @@ margins: $(STAMP)
 	$(OLDEST)/bin/python -m pip install --quiet "numpy==1.26.4" "scipy==1.11.4" -e .
 	$(OLDEST)/bin/mjpoincare margins --base-only --json renders/margins-oldest.json || true
 	$(BIN)/mjpoincare margins --compare renders/margins-oldest.json --json renders/margins.json
+
+results: $(STAMP)
+	$(BIN)/python -m mjpoincare.results
+
+results-render: $(STAMP)
+	$(BIN)/python -m mjpoincare.results --render-only
 
 lock: $(STAMP)
 	$(BIN)/python -m pip install --quiet uv
