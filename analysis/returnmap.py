@@ -21,15 +21,14 @@ from itertools import combinations_with_replacement
 from typing import Any
 
 import numpy as np
-from scipy.optimize import linear_sum_assignment
+from mjpoincare.analysis.eigenvalues import match_eigenvalues, sort_eigenvalues
 
 __all__ = ["DriftingCycleFit", "ReturnMapFit", "convergence_ratio", "fit_drifting_cycle", "fit_return_map",
-           "sample_pairs"]
+           "regress_at", "sample_pairs"]
 
 _SUPPORTED_DEGREES = (1, 2, 3)
 _NEWTON_MAX_ITER = 60
 _NEWTON_STEP_TOL = 1e-12
-_TIE_RTOL = 1e-9
 _GRAM_RTOL = 1e-12  # bootstrap replicates with cond(regression matrix) > 1e6 are skipped
 
 
@@ -239,27 +238,6 @@ def _fixed_point(model: _Scaled, degree: int, start: np.ndarray | None) -> np.nd
     )
 
 
-def _sort_eigenvalues(values: np.ndarray) -> np.ndarray:
-    """Sort by modulus descending; equal moduli (relative ``_TIE_RTOL``) by angle descending."""
-    modulus = np.abs(values)
-    order = np.argsort(-modulus, kind="stable")
-    group_modulus = modulus[order].copy()
-    for k in range(1, group_modulus.size):
-        if np.isclose(group_modulus[k], group_modulus[k - 1], rtol=_TIE_RTOL, atol=0.0):
-            group_modulus[k] = group_modulus[k - 1]
-    resorted = np.lexsort((-np.angle(values[order]), -group_modulus))
-    return values[order][resorted]
-
-
-def _match(reference: np.ndarray, values: np.ndarray) -> np.ndarray:
-    """Permute ``values`` to minimise the total distance to ``reference`` (optimal assignment)."""
-    cost = np.abs(reference[:, None] - values[None, :])
-    rows, cols = linear_sum_assignment(cost)
-    matched = np.empty_like(values)
-    matched[rows] = values[cols]
-    return matched
-
-
 def _as_2d(array: np.ndarray, name: str) -> np.ndarray:
     """Return ``array`` as float ``(N, d)``, promoting ``(N,)`` to ``(N, 1)``."""
     out = np.asarray(array, dtype=float)
@@ -356,7 +334,7 @@ def fit_return_map(
 
     fixed_point = origin + scale * z_star
     jacobian = to_x_jacobian(model.jacobian(z_star))
-    eigenvalues = _sort_eigenvalues(np.linalg.eigvals(jacobian).astype(complex))
+    eigenvalues = sort_eigenvalues(np.linalg.eigvals(jacobian).astype(complex))
     residual_rms = np.sqrt(np.mean(((zs_next - phi @ coef) * scale) ** 2, axis=0))
 
     rng = np.random.default_rng(seed)
@@ -373,7 +351,7 @@ def fit_return_map(
         jac_rep = to_x_jacobian(replicate.jacobian(z_rep))
         boot_points.append(origin + scale * z_rep)
         boot_jacobians.append(jac_rep)
-        boot_eigenvalues.append(_match(eigenvalues, np.linalg.eigvals(jac_rep).astype(complex)))
+        boot_eigenvalues.append(match_eigenvalues(eigenvalues, np.linalg.eigvals(jac_rep).astype(complex)))
 
     if len(boot_points) >= 2:
         eig_samples = np.array(boot_eigenvalues)
@@ -525,7 +503,7 @@ def fit_drifting_cycle(
         phi = _features(zs, terms)
         coef = c_lin
         point, drift, jacobian = _drifting_cycle(coef, terms, center, scale, anchor, t, start)
-    eigenvalues = _sort_eigenvalues(np.linalg.eigvals(jacobian).astype(complex))
+    eigenvalues = sort_eigenvalues(np.linalg.eigvals(jacobian).astype(complex))
 
     rng = np.random.default_rng(seed)
     replicates: list[list[float]] = []
@@ -541,7 +519,7 @@ def fit_drifting_cycle(
             continue
         names = list(labels)
         replicates.append([*p_rep, d_rep, *labels.values()])
-        spectra.append(_match(eigenvalues, np.linalg.eigvals(a_rep)))
+        spectra.append(match_eigenvalues(eigenvalues, np.linalg.eigvals(a_rep)))
     std = np.std(replicates, axis=0, ddof=1) if len(replicates) >= 2 else np.full(dim + 1 + len(names), np.nan)
     eigenvalue_std = (np.std(np.real(spectra), axis=0, ddof=1) + 1j * np.std(np.imag(spectra), axis=0, ddof=1)
                       if len(spectra) >= 2 else np.full(dim, np.nan + 1j * np.nan))
@@ -559,6 +537,15 @@ def fit_drifting_cycle(
         degree=degree,
         replicates=len(replicates),
     )
+
+
+def regress_at(point: np.ndarray, samples: np.ndarray, values: np.ndarray) -> float:
+    """A per-step quantity read at the fixed point: affine least squares of ``values`` (n,) on the section samples
+    ``samples`` (n, d), evaluated at ``point`` (d,): e.g. a gait's step period and length from the steps of starts
+    around its fixed point."""
+    design = np.column_stack([np.ones(len(samples)), samples - point])
+    coef, *_ = np.linalg.lstsq(design, values, rcond=None)
+    return float(coef[0])
 
 
 def convergence_ratio(sequence: np.ndarray, fixed_point: float, noise_floor: float = 0.0) -> float:

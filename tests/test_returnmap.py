@@ -13,6 +13,7 @@ from mjpoincare.analysis.returnmap import (
     convergence_ratio,
     fit_drifting_cycle,
     fit_return_map,
+    regress_at,
     sample_pairs,
 )
 
@@ -55,6 +56,20 @@ TRUE_3D = sorted_truth([RHO * np.exp(1j * THETA), RHO * np.exp(-1j * THETA), REA
 
 
 # --- sample_pairs ---------------------------------------------------------------------------------
+
+
+def test_regress_at_reads_an_affine_quantity_at_the_point() -> None:
+    """Exact for an affine quantity wherever the samples are; the point need not be among them."""
+    samples = np.random.default_rng(2).normal(size=(20, 3)) + 5.0
+    values = 1.5 + samples @ np.array([0.2, -0.7, 0.4])
+    point = np.array([1.0, -2.0, 0.5])
+    assert regress_at(point, samples, values) == pytest.approx(1.5 + point @ np.array([0.2, -0.7, 0.4]), abs=1e-12)
+
+
+def test_regress_at_1d_samples_and_noise_averaged() -> None:
+    x = np.linspace(-1.0, 1.0, 401)
+    noise = 0.01 * np.random.default_rng(4).normal(size=x.size)
+    assert regress_at(np.array([0.25]), x[:, None], 3.0 - 2.0 * x + noise) == pytest.approx(2.5, abs=2e-3)
 
 
 def test_sample_pairs_skips_gaps_and_sequence_boundaries() -> None:

@@ -36,6 +36,7 @@ from dataclasses import dataclass, replace
 from functools import lru_cache
 
 import numpy as np
+from mjpoincare.analysis.eigenvalues import sort_eigenvalues
 from numpy.typing import ArrayLike, NDArray
 from scipy.integrate import solve_ivp
 from scipy.optimize import OptimizeResult, brentq, fsolve, minimize_scalar
@@ -408,18 +409,13 @@ def _jacobian(bp: CompassBiped, z: NDArray[np.float64], eps: float) -> NDArray[n
     return jac
 
 
-def _sorted_eigenvalues(jac: NDArray[np.float64]) -> NDArray[np.complex128]:
-    lam = np.linalg.eigvals(jac).astype(complex)
-    return lam[np.lexsort((-lam.imag, -np.abs(lam)))]
-
-
 def eigenvalues(bp: CompassBiped, x_star: ArrayLike | None = None, eps: float = 1e-6) -> NDArray[np.complex128]:
     """The 3 eigenvalues (Floquet multipliers) of the post-impact section map at the gait x* (default
     :func:`fixed_point`), by central finite differences with step eps; sorted by modulus, descending (conjugate
     pairs: positive imaginary part first). Stability of the gait of 003 eq 4.18 (003 gives no multipliers;
     Goswami et al. 1996/98 do)."""
     x = fixed_point(bp) if x_star is None else np.asarray(x_star, dtype=float)
-    return _sorted_eigenvalues(_jacobian(bp, x[[0, 2, 3]], eps))
+    return sort_eigenvalues(np.linalg.eigvals(_jacobian(bp, x[[0, 2, 3]], eps)).astype(complex))
 
 
 def step_period(bp: CompassBiped, x_star: ArrayLike) -> float:

@@ -111,6 +111,7 @@ from functools import lru_cache
 from typing import Any, NamedTuple, Protocol
 
 import numpy as np
+from mjpoincare.analysis.eigenvalues import sort_eigenvalues
 from mjpoincare.analysis.theory import stick_slip as ss
 from mjpoincare.analysis.theory.shooting import central_jacobian, chord_newton
 from numpy.typing import ArrayLike, NDArray
@@ -889,10 +890,6 @@ def fixed_point(bp: FrictionBiped, guess: ArrayLike, actuation: Actuation | None
     return out
 
 
-def _sorted(lam: NDArray[np.complex128]) -> NDArray[np.complex128]:
-    return lam[np.lexsort((-lam.imag, -np.abs(lam)))]
-
-
 def map_jacobian(bp: FrictionBiped, z_star: ArrayLike, actuation: Actuation | None = None,
                  h: float = FD_STEP) -> Matrix:
     """dP/dz of the post-impact map at z* by central differences (step ``h``, see FD_STEP): 3 x 3 when the step's
@@ -910,7 +907,7 @@ def eigenvalues(bp: FrictionBiped, z_star: ArrayLike, actuation: Actuation | Non
                 h: float = FD_STEP) -> NDArray[np.complex128]:
     """Eigenvalues of the linearised Poincaré map at the gait z* (:func:`map_jacobian`), sorted by modulus,
     descending (002 Figs 4.2b, 5.2a plot the largest modulus)."""
-    return _sorted(np.linalg.eigvals(map_jacobian(bp, z_star, actuation, h)).astype(complex))
+    return sort_eigenvalues(np.linalg.eigvals(map_jacobian(bp, z_star, actuation, h)).astype(complex))
 
 
 def spectral_radius(bp: FrictionBiped, z_star: ArrayLike, actuation: Actuation | None = None) -> float:
@@ -921,7 +918,8 @@ def spectral_radius(bp: FrictionBiped, z_star: ArrayLike, actuation: Actuation |
 @dataclass(frozen=True)
 class Gait:
     """A period-1 gait: the biped, its actuation, the fixed point z* (4 components), the map Jacobian and its
-    eigenvalues, the step record (with forces) and its :func:`classify` label."""
+    eigenvalues (sorted by modulus, descending: :func:`~mjpoincare.analysis.eigenvalues.sort_eigenvalues`), the step
+    record (with forces) and its :func:`classify` label."""
 
     biped: FrictionBiped
     actuation: Actuation
@@ -945,7 +943,7 @@ def find_gait(bp: FrictionBiped, guess: ArrayLike, actuation: Actuation | None =
     z = fixed_point(bp, guess, act, jacobian)
     jac = map_jacobian(bp, z, act)
     rec = step(bp, z, act, forces=True)
-    return Gait(bp, act, z, jac, _sorted(np.linalg.eigvals(jac).astype(complex)), rec, classify(rec))
+    return Gait(bp, act, z, jac, sort_eigenvalues(np.linalg.eigvals(jac).astype(complex)), rec, classify(rec))
 
 
 class _Solved(NamedTuple):
@@ -1022,8 +1020,8 @@ def continuation(bp: FrictionBiped, mus: Sequence[float], z_start: ArrayLike,
         jac = gait.jacobian
         b = replace(bp, mu=target)
         rec = step(b, gait.z, act, forces=True)
-        out.append(Gait(b, act, gait.z, gait.jacobian, _sorted(np.linalg.eigvals(gait.jacobian).astype(complex)), rec,
-                        classify(rec)))
+        lam = sort_eigenvalues(np.linalg.eigvals(gait.jacobian).astype(complex))
+        out.append(Gait(b, act, gait.z, gait.jacobian, lam, rec, classify(rec)))
     return out
 
 

@@ -62,6 +62,7 @@ from dataclasses import dataclass, field
 from functools import lru_cache
 
 import numpy as np
+from mjpoincare.analysis.eigenvalues import sort_eigenvalues
 from mjpoincare.analysis.theory import rimless_wheel as rw
 from mjpoincare.analysis.theory import stick_slip as ss
 from mjpoincare.analysis.theory.shooting import central_jacobian, chord_newton
@@ -952,9 +953,8 @@ def _find_c(w: FrictionWheel, guess: Sequence[float] | None) -> Gait | None:
     z_star = _c_fixed_point(w, z)
     if z_star is None:
         return None
-    eig = np.linalg.eigvals(central_jacobian(post, z_star, 1e-6, relative=True))
-    eig = eig[np.argsort(-np.abs(eig))]
-    return _gait_from(w, z_star, float(z_star[1]), "C", eig.astype(complex))
+    eig = sort_eigenvalues(np.linalg.eigvals(central_jacobian(post, z_star, 1e-6, relative=True)).astype(complex))
+    return _gait_from(w, z_star, float(z_star[1]), "C", eig)
 
 
 def midstance_rate(gait: Gait) -> float:

@@ -241,6 +241,25 @@ def event_rollout(
     return report
 
 
+def fractional_step(model: mujoco.MjModel, data: mujoco.MjData, seconds: float) -> None:
+    """Advance ``data`` by one step of ``seconds`` (a fraction of the timestep) with the model's own integrator:
+    how an event controller lands a state on its guard. The model's timestep is restored even if the step raises."""
+    dt = model.opt.timestep
+    model.opt.timestep = seconds
+    try:
+        mujoco.mj_step(model, data)
+    finally:
+        model.opt.timestep = dt
+
+
+def plain_clip(model: mujoco.MjModel, state0: np.ndarray, nstep: int) -> np.ndarray:
+    """A render clip without events: the first full-physics state of ``state0`` (B, nstate) stepped ``nstep`` steps
+    in one native rollout (MuJoCo's log captured); the states after each step, (nstep, nstate)."""
+    with captured_mujoco_log():
+        states, _ = mj_rollout.rollout(model, mujoco.MjData(model), state0[:1], nstep=nstep)
+    return states[0]
+
+
 class KeptRows:
     """Wraps an :func:`event_rollout` controller and keeps trajectory 0's kept rows (a render clip).
 
@@ -271,3 +290,13 @@ class KeptRows:
     def tagged(self, nstep: int) -> np.ndarray:
         """The tag beside each of the first ``nstep`` kept states."""
         return np.concatenate(self.tags)[:nstep]
+
+
+def event_clip(models: list[mujoco.MjModel], state0: np.ndarray, nstep: int,
+               controller: Callable[[Chunk, list[mujoco.MjModel]], np.ndarray | tuple[np.ndarray, dict]],
+               chunk_steps: int, tag: Callable[[], np.ndarray] | None = None) -> KeptRows:
+    """A render clip with events: ``state0`` (1, nstate) run ``nstep`` steps by :func:`event_rollout` on ``models``
+    (one copy, one thread) with ``controller``; the kept rows (:meth:`KeptRows.states`, :meth:`KeptRows.tagged`)."""
+    kept = KeptRows(controller, tag=tag)
+    event_rollout(models, state0, nstep, kept, threads=1, chunk_steps=chunk_steps)
+    return kept

@@ -30,14 +30,16 @@ from scipy.optimize import minimize_scalar
 
 from mjpoincare import settings as sim_settings
 from mjpoincare.analysis import checks
-from mjpoincare.analysis.returnmap import fit_return_map, sample_pairs
+from mjpoincare.analysis.eigenvalues import match_eigenvalues
+from mjpoincare.analysis.returnmap import fit_return_map, regress_at, sample_pairs
 from mjpoincare.analysis.sections import level_crossings
+from mjpoincare.analysis.start_designs import sphere_offsets
 from mjpoincare.analysis.theory import compass_biped as theory
 from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios.base import Evaluation, Scenario, Soak, StressCase, Values, at_preset
 from mjpoincare.settings import rollout_options
-from mjpoincare.simulate import STATE_SPEC, Chunk, KeptRows, RolloutReport, event_rollout, initial_states
+from mjpoincare.simulate import STATE_SPEC, Chunk, RolloutReport, event_clip, event_rollout, initial_states
 
 PARAMS: tuple[Param, ...] = (
     Param("m_h", 10.0, "hip mass, kg", float, 0.0, 1e6, low_open=True),
@@ -283,12 +285,7 @@ def initial_section_states(bp: theory.CompassBiped, timestep: float) -> np.ndarr
     x_star = theory.fixed_point(bp)
     margin = 1.0 - float(np.max(np.abs(theory.eigenvalues(bp, x_star))))
     size = PERTURBATION * min(1.0, (timestep / 2e-5) ** (1.0 / 3.0)) * min(1.0, max(1.0 / 3.0, margin / 0.4))
-    directions = np.random.default_rng(0).normal(size=(STARTS, 3))
-    directions /= np.linalg.norm(directions, axis=1, keepdims=True)
-    out = np.repeat(x_star[None, :], STARTS + 1, axis=0)
-    out[1:, 0] += 0.1 * size * directions[:, 0]
-    out[1:, 2] += size * directions[:, 1]
-    out[1:, 3] += size * directions[:, 2]
+    out = sphere_offsets(x_star, np.array([0.1 * size, 0.0, size, size]), STARTS)
     out[:, 1] = 2.0 * bp.slope - out[:, 0]
     return out
 
@@ -367,13 +364,6 @@ def release_tolerance(model: mujoco.MjModel, bp: theory.CompassBiped, x_star: np
     return accel, max(0.0, -accel) * m.opt.timestep**2 * n * (n + 1) / 2
 
 
-def _regress_at(y_star: np.ndarray, ys: np.ndarray, values: np.ndarray) -> float:
-    """Affine least squares of ``values`` on the section samples ``ys``, evaluated at ``y_star``."""
-    design = np.column_stack([np.ones(len(ys)), ys - y_star])
-    coef, *_ = np.linalg.lstsq(design, values, rcond=None)
-    return float(coef[0])
-
-
 def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     """Simulate the perturbed gaits, fit the legs-parallel return map and check it against the theory."""
     controller, report, bp, model = _simulate(p, s)
@@ -398,14 +388,14 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
                             unit="rad, rad/s",
                             why="post-impact state (theta_st, theta_sw, dtheta_st, dtheta_sw), thesis frame, from the "
                             "fitted legs-parallel fixed point pulled back by the exact swing flow; " + why))
-    matched = _match(lam, fit.eigenvalues)
+    matched = match_eigenvalues(lam, fit.eigenvalues)
     out.append(checks.Check(name="eigenvalues", analytic=lam, simulated=matched,
                             error=float(np.max(np.abs(matched - lam))), tolerance=tol["eigenvalues"], kind="max-abs",
                             unit="", why="3 multipliers of the 3-D section map (Newton shooting + finite "
                             "differences on the exact model) vs the cubic fit of the MuJoCo samples"))
     ys, dts, lengths = _step_data(controller)
-    period_sim = _regress_at(y_star, ys, dts) if len(dts) > 4 else math.nan
-    length_sim = _regress_at(y_star, ys, lengths) if len(lengths) > 4 else math.nan
+    period_sim = regress_at(y_star, ys, dts) if len(dts) > 4 else math.nan
+    length_sim = regress_at(y_star, ys, lengths) if len(lengths) > 4 else math.nan
     out.append(checks.relative("step_period", theory.step_period(bp, x_star), period_sim, tol["step_period"], "s",
                                "time between legs-parallel crossings, regressed on the section state at the "
                                "fitted fixed point"))
@@ -462,15 +452,6 @@ def _step_summary(bp: theory.CompassBiped, x_star: np.ndarray) -> dict[str, floa
             "trailing_foot_liftoff_velocity": step.liftoff_velocity}
 
 
-def _match(reference: np.ndarray, values: np.ndarray) -> np.ndarray:
-    """``values`` reordered to pair with ``reference`` (optimal assignment on |difference|)."""
-    from scipy.optimize import linear_sum_assignment
-
-    cost = np.abs(reference[:, None] - values[None, :])
-    _, cols = linear_sum_assignment(cost)
-    return values[cols]
-
-
 def _step_data(controller: GaitController) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Per swing k: section sample y_k, time to the next crossing, and the length of the step that swing ends
     (new stance foot minus old; the first stance foot is at x = 0)."""
@@ -514,7 +495,7 @@ def reference_bench(p: Values, rtol: float) -> dict[str, float]:
     x_sim = theory.post_impact_from_parallel(bp, fit.fixed_point)
     lam = theory.eigenvalues(bp, x_star)
     return {"rtol": rtol, "wall_s": wall, "fixed_point_error": float(np.max(np.abs(x_sim - x_star))),
-            "eigenvalues_error": float(np.max(np.abs(_match(lam, fit.eigenvalues) - lam)))}
+            "eigenvalues_error": float(np.max(np.abs(match_eigenvalues(lam, fit.eigenvalues) - lam)))}
 
 
 def soak(p: Values, s: Values, impacts: int) -> Soak:
@@ -551,9 +532,8 @@ def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
     controller = GaitController(model, bp, 1, float(s["foot_radius"]))
     models = [copy.copy(model)]
     controller.configure(models)
-    kept = KeptRows(controller)
-    event_rollout(models, start, nstep, kept, threads=1, chunk_steps=max(10, round(CHUNK_SECONDS / model.opt.timestep)))
-    return kept.states(nstep)
+    chunk = max(10, round(CHUNK_SECONDS / model.opt.timestep))
+    return event_clip(models, start, nstep, controller, chunk).states(nstep)
 
 
 COMPASS_BIPED = Scenario(

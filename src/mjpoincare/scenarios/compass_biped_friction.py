@@ -40,7 +40,9 @@ import numpy as np
 from scipy.optimize import brentq
 
 from mjpoincare.analysis import checks
-from mjpoincare.analysis.returnmap import fit_return_map, sample_pairs
+from mjpoincare.analysis.eigenvalues import match_eigenvalues
+from mjpoincare.analysis.returnmap import fit_return_map, regress_at, sample_pairs
+from mjpoincare.analysis.start_designs import sphere_offsets
 from mjpoincare.analysis.theory import compass_biped_friction as theory
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios import compass_biped as cb
@@ -332,13 +334,7 @@ def initial_section_states(g: theory.Gait, timestep: float) -> np.ndarray:
     if g.kind == "B":  # measured: half of Gait B's compass-biped-size starts left the gait
         size = min(size, impact_border(g))
     starts = UNSTABLE_STARTS if unstable(g) else STARTS
-    directions = np.random.default_rng(0).normal(size=(starts, 3))
-    directions /= np.linalg.norm(directions, axis=1, keepdims=True)
-    out = np.repeat(g.z[None, :], starts + 1, axis=0)
-    out[1:, 0] += 0.1 * size * directions[:, 0]
-    out[1:, 1] += size * directions[:, 1]
-    out[1:, 2] += size * directions[:, 2]
-    return out
+    return sphere_offsets(g.z, np.array([0.1 * size, size, size, 0.0]), starts)
 
 
 def _run(p: Values, s: Values, model: mujoco.MjModel, starts: np.ndarray, steps: int,
@@ -358,12 +354,6 @@ def _run(p: Values, s: Values, model: mujoco.MjModel, starts: np.ndarray, steps:
     return controller, report, kept
 
 
-def _regress_at(y_star: np.ndarray, ys: np.ndarray, values: np.ndarray) -> float:
-    design = np.column_stack([np.ones(len(ys)), ys - y_star])
-    coef, *_ = np.linalg.lstsq(design, values, rcond=None)
-    return float(coef[0])
-
-
 def _step_data(c: FrictionGaitController) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Per legs-parallel sample k followed by a heel strike: y_k, time to the next sample, the length of the step
     the swing ends and the actuator work over that step (heel strike to heel strike)."""
@@ -381,14 +371,6 @@ def _step_data(c: FrictionGaitController) -> tuple[np.ndarray, np.ndarray, np.nd
     return np.array(ys), np.array(dts), np.array(lengths), np.array(works)
 
 
-def _match(reference: np.ndarray, values: np.ndarray) -> np.ndarray:
-    from scipy.optimize import linear_sum_assignment
-
-    cost = np.abs(reference[:, None] - values[None, :])
-    _, cols = linear_sum_assignment(cost)
-    return values[cols]
-
-
 def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     """Simulate perturbed gaits, fit the legs-parallel return map, and check it and the gait's friction, phases
     and cost against 002 (via :mod:`mjpoincare.analysis.theory.compass_biped_friction`)."""
@@ -402,7 +384,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     out: list[checks.Check] = []
     extras: dict[str, object] = {"gait": name, "mu": friction(p), "analytic_pattern": theory.describe(g.record)}
     y_star_th, _ = legs_parallel(g)
-    lam = g.eigenvalues[np.argsort(-np.abs(g.eigenvalues))][:3]
+    lam = g.eigenvalues[:3]  # sorted by modulus, descending
     try:
         x, x_next = sample_pairs([np.array(v) for v in c.samples])
         fit = fit_return_map(x, x_next, degree=degree, seed=seed)
@@ -416,7 +398,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
                             kind="max-abs", unit="rad, rad/s",
                             why="legs-parallel state (theta1, theta1_dot, -theta2_dot), 002 eq 27 frame, of the fitted "
                             "map vs the analytic step from z*; " + why))
-    matched = _match(lam, fit.eigenvalues)
+    matched = match_eigenvalues(lam, fit.eigenvalues)
     out.append(checks.Check(name="eigenvalues", analytic=lam, simulated=matched,
                             error=float(np.max(np.abs(matched - lam))), tolerance=tol["eigenvalues"], kind="max-abs",
                             unit="", why="the 3 largest multipliers of 002's post-impact map (Newton + finite "
@@ -425,8 +407,8 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
                             "error well above it is MuJoCo's map, not the sampling); " + why))
     ys, dts, lengths, works = _step_data(c)
     rec = g.record
-    period_sim = _regress_at(y_star, ys, dts) if len(dts) > 4 else math.nan
-    length_sim = _regress_at(y_star, ys, lengths) if len(lengths) > 4 else math.nan
+    period_sim = regress_at(y_star, ys, dts) if len(dts) > 4 else math.nan
+    length_sim = regress_at(y_star, ys, lengths) if len(lengths) > 4 else math.nan
     out.append(checks.relative("step_period", rec.period, period_sim, tol["step_period"], "s",
                                "time between legs-parallel crossings, regressed at the fitted fixed point"))
     out.append(checks.relative("step_length", rec.step_length, length_sim, tol["step_length"], "m",
@@ -434,7 +416,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     out.append(checks.relative("speed", theory.average_speed(rec), length_sim / period_sim, tol["speed"], "m/s",
                                "average speed S/T (002 Sec. 5)"))
     if name in ("I", "II", "III"):
-        work_sim = _regress_at(y_star, ys, works) if len(works) > 4 else math.nan
+        work_sim = regress_at(y_star, ys, works) if len(works) > 4 else math.nan
         cmt = work_sim / (g.biped.total_mass * g.biped.g * length_sim)
         out.append(checks.relative("cost_of_transport", theory.cost_of_transport(g.biped, rec), cmt,
                                    tol["cost_of_transport"], "", "c_mt = W/(M_tot g S) (002 eq 29), W = sum "
@@ -476,10 +458,10 @@ def reference_bench(p: Values, rtol: float) -> dict[str, float]:
             z = theory.return_map(g.biped, z, g.actuation)
         sequences.append(np.array(seq))
     fit = fit_return_map(*sample_pairs(sequences), degree=design(g)[1])
-    lam = g.eigenvalues[np.argsort(-np.abs(g.eigenvalues))][:3]
+    lam = g.eigenvalues[:3]  # sorted by modulus, descending
     return {"rtol": rtol, "wall_s": time.perf_counter() - start,
             "fixed_point_error": float(np.max(np.abs(fit.fixed_point - y_star))),
-            "eigenvalues_error": float(np.max(np.abs(_match(lam, fit.eigenvalues) - lam)))}
+            "eigenvalues_error": float(np.max(np.abs(match_eigenvalues(lam, fit.eigenvalues) - lam)))}
 
 
 def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:

@@ -20,7 +20,6 @@ from collections.abc import Mapping
 
 import mujoco
 import numpy as np
-from mujoco import rollout as mj_rollout
 
 from mjpoincare import settings as sim_settings
 from mjpoincare.analysis import checks
@@ -29,12 +28,11 @@ from mjpoincare.analysis.returnmap import fit_return_map, sample_pairs
 from mjpoincare.analysis.sections import Crossings, level_crossings, wrap_events, wrap_phase
 from mjpoincare.analysis.theory import rimless_wheel as theory
 from mjpoincare.analysis.theory.rimless_wheel_hybrid import simulate_hybrid
-from mjpoincare.mjlog import captured_mujoco_log
 from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios.base import Evaluation, Scenario, Soak, StressCase, Values, at_preset
 from mjpoincare.settings import rollout_options
-from mjpoincare.simulate import Chunk, RolloutReport, initial_states, rollout_batch
+from mjpoincare.simulate import Chunk, RolloutReport, initial_states, plain_clip, rollout_batch
 
 PARAMS: tuple[Param, ...] = (
     Param("spokes", 8, "number of spokes n (alpha = pi/n)", int, 3, 64),
@@ -403,9 +401,7 @@ def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
     """States of a clip that starts just after an impact, 20 % above the rolling fixed point's speed."""
     w = wheel(p)
     state0 = post_impact_states(model, w, np.array([1.2 * theory.rolling_fixed_point(w)]), float(s["foot_radius"]))
-    with captured_mujoco_log():
-        states, _ = mj_rollout.rollout(model, mujoco.MjData(model), state0, nstep=nstep)
-    return states[0]
+    return plain_clip(model, state0, nstep)
 
 
 RIMLESS_WHEEL = Scenario(

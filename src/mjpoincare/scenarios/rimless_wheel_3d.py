@@ -52,14 +52,23 @@ from mjpoincare.analysis import checks
 from mjpoincare.analysis.returnmap import DriftingCycleFit, fit_drifting_cycle, sample_pairs
 from mjpoincare.analysis.rigid_body_kinematics import euler_state, matrix_to_quat, quat_to_matrix
 from mjpoincare.analysis.sections import Crossings, level_crossings, wrap_phase
+from mjpoincare.analysis.start_designs import random_directions
 from mjpoincare.analysis.theory import rimless_wheel_3d as theory
 from mjpoincare.analysis.theory import rimless_wheel_3d_hybrid as hybrid
-from mjpoincare.mjlog import captured_mujoco_log
 from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios.base import Evaluation, Scenario, Soak, StressCase, Values, at_preset
 from mjpoincare.settings import rollout_options
-from mjpoincare.simulate import Chunk, KeptRows, RolloutReport, event_rollout, initial_states, rollout_batch
+from mjpoincare.simulate import (
+    Chunk,
+    RolloutReport,
+    event_clip,
+    event_rollout,
+    fractional_step,
+    initial_states,
+    plain_clip,
+    rollout_batch,
+)
 
 MODES = ("contact", "ideal")
 
@@ -350,11 +359,7 @@ class IdealImpactController:
         for _ in range(2):  # secant on the step fraction
             mujoco.mj_resetData(model, d)
             d.time, d.qpos[:], d.qvel[:] = chunk.time[b, k - 1], chunk.qpos[b, k - 1], chunk.qvel[b, k - 1]
-            model.opt.timestep = frac * dt
-            try:
-                mujoco.mj_step(model, d)
-            finally:
-                model.opt.timestep = dt
+            fractional_step(model, d, frac * dt)
             miss = float(euler_state(d.qpos, d.qvel)[2]) - beta
             frac -= miss / rise
         self.guard_error = max(self.guard_error, abs(miss))
@@ -444,8 +449,7 @@ def fit_starts(w: theory.RimlessWheel3D, size: float, starts: int = FIT_STARTS) 
     ideal mode, free of noise, uses 5e-4; the contact mode 3e-3, against the ~1e-5 scatter soft impacts put on the
     mid-stance pitch rate (bootstrap std of lambda2: 1.6e-3 at 2e-3)."""
     x_star = hybrid.midstance_fixed_point(w)
-    directions = np.random.default_rng(0).normal(size=(starts // 2, 5))
-    directions /= np.linalg.norm(directions, axis=1, keepdims=True)
+    directions = random_directions(starts // 2, 5)
     return np.vstack([x_star, x_star + size * directions, x_star - size * directions])
 
 
@@ -759,14 +763,10 @@ def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray 
     x0 = hybrid.midstance_fixed_point(w) + np.array([0.0, 0.0, 0.0, 0.1, 0.0])
     state0 = section_start_states(model, p, s, x0[None, :])
     if not _ideal(p):
-        from mujoco import rollout as mj_rollout
-
-        with captured_mujoco_log():
-            states, _ = mj_rollout.rollout(model, mujoco.MjData(model), state0, nstep=nstep)
-        return states[0]
+        return plain_clip(model, state0, nstep)
     controller = IdealImpactController(p, 1)
-    kept = KeptRows(controller, tag=lambda: controller.pivot[0].copy())
-    event_rollout([copy.copy(model)], state0, nstep, kept, threads=1, chunk_steps=_event_chunk(p, model.opt.timestep))
+    kept = event_clip([copy.copy(model)], state0, nstep, controller, _event_chunk(p, model.opt.timestep),
+                      tag=lambda: controller.pivot[0].copy())
     return kept.states(nstep), kept.tagged(nstep)[:, None, :]
 
 

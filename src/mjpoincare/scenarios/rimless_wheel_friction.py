@@ -43,12 +43,11 @@ from mjpoincare.analysis.returnmap import ReturnMapFit, fit_return_map
 from mjpoincare.analysis.sections import level_crossings, wrap_phase
 from mjpoincare.analysis.stick_slip_phases import Classifier, Rows, Steps
 from mjpoincare.analysis.theory import rimless_wheel_friction as theory
-from mjpoincare.mjlog import captured_mujoco_log
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios import rimless_wheel as rw
 from mjpoincare.scenarios.base import Evaluation, RegionMap, Scenario, Soak, StressCase, Values, at_preset
 from mjpoincare.settings import rollout_options
-from mjpoincare.simulate import Chunk, RolloutReport, event_rollout
+from mjpoincare.simulate import Chunk, RolloutReport, event_rollout, plain_clip
 
 PAPER_SLOPE = math.radians(13.0)
 
@@ -462,14 +461,10 @@ def reference_bench(p: Values, rtol: float) -> dict[str, float]:
 
 def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
     """States of a clip from the reference gait's post-impact state perturbed by +10 % in theta_dot."""
-    from mujoco import rollout as mj_rollout
-
     gait = reference_gait(friction_wheel(p))
     th, xd = gait_start(gait)
     state0 = start_states(model, p, s, np.array([[1.1 * th, xd]]))
-    with captured_mujoco_log():
-        states, _ = mj_rollout.rollout(model, mujoco.MjData(model), state0, nstep=nstep)
-    return states[0]
+    return plain_clip(model, state0, nstep)
 
 
 def soak(p: Values, s: Values, impacts: int) -> Soak:

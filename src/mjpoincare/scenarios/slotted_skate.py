@@ -32,7 +32,7 @@ from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios.base import Evaluation, RegionMap, Scenario, StressCase, Values, at_preset
 from mjpoincare.settings import rollout_options
-from mjpoincare.simulate import Chunk, KeptRows, event_rollout, initial_states
+from mjpoincare.simulate import Chunk, event_clip, event_rollout, fractional_step, initial_states
 
 PARAMS: tuple[Param, ...] = (
     Param("l0", 1.0, "signed distance from the slot's front end forward to the mass centre, m", float, -1e3, 1e3),
@@ -166,10 +166,8 @@ class PegController:
             self.data = mujoco.MjData(model)
         dt = model.opt.timestep
         speed = state[5]
-        model.opt.timestep = min(dt, max(0.0, (end - state[2]) / speed)) if speed else dt
         mujoco.mj_setState(model, self.data, state, mujoco.mjtState.mjSTATE_FULLPHYSICS)
-        mujoco.mj_step(model, self.data)
-        model.opt.timestep = dt
+        fractional_step(model, self.data, min(dt, max(0.0, (end - state[2]) / speed)) if speed else dt)
         out = np.empty_like(state)
         mujoco.mj_getState(model, self.data, out, mujoco.mjtState.mjSTATE_FULLPHYSICS)
         return out
@@ -390,9 +388,8 @@ def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> tuple[np.nd
     to be put in ``mocap_pos`` so that the rendered skate moves across the plane."""
     V, Om = initial_conditions(p)
     controller = PegController(p, np.array([float(p["l0"]) if V[0] > 0 else float(p["l0"]) + float(p["delta"])]))
-    kept = KeptRows(controller, tag=lambda: np.array([*controller.peg[0], 0.0]))
-    event_rollout([copy.copy(model)], start_states(model, p, V[:1], Om[:1]), nstep, kept, threads=1,
-                  chunk_steps=200)
+    kept = event_clip([copy.copy(model)], start_states(model, p, V[:1], Om[:1]), nstep, controller, 200,
+                      tag=lambda: np.array([*controller.peg[0], 0.0]))
     return kept.states(nstep), kept.tagged(nstep)[:, None, :]
 
 

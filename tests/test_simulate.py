@@ -1,0 +1,54 @@
+"""Tests of the shared MuJoCo helpers in mjpoincare.simulate: the fractional guard step and the plain render clip."""
+
+from __future__ import annotations
+
+import mujoco
+import numpy as np
+import pytest
+
+from mjpoincare.simulate import STATE_SPEC, fractional_step, initial_states, plain_clip
+
+BALL = """<mujoco><option timestep="0.01" gravity="0 0 -9.81"/><worldbody>
+<body><freejoint/><geom type="sphere" size="0.1" mass="1"/></body></worldbody></mujoco>"""
+
+
+@pytest.fixture
+def model() -> mujoco.MjModel:
+    return mujoco.MjModel.from_xml_string(BALL)
+
+
+def test_fractional_step_advances_by_the_fraction_and_restores_the_timestep(model: mujoco.MjModel) -> None:
+    data = mujoco.MjData(model)
+    data.qvel[2] = 1.0
+    fractional_step(model, data, 0.004)
+    assert model.opt.timestep == 0.01
+    assert data.time == pytest.approx(0.004, abs=1e-15)
+    # semi-implicit Euler over h: v = 1 - g h, z = h v
+    assert data.qvel[2] == pytest.approx(1.0 - 9.81 * 0.004, abs=1e-12)
+    assert data.qpos[2] == pytest.approx(0.004 * (1.0 - 9.81 * 0.004), abs=1e-12)
+
+
+def test_fractional_step_restores_the_timestep_when_the_step_raises(model: mujoco.MjModel,
+                                                                  monkeypatch: pytest.MonkeyPatch) -> None:
+    def fail(*_: object) -> None:
+        raise RuntimeError("step failed")
+
+    monkeypatch.setattr(mujoco, "mj_step", fail)
+    with pytest.raises(RuntimeError):
+        fractional_step(model, mujoco.MjData(model), 0.002)
+    assert model.opt.timestep == 0.01
+
+
+def test_plain_clip_is_trajectory_0_stepped(model: mujoco.MjModel) -> None:
+    qpos = np.array([[0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0], [5.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0]])
+    qvel = np.array([[1.0, 0.0, 2.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 0.0, 0.0, 0.0]])
+    state0 = initial_states(model, qpos, qvel)
+    states = plain_clip(model, state0, 7)
+    assert states.shape == (7, state0.shape[1])
+    data = mujoco.MjData(model)
+    mujoco.mj_setState(model, data, state0[0], STATE_SPEC)
+    expected = np.empty_like(states)
+    for k in range(7):
+        mujoco.mj_step(model, data)
+        mujoco.mj_getState(model, data, expected[k], STATE_SPEC)
+    np.testing.assert_allclose(states, expected, rtol=0, atol=1e-12)
