@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import base64
+import dataclasses
 import json
 import os
 import re
@@ -11,10 +13,13 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from mjpoincare.analysis.checks import jsonable
 
 from mjpoincare.cli import main
 from mjpoincare.params import ParameterError
 from mjpoincare.render import parse_size
+from mjpoincare.report import eigenvalue_figure, return_map_figure
+from mjpoincare.scenarios.base import ReturnMapPlot
 
 pytestmark = pytest.mark.mujoco
 
@@ -98,3 +103,20 @@ def test_plots_leave_the_callers_matplotlib_alone(tmp_path: Path) -> None:
     done = subprocess.run([sys.executable, "-c", code, str(tmp_path)], capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stderr[-2000:]
     assert list(tmp_path.glob("*.html"))
+
+
+def test_return_map_plot_is_the_json_the_report_draws() -> None:
+    """Each field under its own key, in the JSON's order and untouched; the report's figures draw from its JSON."""
+    grid = np.linspace(0.1, 0.3, 5)
+    plot = ReturnMapPlot(label="theta (rad)", x=np.array([0.1, 0.2, 0.3]), x_next=np.array([0.15, 0.22, 0.28]),
+                         analytic_x=grid, analytic_y=np.where(grid < 0.3, 0.5 * grid, np.nan),
+                         analytic_eigenvalues=[0.5, complex(0.1, 0.2)])
+    entry = plot.to_dict()
+    assert list(entry) == ["label", "x", "x_next", "analytic_x", "analytic_y", "analytic_eigenvalues"]
+    assert all(entry[f.name] is getattr(plot, f.name) for f in dataclasses.fields(plot))
+    data = json.loads(json.dumps(jsonable(entry)))
+    assert data["x_next"] == [0.15, 0.22, 0.28] and data["analytic_y"][-1] is None
+    assert data["analytic_eigenvalues"] == [0.5, [0.1, 0.2]]
+    fit = {"eigenvalues": [[0.5, 0.0], [0.1, 0.2]], "eigenvalue_std": [[0.01, 0.0], [0.02, 0.02]]}
+    for png in (return_map_figure(data), eigenvalue_figure(fit, data["analytic_eigenvalues"])):
+        assert base64.b64decode(png)[:4] == b"\x89PNG"

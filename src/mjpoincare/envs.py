@@ -26,9 +26,10 @@ gets the validated model and start, and their own controller acts through ``phys
 
 * ``compass-biped``, ``compass-biped-friction``: no contact switching (the swing foot's contact is not switched off
   after heel strike nor back on once ahead and clear, the trailing foot is not released at heel strike; the
-  validation toggles ``physics.model.geom_contype`` of ``foot0`` / ``foot1``). The swing foot catches the slope
-  near legs-parallel (t = 0.24 s on the default ``compass-biped``) and the walker falls forward, legs together. No
-  constant or PD torques either (``tau_ankle``, ``tau_hip``, gaits ``i`` / ``iii``), and no phase reset.
+  validation switches the contacts of ``foot0`` / ``foot1`` per trajectory through ``geom_margin``). The swing foot
+  catches the slope near legs-parallel (t = 0.24 s on the default ``compass-biped``) and the walker falls forward,
+  legs together. No constant or PD torques either (``tau_ankle``, ``tau_hip``, gaits ``i`` / ``iii``), and no phase
+  reset.
 * ``slotted-skate``: no peg switching at the slot ends: the one peg stays in and the slot acts as if unbounded.
 * ``rimless-wheel-3d`` with ``impact=ideal``: no impact law and no pivot moves: the wheel swings about one foot
   (through the slope: contact is off in that mode).

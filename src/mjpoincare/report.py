@@ -31,7 +31,8 @@ def _png(fig: Figure) -> str:
 
 
 def return_map_figure(plot: dict[str, Any]) -> str:
-    """x_k+1 against x_k from the simulation, with the analytic map and the diagonal."""
+    """x_k+1 against x_k from the simulation, with the analytic map and the diagonal; ``plot`` is the JSON form of a
+    :class:`mjpoincare.scenarios.base.ReturnMapPlot`."""
     fig = Figure(figsize=(5, 4))
     ax = fig.subplots()
     ax.plot(plot["analytic_x"], plot["analytic_y"], "k-", lw=1, label="analytic map")

@@ -6,6 +6,11 @@ A batch of initial states is stepped by MuJoCo's threaded C++ rollout in native 
 ``O(batch x chunk_steps)`` whatever the duration. Consecutive chunks overlap by one row so that
 a crossing at a chunk boundary is seen once.
 
+Events go through one seam, :class:`Batch`: run a chunk, rewrite chosen trajectories' states, switch a
+trajectory's contacts, equality constraints or actuators, and land a state on a guard with a fractional step.
+:class:`MujocoBatch` implements it on MuJoCo C; a backend that batches ``mjData`` (MJX, MuJoCo Warp) implements the
+same methods, and no scenario changes.
+
 MuJoCo's reaction to a numerical blow-up (NaN/huge qacc) is to *reset* the data and carry on
 silently; :func:`rollout_batch` detects that per trajectory from the recorded time, and reports
 MuJoCo's warnings, captured by :func:`mjpoincare.mjlog.captured_mujoco_log`.
@@ -14,8 +19,10 @@ MuJoCo's warnings, captured by :func:`mjpoincare.mjlog.captured_mujoco_log`.
 from __future__ import annotations
 
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from types import TracebackType
+from typing import Protocol
 
 import mujoco
 import numpy as np
@@ -144,6 +151,133 @@ def _native_chunk(pool: mj_rollout.Rollout, model: mujoco.MjModel | list[mujoco.
     return states, full
 
 
+#: ``geom_margin`` of a geom whose contacts are switched off: a contact would need a penetration deeper than 1000 km.
+#: MJX and MuJoCo Warp can change ``geom_margin`` per trajectory at runtime but not ``geom_contype`` (MuJoCo docs,
+#: "Collision detection": a contact is generated when the distance is below the margin).
+RELEASED_MARGIN = -1e6
+
+
+class Batch(Protocol):
+    """B trajectories stepped in native chunks, with per-trajectory events between chunks: the seam a backend
+    implements. States are full-physics vectors (nstate,) (MuJoCo docs, "State": ``mjSTATE_FULLPHYSICS``)."""
+
+    report: RolloutReport
+    #: The timestep of every trajectory, s.
+    timestep: float
+
+    def run_chunk(self, nstep: int, control: np.ndarray | None = None) -> np.ndarray:
+        """Step every trajectory ``nstep`` steps from its current state (``control`` (B, nstep, nu): the ctrl of each
+        step); the recorded states (B, nstep + 1, nstate), row 0 the start, NaN from a divergence on (flagged in
+        ``report``). Each trajectory's current state becomes its last step."""
+        ...
+
+    def states(self) -> np.ndarray:
+        """The current states (B, nstate), a copy."""
+        ...
+
+    def set_states(self, indices: np.ndarray, states: np.ndarray) -> None:
+        """Continue trajectories ``indices`` (k,) from ``states`` (k, nstate); the others are untouched."""
+        ...
+
+    def set_contact(self, index: int, geom: int, on: bool) -> None:
+        """Switch geom ``geom``'s contacts off (none is generated) or back on, in trajectory ``index`` only."""
+        ...
+
+    def set_eq_active(self, index: int, eq: int, on: bool) -> None:
+        """Switch equality constraint ``eq`` off or on, in trajectory ``index`` only."""
+        ...
+
+    def set_actuator(self, index: int, actuator: int, *, bias: float | None = None, gear: float | None = None
+                     ) -> None:
+        """Trajectory ``index``'s actuator ``actuator``: its constant bias force (``biasprm[0]``) and/or its ``gear[0]``
+        (MuJoCo docs, "Actuation model")."""
+        ...
+
+    def advance(self, index: int, state: np.ndarray, seconds: float) -> np.ndarray:
+        """``state`` (nstate,) after one step of ``seconds`` (a fraction of the timestep) of trajectory ``index``'s
+        model and integrator: how an event controller lands a state on its guard."""
+        ...
+
+
+class MujocoBatch:
+    """:class:`Batch` on MuJoCo C: ``mujoco.rollout``'s thread pool and ``models`` (one per trajectory, or one shared
+    model for a batch without events); a trajectory's events change its own model copy. A context manager (the pool
+    and, at exit, the data's warnings in ``report``)."""
+
+    def __init__(self, models: Sequence[mujoco.MjModel] | mujoco.MjModel, state0: np.ndarray, threads: int = 2
+                 ) -> None:
+        self.models = models if isinstance(models, mujoco.MjModel) else list(models)
+        first = self.models if isinstance(self.models, mujoco.MjModel) else self.models[0]
+        self._current = np.array(state0, dtype=float)
+        self._datas = [mujoco.MjData(first) for _ in range(max(1, threads))]
+        self._event_data: mujoco.MjData | None = None
+        self._released: dict[tuple[int, int], float] = {}
+        self.timestep = first.opt.timestep
+        self._pool = mj_rollout.Rollout(nthread=threads)
+        self.report = RolloutReport(diverged=np.zeros(self._current.shape[0], bool))
+
+    def __enter__(self) -> MujocoBatch:
+        return self
+
+    def __exit__(self, kind: type[BaseException] | None, error: BaseException | None,
+                 trace: TracebackType | None) -> None:
+        self._pool.close()
+        self.report.final_state = self._current
+        self.report.warnings = _warning_lines(self._datas) + self.report.warnings
+
+    def _model(self, index: int) -> mujoco.MjModel:
+        if isinstance(self.models, mujoco.MjModel):
+            raise ValueError("events need one model per trajectory; this batch shares one")
+        return self.models[index]
+
+    def run_chunk(self, nstep: int, control: np.ndarray | None = None) -> np.ndarray:
+        states, full = _native_chunk(self._pool, self.models, self._datas, self._current, nstep, self.timestep,
+                                     self.report, control)
+        self._current = states[:, -1, :].copy()
+        return full
+
+    def states(self) -> np.ndarray:
+        return self._current.copy()
+
+    def set_states(self, indices: np.ndarray, states: np.ndarray) -> None:
+        self._current[np.asarray(indices, int)] = states
+
+    def set_contact(self, index: int, geom: int, on: bool) -> None:
+        model = self._model(index)
+        if on:
+            if (index, geom) in self._released:
+                model.geom_margin[geom] = self._released.pop((index, geom))
+        elif (index, geom) not in self._released:
+            self._released[index, geom] = float(model.geom_margin[geom])
+            model.geom_margin[geom] = RELEASED_MARGIN
+
+    def set_eq_active(self, index: int, eq: int, on: bool) -> None:
+        self._model(index).eq_active0[eq] = on
+
+    def set_actuator(self, index: int, actuator: int, *, bias: float | None = None, gear: float | None = None
+                     ) -> None:
+        model = self._model(index)
+        if bias is not None:
+            model.actuator_biasprm[actuator, 0] = bias
+        if gear is not None:
+            model.actuator_gear[actuator, 0] = gear
+
+    def advance(self, index: int, state: np.ndarray, seconds: float) -> np.ndarray:
+        """One event ``mjData`` serves the batch, set from ``state`` each time (its solver warmstart carries over)."""
+        model = self.models if isinstance(self.models, mujoco.MjModel) else self.models[index]
+        if self._event_data is None:
+            self._event_data = mujoco.MjData(model)
+        mujoco.mj_setState(model, self._event_data, state, STATE_SPEC)
+        fractional_step(model, self._event_data, seconds)
+        out = np.empty_like(state)
+        mujoco.mj_getState(model, self._event_data, out, STATE_SPEC)
+        return out
+
+
+def _chunk_of(full: np.ndarray, nq: int, nv: int) -> Chunk:
+    return Chunk(time=full[:, :, 0], qpos=full[:, :, 1 : 1 + nq], qvel=full[:, :, 1 + nq : 1 + nq + nv])
+
+
 def rollout_batch(
     model: mujoco.MjModel,
     state0: np.ndarray,
@@ -162,48 +296,42 @@ def rollout_batch(
     instability) or that contain NaN/inf are flagged in ``diverged``; their rows after the divergence are set to NaN
     before ``consume`` sees them, so no sample is taken from a reset state.
     """
-    nq, nv = model.nq, model.nv
-    batch = state0.shape[0]
-    datas = [mujoco.MjData(model) for _ in range(max(1, threads))]
-    report = RolloutReport(diverged=np.zeros(batch, bool))
-    current = perturbed_starts(state0, nq, nv, start_perturbation)
-    dt = model.opt.timestep
-    with captured_mujoco_log() as log, mj_rollout.Rollout(nthread=threads) as pool:
-        done = 0
-        while done < nstep:
-            n = min(chunk_steps, nstep - done)
-            states, full = _native_chunk(pool, model, datas, current, n, dt, report)
-            consume(Chunk(time=full[:, :, 0], qpos=full[:, :, 1 : 1 + nq], qvel=full[:, :, 1 + nq : 1 + nq + nv]))
-            current = states[:, -1, :].copy()
-            done += n
-    report.final_state = current
-    report.warnings = _warning_lines(datas) + log
-    return report
+    start = perturbed_starts(state0, model.nq, model.nv, start_perturbation)
+    with captured_mujoco_log() as log:
+        with MujocoBatch(model, start, threads) as batch:
+            done = 0
+            while done < nstep:
+                n = min(chunk_steps, nstep - done)
+                consume(_chunk_of(batch.run_chunk(n), model.nq, model.nv))
+                done += n
+        batch.report.warnings += log
+    return batch.report
 
 
 def event_rollout(
     models: list[mujoco.MjModel],
     state0: np.ndarray,
     nstep: int,
-    on_chunk: Callable[[Chunk, list[mujoco.MjModel]], np.ndarray | tuple[np.ndarray, dict[int, np.ndarray]]],
+    on_chunk: Callable[[Chunk, Batch], np.ndarray | tuple[np.ndarray, dict[int, np.ndarray]]],
     *,
     threads: int = 2,
     chunk_steps: int = 200,
     control: Callable[[np.ndarray], np.ndarray] | None = None,
     start_perturbation: float = 0.0,
+    setup: Callable[[Batch], None] | None = None,
 ) -> RolloutReport:
     """Batched rollout with a controller that acts at events, without Python between steps.
 
-    Each trajectory has its own model copy (same sizes), so a controller can switch a trajectory's
-    contacts or constraints. The batch is stepped by ``mujoco.rollout`` in native chunks of
-    ``chunk_steps``; ``on_chunk(chunk, models)`` inspects the recorded chunk (vectorised), and for
-    each trajectory returns the row to continue from: ``chunk_steps`` to go on, or an earlier row
-    ``k >= 1`` where an event happened, after changing ``models[b]``. Trajectory ``b`` then restarts
-    exactly from its recorded state at row ``k`` (no event overshoot) and rows after ``k`` are
-    discarded. ``on_chunk`` may also return ``(rows, overrides)`` where ``overrides[b]`` is the full
-    state to continue from instead of row ``k`` (e.g. after a fractional step that lands exactly on
-    the event, or a re-parametrisation of the state). Every trajectory is stepped until it has
-    ``nstep`` kept steps. Steps discarded after an event are counted in ``steps`` (they cost time).
+    ``models``: one per trajectory (same sizes); events change a trajectory's own through the :class:`Batch`.
+    ``setup(batch)`` (optional) runs before the first chunk (e.g. the initial contacts). The batch is stepped in
+    native chunks of ``chunk_steps``; ``on_chunk(chunk, batch)`` inspects the recorded chunk (vectorised), may switch
+    trajectories' contacts, constraints or actuators through ``batch``, and for each trajectory returns the row to
+    continue from: ``chunk_steps`` to go on, or an earlier row ``k >= 1`` where an event happened. Trajectory ``b``
+    then restarts exactly from its recorded state at row ``k`` (no event overshoot) and rows after ``k`` are
+    discarded. ``on_chunk`` may also return ``(rows, overrides)`` where ``overrides[b]`` is the full state to continue
+    from instead of row ``k`` (e.g. after a fractional step, :meth:`Batch.advance`, that lands exactly on the event,
+    or a re-parametrisation of the state). Every trajectory is stepped until it has ``nstep`` kept steps; one that
+    has them idles at its last kept state. Steps discarded after an event are counted in ``steps`` (they cost time).
 
     ``control`` (optional): called before each chunk with each trajectory's current time (B,); returns the
     ctrl of every step of the chunk, (B, chunk_steps, nu), which ``mujoco.rollout`` applies natively (row k
@@ -212,33 +340,32 @@ def event_rollout(
     after an event are discarded and the next chunk's control starts from the restart row.
     ``start_perturbation``: as in :func:`rollout_batch`.
     """
-    batch = state0.shape[0]
+    batch_size = state0.shape[0]
     nq, nv = models[0].nq, models[0].nv
-    datas = [mujoco.MjData(models[0]) for _ in range(max(1, threads))]
-    report = RolloutReport(diverged=np.zeros(batch, bool))
-    current = perturbed_starts(state0, nq, nv, start_perturbation)
-    kept = np.zeros(batch, int)
-    dt = models[0].opt.timestep
-    with captured_mujoco_log() as log, mj_rollout.Rollout(nthread=threads) as pool:
-        while (kept < nstep).any():
-            ctrl = None if control is None else np.ascontiguousarray(control(current[:, 0]), dtype=float)
-            states, full = _native_chunk(pool, models, datas, current, chunk_steps, dt, report, ctrl)
-            done = kept >= nstep
-            full[done, 1:] = np.nan  # finished trajectories idle; nothing is sampled from them
-            chunk = Chunk(time=full[:, :, 0], qpos=full[:, :, 1 : 1 + nq], qvel=full[:, :, 1 + nq : 1 + nq + nv])
-            answer = on_chunk(chunk, models)
-            rows_out, overrides = answer if isinstance(answer, tuple) else (answer, {})
-            restart = np.clip(np.asarray(rows_out, int), 1, chunk_steps)
-            restart[report.diverged | done] = chunk_steps
-            rows = states[np.arange(batch), restart - 1]
-            for b, state in overrides.items():
-                if not (report.diverged[b] or done[b]):
-                    rows[b] = state
-            current = np.where(done[:, None], current, rows)
-            kept += np.where(done, 0, restart)
-    report.final_state = current
-    report.warnings = _warning_lines(datas) + log
-    return report
+    kept = np.zeros(batch_size, int)
+    with captured_mujoco_log() as log:
+        with MujocoBatch(models, perturbed_starts(state0, nq, nv, start_perturbation), threads) as batch:
+            if setup is not None:
+                setup(batch)
+            while (kept < nstep).any():
+                before = batch.states()
+                ctrl = None if control is None else np.ascontiguousarray(control(before[:, 0]), dtype=float)
+                full = batch.run_chunk(chunk_steps, ctrl)
+                done = kept >= nstep
+                full[done, 1:] = np.nan  # finished trajectories idle; nothing is sampled from them
+                answer = on_chunk(_chunk_of(full, nq, nv), batch)
+                rows_out, overrides = answer if isinstance(answer, tuple) else (answer, {})
+                restart = np.clip(np.asarray(rows_out, int), 1, chunk_steps)
+                restart[batch.report.diverged | done] = chunk_steps
+                early = np.nonzero(restart < chunk_steps)[0]
+                batch.set_states(early, full[early, restart[early]])
+                for b, state in overrides.items():
+                    if not (batch.report.diverged[b] or done[b]):
+                        batch.set_states(np.array([b]), state[None, :])
+                batch.set_states(np.nonzero(done)[0], before[done])
+                kept += np.where(done, 0, restart)
+        batch.report.warnings += log
+    return batch.report
 
 
 def fractional_step(model: mujoco.MjModel, data: mujoco.MjData, seconds: float) -> None:
@@ -266,15 +393,15 @@ class KeptRows:
     ``tag`` (optional) is read before the controller acts on each chunk; its value is kept beside each row
     of that chunk (e.g. a mocap position that the controller moves at the event)."""
 
-    def __init__(self, on_chunk: Callable[[Chunk, list[mujoco.MjModel]], np.ndarray | tuple[np.ndarray, dict]],
+    def __init__(self, on_chunk: Callable[[Chunk, Batch], np.ndarray | tuple[np.ndarray, dict]],
                  tag: Callable[[], np.ndarray] | None = None) -> None:
         self.on_chunk, self.tag = on_chunk, tag
         self.rows: list[np.ndarray] = []
         self.tags: list[np.ndarray] = []
 
-    def __call__(self, chunk: Chunk, models: list[mujoco.MjModel]) -> np.ndarray | tuple[np.ndarray, dict]:
+    def __call__(self, chunk: Chunk, batch: Batch) -> np.ndarray | tuple[np.ndarray, dict]:
         tag = self.tag() if self.tag is not None else None
-        answer = self.on_chunk(chunk, models)
+        answer = self.on_chunk(chunk, batch)
         restart = answer[0] if isinstance(answer, tuple) else answer
         k = max(1, int(restart[0]))
         self.rows.append(np.concatenate([chunk.time[0, 1 : k + 1, None], chunk.qpos[0, 1 : k + 1],
@@ -293,10 +420,12 @@ class KeptRows:
 
 
 def event_clip(models: list[mujoco.MjModel], state0: np.ndarray, nstep: int,
-               controller: Callable[[Chunk, list[mujoco.MjModel]], np.ndarray | tuple[np.ndarray, dict]],
-               chunk_steps: int, tag: Callable[[], np.ndarray] | None = None) -> KeptRows:
+               controller: Callable[[Chunk, Batch], np.ndarray | tuple[np.ndarray, dict]],
+               chunk_steps: int, tag: Callable[[], np.ndarray] | None = None,
+               setup: Callable[[Batch], None] | None = None) -> KeptRows:
     """A render clip with events: ``state0`` (1, nstate) run ``nstep`` steps by :func:`event_rollout` on ``models``
-    (one copy, one thread) with ``controller``; the kept rows (:meth:`KeptRows.states`, :meth:`KeptRows.tagged`)."""
+    (one copy, one thread) with ``controller`` (and ``setup``, as there); the kept rows (:meth:`KeptRows.states`,
+    :meth:`KeptRows.tagged`)."""
     kept = KeptRows(controller, tag=tag)
-    event_rollout(models, state0, nstep, kept, threads=1, chunk_steps=chunk_steps)
+    event_rollout(models, state0, nstep, kept, threads=1, chunk_steps=chunk_steps, setup=setup)
     return kept

@@ -2,6 +2,14 @@
 
 A :class:`Scenario` is declared once (in its own module) and used by the CLI, the tests, the
 benchmark and the renderer alike; :mod:`mjpoincare.scenarios` keeps the registry.
+
+Tolerances and their reasons. A scenario module's ``TOLERANCES`` maps a preset to the bound of each check by check
+name (rimless-wheel-3d: one such table per impact mode); :func:`at_preset` reads it. Its ``WHY`` holds the reasons a
+check's ``why`` text gives for its bound: what sets the error at that preset (contact time constant, step, fit bias)
+and what was measured. Three shapes are in use, each keeping today's report text: a sentence per preset appended to
+the checks that share it (rimless-wheel, compass-biped, compass-biped-friction, slotted-skate), the same per impact
+mode then preset (rimless-wheel-3d), and a sentence per check, the same at every preset (rimless-wheel-friction, whose
+presets share their reasons).
 """
 
 from __future__ import annotations
@@ -36,6 +44,53 @@ def at_preset(table: Mapping[str, T], scenario: str, preset: str) -> T:
     except KeyError:
         raise MissingTolerances(f"scenario {scenario!r} declares no tolerances for preset {preset!r} "
                                 f"(declared: {', '.join(table)})") from None
+
+
+@dataclass(frozen=True)
+class JointIndex:
+    """Where a joint's coordinates start in ``qpos`` and its velocities in ``qvel``/``qacc`` (``jnt_qposadr``,
+    ``jnt_dofadr``): measurement code resolves each joint by name once per model and reads the state through it.
+
+    Attributes:
+        qpos: the joint's first coordinate in ``qpos``.
+        dof: the joint's first degree of freedom in ``qvel`` and ``qacc``.
+    """
+
+    qpos: int
+    dof: int
+
+    @classmethod
+    def of(cls, model: mujoco.MjModel, name: str) -> JointIndex:
+        """The indices of joint ``name`` in ``model`` (raises KeyError for a joint the model does not have)."""
+        joint = model.joint(name)
+        return cls(qpos=int(joint.qposadr[0]), dof=int(joint.dofadr[0]))
+
+
+@dataclass(frozen=True)
+class ReturnMapPlot:
+    """The report's empirical return map (``extras["return_map"]``): section samples x_k -> x_k+1 of one coordinate,
+    the analytic map over their range, and the analytic eigenvalues of the linearised map at the fixed point.
+
+    Attributes:
+        label: the plotted section coordinate with its unit (the report's x-axis label).
+        x: the coordinate at crossing k of each sample pair.
+        x_next: the same coordinate at crossing k+1.
+        analytic_x: grid over the samples' range on which the analytic map is drawn.
+        analytic_y: the analytic map on ``analytic_x`` (NaN where the scenario has no closed form of the 1-D map).
+        analytic_eigenvalues: the analytic multipliers, shown against the fitted ones in the complex plane.
+    """
+
+    label: str
+    x: np.ndarray
+    x_next: np.ndarray
+    analytic_x: np.ndarray
+    analytic_y: np.ndarray
+    analytic_eigenvalues: Sequence[complex] | np.ndarray
+
+    def to_dict(self) -> dict[str, Any]:
+        """The extras entry the JSON result and :func:`mjpoincare.report.write_report` read (values as given)."""
+        return {"label": self.label, "x": self.x, "x_next": self.x_next, "analytic_x": self.analytic_x,
+                "analytic_y": self.analytic_y, "analytic_eigenvalues": self.analytic_eigenvalues}
 
 
 @dataclass

@@ -8,9 +8,9 @@ Contact protocol, as the analytic model assumes (003 Sec. 4.1): the swing foot's
 from heel strike until the foot is ahead of the stance foot and clear of the ground (it passes
 through the slope mid-swing, as the exact model's foot does; how deep is reported, without a
 verdict), and the trailing foot's contact is switched off just before the next heel strike
-(so the impact impulse acts at the new foot only). The switching is done by a chunk controller on
-per-trajectory model copies (:func:`mjpoincare.simulate.event_rollout`): MuJoCo steps natively
-between events and each event restarts from the recorded state where it happened.
+(so the impact impulse acts at the new foot only). The switching is done by a chunk controller through the
+rollout seam (:class:`mjpoincare.simulate.Batch`, per trajectory): MuJoCo steps natively between events and each
+event restarts from the recorded state where it happened.
 
 Poincaré section: legs parallel (003 eq 4.20), mid-swing, far from the soft impact. Its samples are
 pulled back to the post-impact section with the exact swing flow for the ``fixed_point`` check; the
@@ -37,9 +37,27 @@ from mjpoincare.analysis.start_designs import sphere_offsets
 from mjpoincare.analysis.theory import compass_biped as theory
 from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
-from mjpoincare.scenarios.base import Evaluation, Scenario, Soak, StressCase, Values, at_preset
+from mjpoincare.scenarios.base import (
+    Evaluation,
+    JointIndex,
+    ReturnMapPlot,
+    Scenario,
+    Soak,
+    StressCase,
+    Values,
+    at_preset,
+)
 from mjpoincare.settings import rollout_options
-from mjpoincare.simulate import STATE_SPEC, Chunk, RolloutReport, event_clip, event_rollout, initial_states
+from mjpoincare.simulate import (
+    STATE_SPEC,
+    Batch,
+    Chunk,
+    MujocoBatch,
+    RolloutReport,
+    event_clip,
+    event_rollout,
+    initial_states,
+)
 
 PARAMS: tuple[Param, ...] = (
     Param("m_h", 10.0, "hip mass, kg", float, 0.0, 1e6, low_open=True),
@@ -189,20 +207,18 @@ class GaitController:
         #: swing-foot contact switch-on thresholds (x l); a scenario with low foot clearance may lower them
         self.enable_ahead, self.enable_clear = ENABLE_AHEAD, ENABLE_CLEAR
 
-    def configure(self, models: list[mujoco.MjModel]) -> None:
+    def configure(self, batch: Batch) -> None:
         """Initial contacts: leg 0 stands, leg 1 swings with its contact off; the torques act accordingly."""
-        for m in models:
-            m.geom_contype[self.feet[0]] = 1
-            m.geom_contype[self.feet[1]] = 0
-            self._actuate(m, 0)
+        for b in range(self.stance.size):
+            batch.set_contact(b, self.feet[1], False)
+            self._actuate(batch, b, 0)
 
-    def _actuate(self, model: mujoco.MjModel, stance: int) -> None:
-        """The ankle torque on leg ``stance``'s hinge only; the hip tendon (leg1 - leg0) geared so that +tau_hip
-        acts on the swing leg (003 eq 4.5, B = (-1, 1))."""
+    def _actuate(self, batch: Batch, b: int, stance: int) -> None:
+        """Trajectory ``b``'s ankle torque on leg ``stance``'s hinge only; the hip tendon (leg1 - leg0) geared so that
+        +tau_hip acts on the swing leg (003 eq 4.5, B = (-1, 1))."""
         for leg, actuator in enumerate(self.ankles):
-            model.actuator_biasprm[actuator, 0] = self.bp.tau_ankle if leg == stance else 0.0
-        model.actuator_biasprm[self.hip, 0] = self.bp.tau_hip
-        model.actuator_gear[self.hip, 0] = 1.0 if stance == 0 else -1.0
+            batch.set_actuator(b, actuator, bias=self.bp.tau_ankle if leg == stance else 0.0)
+        batch.set_actuator(b, self.hip, bias=self.bp.tau_hip, gear=1.0 if stance == 0 else -1.0)
 
     def _feet(self, chunk: Chunk, b: int, leg: int) -> tuple[np.ndarray, np.ndarray]:
         lever = self.bp.l - self.radius
@@ -211,7 +227,7 @@ class GaitController:
         h = chunk.qpos[b, :, 1] - lever * np.cos(q) - self.radius
         return x, h
 
-    def __call__(self, chunk: Chunk, models: list[mujoco.MjModel]) -> np.ndarray:
+    def __call__(self, chunk: Chunk, batch: Batch) -> np.ndarray:
         steps = chunk.time.shape[1] - 1
         restart = np.full(chunk.time.shape[0], steps)
         for b in range(chunk.time.shape[0]):
@@ -233,7 +249,7 @@ class GaitController:
                     self._lowest[b] = h_sw[i], h_st[i]
                 if ready.size:
                     restart[b] = last
-                    models[b].geom_contype[self.feet[sw]] = 1
+                    batch.set_contact(b, self.feet[sw], True)
                     self.swing_enabled[b] = True
                     self.swing_low[b].append((float(self._lowest[b, 0]), float(self._lowest[b, 1])))
                     self._lowest[b] = np.inf
@@ -243,8 +259,8 @@ class GaitController:
                 if hits.size:
                     k = int(hits[0]) + 1
                     restart[b], strike = k, True
-                    models[b].geom_contype[self.feet[st]] = 0  # release the trailing foot before impact
-                    self._actuate(models[b], sw)
+                    batch.set_contact(b, self.feet[st], False)  # release the trailing foot before impact
+                    self._actuate(batch, b, sw)
                     self.strikes[b].append((float(chunk.time[b, k]), float(x_sw[k])))
                     self._release[b] = (float(chunk.time[b, k]), float(h_st[k]), float(h_st[k]))
             self._sample(chunk, b, st, sw, int(restart[b]))
@@ -294,13 +310,12 @@ def _run(model: mujoco.MjModel, bp: theory.CompassBiped, starts: np.ndarray, ste
          ) -> tuple[GaitController, RolloutReport]:
     """Walk from the post-impact states ``starts`` for ``steps`` heel strikes, switching contacts at the events."""
     controller = GaitController(model, bp, len(starts), float(s["foot_radius"]))
-    models = [copy.copy(model) for _ in starts]
-    controller.configure(models)
     period = theory.step_period(bp, theory.fixed_point(bp))
     nstep = math.ceil((steps + 0.5) * period / model.opt.timestep)
-    report = event_rollout(models, post_impact_states(model, bp, starts, float(s["foot_radius"])), nstep,
-                           controller, **rollout_options(s),
-                           chunk_steps=max(10, round(CHUNK_SECONDS / model.opt.timestep)))
+    report = event_rollout([copy.copy(model) for _ in starts],
+                           post_impact_states(model, bp, starts, float(s["foot_radius"])), nstep, controller,
+                           **rollout_options(s), chunk_steps=max(10, round(CHUNK_SECONDS / model.opt.timestep)),
+                           setup=controller.configure)
     return controller, report
 
 
@@ -352,14 +367,17 @@ def release_tolerance(model: mujoco.MjModel, bp: theory.CompassBiped, x_star: np
     depth it falls from rest in RELEASE_FALL_STEPS semi-implicit Euler steps, |a| dt^2 n (n + 1)/2."""
     m = copy.copy(model)
     controller = GaitController(m, bp, 1, foot_radius)
-    controller.configure([m])
-    m.geom_contype[controller.feet[0]] = 0
+    state = post_impact_states(m, bp, theory.step(bp, x_star).x_minus[None, :], foot_radius)
+    with MujocoBatch([m], state, threads=0) as batch:
+        controller.configure(batch)
+        batch.set_contact(0, controller.feet[0], False)
     data = mujoco.MjData(m)
-    mujoco.mj_setState(m, data, post_impact_states(m, bp, theory.step(bp, x_star).x_minus[None, :], foot_radius)[0],
-                       STATE_SPEC)
+    mujoco.mj_setState(m, data, state[0], STATE_SPEC)
     mujoco.mj_forward(m, data)
-    q, w = float(data.qpos[2]), float(data.qvel[2])
-    accel = float(data.qacc[1]) + (bp.l - foot_radius) * (math.sin(q) * float(data.qacc[2]) + math.cos(q) * w * w)
+    z, leg = JointIndex.of(m, "z"), JointIndex.of(m, "leg0")
+    q, w = float(data.qpos[leg.qpos]), float(data.qvel[leg.dof])
+    accel = float(data.qacc[z.dof]) + (bp.l - foot_radius) * (math.sin(q) * float(data.qacc[leg.dof])
+                                                               + math.cos(q) * w * w)
     n = RELEASE_FALL_STEPS
     return accel, max(0.0, -accel) * m.opt.timestep**2 * n * (n + 1) / 2
 
@@ -424,9 +442,9 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     extras["analytic"] = {"fixed_point": x_star, "eigenvalues": lam, "legs_parallel_fixed_point":
                           theory.legs_parallel_state(bp, x_star)[0], "step": _step_summary(bp, x_star)}
     grid = np.linspace(float(x[:, 0].min()), float(x[:, 0].max()), 2)
-    extras["return_map"] = {"label": "legs-parallel angle theta (rad)", "x": x[:, 0], "x_next": x_next[:, 0],
-                            "analytic_x": grid, "analytic_y": np.full_like(grid, np.nan),
-                            "analytic_eigenvalues": lam}
+    extras["return_map"] = ReturnMapPlot(label="legs-parallel angle theta (rad)", x=x[:, 0], x_next=x_next[:, 0],
+                                         analytic_x=grid, analytic_y=np.full_like(grid, np.nan),
+                                         analytic_eigenvalues=lam).to_dict()
     return Evaluation(out, report, extras)
 
 
@@ -530,10 +548,8 @@ def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
     bp = biped(p)
     start = post_impact_states(model, bp, theory.fixed_point(bp)[None, :], float(s["foot_radius"]))
     controller = GaitController(model, bp, 1, float(s["foot_radius"]))
-    models = [copy.copy(model)]
-    controller.configure(models)
     chunk = max(10, round(CHUNK_SECONDS / model.opt.timestep))
-    return event_clip(models, start, nstep, controller, chunk).states(nstep)
+    return event_clip([copy.copy(model)], start, nstep, controller, chunk, setup=controller.configure).states(nstep)
 
 
 COMPASS_BIPED = Scenario(

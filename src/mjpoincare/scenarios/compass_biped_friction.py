@@ -47,9 +47,9 @@ from mjpoincare.analysis.theory import compass_biped_friction as theory
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios import compass_biped as cb
 from mjpoincare.scenarios import compass_biped_friction_stance as stance
-from mjpoincare.scenarios.base import Evaluation, Scenario, StressCase, Values, at_preset
+from mjpoincare.scenarios.base import Evaluation, ReturnMapPlot, Scenario, StressCase, Values, at_preset
 from mjpoincare.settings import rollout_options
-from mjpoincare.simulate import Chunk, KeptRows, RolloutReport, event_rollout, initial_states
+from mjpoincare.simulate import Batch, Chunk, KeptRows, RolloutReport, event_rollout, initial_states
 
 GAITS = ("a", "b", "c", "i", "ii", "iii")
 #: 002's friction per gait when ``mu`` = 0: A above mu_c (any mu >= 0.175 is the same gait), B 0.14 (Fig. 4.2a),
@@ -227,18 +227,17 @@ class FrictionGaitController(cb.GaitController):
         self.nu = model.nu
         self.enable_ahead, self.enable_clear = ENABLE_AHEAD, ENABLE_CLEAR
 
-    def configure(self, models: list[mujoco.MjModel]) -> None:
+    def configure(self, batch: Batch) -> None:
         """As compass-biped, but Gait III's PD bias stays on both ankles (the stance leg is chosen by ctrl)."""
         if self.pd is None:
-            super().configure(models)
+            super().configure(batch)
             return
-        for m in models:
-            m.geom_contype[self.feet[0]] = 1
-            m.geom_contype[self.feet[1]] = 0
+        for b in range(self.stance.size):
+            batch.set_contact(b, self.feet[1], False)
 
-    def _actuate(self, model: mujoco.MjModel, stance: int) -> None:
+    def _actuate(self, batch: Batch, b: int, stance: int) -> None:
         if self.pd is None:
-            super()._actuate(model, stance)
+            super()._actuate(batch, b, stance)
 
     def control(self, t0: np.ndarray, steps: int) -> np.ndarray:
         """ctrl (B, steps, nu): Gait III's reference term kp theta^r + kd theta_dot^r per hinge (002 eq 30)."""
@@ -254,10 +253,10 @@ class FrictionGaitController(cb.GaitController):
         out[rows, :, self.ankles[1]] = np.where((st == 1)[:, None], kp * th1 + kd * w1, -(kp * th2 + kd * w2))
         return out
 
-    def __call__(self, chunk: Chunk, models: list[mujoco.MjModel]) -> np.ndarray:
+    def __call__(self, chunk: Chunk, batch: Batch) -> np.ndarray:
         stance_before = self.stance.copy()
         strikes_before = [len(s) for s in self.strikes]
-        restart = super().__call__(chunk, models)
+        restart = super().__call__(chunk, batch)
         for b in range(chunk.time.shape[0]):
             if np.isnan(chunk.time[b, 1]):
                 continue
@@ -343,14 +342,13 @@ def _run(p: Values, s: Values, model: mujoco.MjModel, starts: np.ndarray, steps:
     pd = (float(p["kp"]), float(p["kd"])) if gait_name(p) == "III" else None
     radius = float(s["foot_radius"])
     controller = FrictionGaitController(model, g, len(starts), radius, _torques(p), pd)
-    models = [copy.copy(model) for _ in starts]
-    controller.configure(models)
     chunk = max(10, round(CHUNK_SECONDS / model.opt.timestep))
     nstep = math.ceil((steps + 0.5) * g.record.period / model.opt.timestep)
     kept = KeptRows(controller) if wrap else None
-    report = event_rollout(models, post_impact_states(model, g.biped, starts, radius), nstep,
-                           kept if kept is not None else controller, **rollout_options(s), chunk_steps=chunk,
-                           control=(lambda t0: controller.control(t0, chunk)) if pd is not None else None)
+    report = event_rollout([copy.copy(model) for _ in starts], post_impact_states(model, g.biped, starts, radius),
+                           nstep, kept if kept is not None else controller, **rollout_options(s), chunk_steps=chunk,
+                           control=(lambda t0: controller.control(t0, chunk)) if pd is not None else None,
+                           setup=controller.configure)
     return controller, report, kept
 
 
@@ -430,8 +428,9 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     extras["reported"] = {"swing_foot_depth": cb.swing_foot_report(c, -g.record.min_swing_height)}
     extras["analytic"] = {"z": g.z, "eigenvalues": g.eigenvalues, "legs_parallel": y_star_th}
     grid = np.linspace(float(x[:, 0].min()), float(x[:, 0].max()), 2)
-    extras["return_map"] = {"label": "legs-parallel angle theta1 (rad)", "x": x[:, 0], "x_next": x_next[:, 0],
-                            "analytic_x": grid, "analytic_y": np.full_like(grid, np.nan), "analytic_eigenvalues": lam}
+    extras["return_map"] = ReturnMapPlot(label="legs-parallel angle theta1 (rad)", x=x[:, 0], x_next=x_next[:, 0],
+                                         analytic_x=grid, analytic_y=np.full_like(grid, np.nan),
+                                         analytic_eigenvalues=lam).to_dict()
     return Evaluation(out, report, extras)
 
 

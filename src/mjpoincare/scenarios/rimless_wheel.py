@@ -30,7 +30,16 @@ from mjpoincare.analysis.theory import rimless_wheel as theory
 from mjpoincare.analysis.theory.rimless_wheel_hybrid import simulate_hybrid
 from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
-from mjpoincare.scenarios.base import Evaluation, Scenario, Soak, StressCase, Values, at_preset
+from mjpoincare.scenarios.base import (
+    Evaluation,
+    JointIndex,
+    ReturnMapPlot,
+    Scenario,
+    Soak,
+    StressCase,
+    Values,
+    at_preset,
+)
 from mjpoincare.settings import rollout_options
 from mjpoincare.simulate import Chunk, RolloutReport, initial_states, plain_clip, rollout_batch
 
@@ -166,8 +175,9 @@ def post_impact_states(model: mujoco.MjModel, w: theory.RimlessWheel, omega0: np
 class _Recorder:
     """Consumes rollout chunks: mid-stance samples, impacts, flight flags and the final window."""
 
-    def __init__(self, w: theory.RimlessWheel, batch: int, foot_radius: float) -> None:
+    def __init__(self, model: mujoco.MjModel, w: theory.RimlessWheel, batch: int, foot_radius: float) -> None:
         self.w, self.radius = w, foot_radius
+        self.x, self.z, self.pitch = (JointIndex.of(model, name) for name in ("x", "z", "pitch"))
         self.mid = Crossings.empty(3)
         self.impacts = Crossings.empty(1)
         self.max_clearance = np.zeros(batch)
@@ -175,11 +185,12 @@ class _Recorder:
 
     def __call__(self, chunk: Chunk) -> None:
         w = self.w
-        psi = wrap_phase(chunk.qpos[:, :, 2], w.alpha)
-        values = np.stack([chunk.qvel[:, :, 2], chunk.qpos[:, :, 0], chunk.qpos[:, :, 1]], axis=2)
+        psi = wrap_phase(chunk.qpos[:, :, self.pitch.qpos], w.alpha)
+        values = np.stack([chunk.qvel[:, :, self.pitch.dof], chunk.qpos[:, :, self.x.qpos],
+                           chunk.qpos[:, :, self.z.qpos]], axis=2)
         self.mid = self.mid.concat(level_crossings(chunk.time, psi, values, max_jump=w.alpha))
         self.impacts = self.impacts.concat(wrap_events(chunk.time, psi, w.alpha))
-        clearance = chunk.qpos[:, :, 1] - (w.leg_length - self.radius) * np.cos(psi) - self.radius
+        clearance = chunk.qpos[:, :, self.z.qpos] - (w.leg_length - self.radius) * np.cos(psi) - self.radius
         self.max_clearance = np.fmax(self.max_clearance, np.nanmax(clearance, axis=1))
         self.tail = chunk
 
@@ -202,7 +213,7 @@ def _fit_seconds(w: theory.RimlessWheel) -> float:
 def _simulate(model: mujoco.MjModel, w: theory.RimlessWheel, omega0: np.ndarray, seconds: float,
               s: Values) -> tuple[_Recorder, RolloutReport]:
     radius = float(s["foot_radius"])
-    recorder = _Recorder(w, len(omega0), radius)
+    recorder = _Recorder(model, w, len(omega0), radius)
     report = rollout_batch(model, post_impact_states(model, w, omega0, radius), _whole_chunks(model, seconds),
                            recorder, **rollout_options(s), chunk_steps=_chunk(model))
     return recorder, report
@@ -261,11 +272,11 @@ def _fit_checks(w: theory.RimlessWheel, rec: _Recorder, batch: int, tol: Mapping
                         "it spans and taken at the fitted fixed point; same error sources as omega_post_impact"),
     ]
     grid = np.linspace(float(x.min()), float(x.max()), 60)
-    plot = {"label": "post-impact speed omega+ (rad/s)", "x": x[:, 0], "x_next": x_next[:, 0],
-            "analytic_x": grid, "analytic_y": np.asarray(theory.return_map(w, grid), float),
-            "analytic_eigenvalues": [theory.rolling_multiplier(w)]}
+    plot = ReturnMapPlot(label="post-impact speed omega+ (rad/s)", x=x[:, 0], x_next=x_next[:, 0], analytic_x=grid,
+                         analytic_y=np.asarray(theory.return_map(w, grid), float),
+                         analytic_eigenvalues=[theory.rolling_multiplier(w)])
     return out, {"fit": fit.to_dict(), "max_clearance_rolling": float(np.max(rec.max_clearance)),
-                 "return_map": plot}
+                 "return_map": plot.to_dict()}
 
 
 def _period_at(star: float, before: list[np.ndarray], after: list[np.ndarray], dts: list[np.ndarray]) -> float:
@@ -282,10 +293,11 @@ def _basin_checks(w: theory.RimlessWheel, rec: _Recorder, omega0: np.ndarray) ->
     tail = rec.tail
     assert tail is not None
     runaway = 1.5 * math.sqrt(w.gravity / w.leg_length)
-    psi = wrap_phase(tail.qpos[:, :, 2], w.alpha)
-    clearance = tail.qpos[:, :, 1] - (w.leg_length - rec.radius) * np.cos(psi) - rec.radius
-    simulated = classify_outcomes(tail.qvel[:, :, 2], clearance, rest_speed=0.05 * theory.rolling_fixed_point(w),
-                                  runaway_speed=runaway, flight_clearance=FLIGHT_CLEARANCE * w.leg_length)
+    psi = wrap_phase(tail.qpos[:, :, rec.pitch.qpos], w.alpha)
+    clearance = tail.qpos[:, :, rec.z.qpos] - (w.leg_length - rec.radius) * np.cos(psi) - rec.radius
+    simulated = classify_outcomes(tail.qvel[:, :, rec.pitch.dof], clearance,
+                                  rest_speed=0.05 * theory.rolling_fixed_point(w), runaway_speed=runaway,
+                                  flight_clearance=FLIGHT_CLEARANCE * w.leg_length)
     predicted = []
     for om in omega0:
         outcome = theory.predicted_outcome(w, float(om))

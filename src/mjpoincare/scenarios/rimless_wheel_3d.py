@@ -57,14 +57,14 @@ from mjpoincare.analysis.theory import rimless_wheel_3d as theory
 from mjpoincare.analysis.theory import rimless_wheel_3d_hybrid as hybrid
 from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
-from mjpoincare.scenarios.base import Evaluation, Scenario, Soak, StressCase, Values, at_preset
+from mjpoincare.scenarios.base import Evaluation, ReturnMapPlot, Scenario, Soak, StressCase, Values, at_preset
 from mjpoincare.settings import rollout_options
 from mjpoincare.simulate import (
+    Batch,
     Chunk,
     RolloutReport,
     event_clip,
     event_rollout,
-    fractional_step,
     initial_states,
     plain_clip,
     rollout_batch,
@@ -332,9 +332,8 @@ class IdealImpactController:
         self.pivot = np.zeros((batch, 3))
         self.impacts = np.zeros(batch, int)
         self.guard_error = 0.0  # largest |theta - pi/n| at an applied impact
-        self._data: mujoco.MjData | None = None
 
-    def __call__(self, chunk: Chunk, models: list[mujoco.MjModel]) -> tuple[np.ndarray, dict[int, np.ndarray]]:
+    def __call__(self, chunk: Chunk, batch: Batch) -> tuple[np.ndarray, dict[int, np.ndarray]]:
         steps = chunk.time.shape[1] - 1
         theta, values = _section(chunk, True)
         with np.errstate(invalid="ignore"):
@@ -343,39 +342,37 @@ class IdealImpactController:
         overrides: dict[int, np.ndarray] = {}
         for b in np.nonzero(over.any(axis=1))[0]:
             k = int(np.argmax(over[b])) + 1  # the guard lies between rows k-1 and k
-            overrides[int(b)] = self._impact(models[b], chunk, theta, int(b), k)
+            overrides[int(b)] = self._impact(batch, chunk, theta, int(b), k)
             restart[b] = max(k - 1, 1)
         kept = np.arange(steps + 1)[None, :] <= restart[:, None]
         phase = np.where(kept, theta, np.nan)
         self.mid = self.mid.concat(level_crossings(chunk.time, phase, values, max_jump=self.beta))
         return restart, overrides
 
-    def _impact(self, model: mujoco.MjModel, chunk: Chunk, theta: np.ndarray, b: int, k: int) -> np.ndarray:
-        if self._data is None:
-            self._data = mujoco.MjData(model)
-        d, dt, beta = self._data, model.opt.timestep, self.beta
+    def _impact(self, batch: Batch, chunk: Chunk, theta: np.ndarray, b: int, k: int) -> np.ndarray:
+        """Trajectory ``b``'s state just after the impact whose guard lies between rows k-1 and k (full physics: time,
+        qpos, qvel, the ideal model's whole state)."""
+        beta, nq = self.beta, chunk.qpos.shape[2]
+        row = np.concatenate([chunk.time[b, k - 1 : k], chunk.qpos[b, k - 1], chunk.qvel[b, k - 1]])
         rise = theta[b, k] - theta[b, k - 1]
         frac = (beta - theta[b, k - 1]) / rise
         for _ in range(2):  # secant on the step fraction
-            mujoco.mj_resetData(model, d)
-            d.time, d.qpos[:], d.qvel[:] = chunk.time[b, k - 1], chunk.qpos[b, k - 1], chunk.qvel[b, k - 1]
-            fractional_step(model, d, frac * dt)
-            miss = float(euler_state(d.qpos, d.qvel)[2]) - beta
+            state = batch.advance(b, row, frac * batch.timestep)
+            qpos, qvel = state[1 : 1 + nq], state[1 + nq :]
+            miss = float(euler_state(qpos, qvel)[2]) - beta
             frac -= miss / rise
         self.guard_error = max(self.guard_error, abs(miss))
-        R = quat_to_matrix(np.array(d.qpos))
+        R = quat_to_matrix(np.array(qpos))
         psi, phi, pitch = hybrid.euler_angles(R)
-        rates = hybrid.euler_rates(psi, phi, R @ d.qvel)
+        rates = hybrid.euler_rates(psi, phi, R @ qvel)
         rates_plus = hybrid.impact_rates(self.w, psi, phi, rates)
         R_plus = hybrid.pose(psi, phi, pitch - 2.0 * beta)
         l = self.length
         next_spoke = np.array([math.sin(2.0 * beta), 0.0, -math.cos(2.0 * beta)])
         self.pivot[b] += l * (R[:, 2] + R @ next_spoke)
         self.impacts[b] += 1
-        d.qpos[:] = matrix_to_quat(R_plus)
-        d.qvel[:] = R_plus.T @ hybrid.angular_velocity(psi, phi, rates_plus)
-        state = np.empty(mujoco.mj_stateSize(model, mujoco.mjtState.mjSTATE_FULLPHYSICS))
-        mujoco.mj_getState(model, d, state, mujoco.mjtState.mjSTATE_FULLPHYSICS)
+        state[1 : 1 + nq] = matrix_to_quat(R_plus)
+        state[1 + nq :] = R_plus.T @ hybrid.angular_velocity(psi, phi, rates_plus)
         return state
 
 
@@ -638,7 +635,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
         extras["reported"] = {"heading_drift_per_100_impacts": {
             "value": 100.0 * fitted.cycle.drift, "unit": "rad",
             "note": "fitted cycle's drift along the neutral heading family; reported, not judged"}}
-        extras["return_map"] = _return_map_plot(w, sequences, unit, ref)
+        extras["return_map"] = _return_map_plot(w, sequences, unit, ref).to_dict()
         try:
             floor: dict[str, object] = dict(reference_bench(p, hybrid.RTOL))
         except RuntimeError as err:  # the exact reference itself left the cycle from these starts: say so
@@ -677,7 +674,7 @@ def _analytic(w: theory.RimlessWheel3D, ref: hybrid.Eigen3D) -> dict[str, object
 
 
 def _return_map_plot(w: theory.RimlessWheel3D, sequences: list[np.ndarray], unit: float, ref: hybrid.Eigen3D
-                     ) -> dict[str, object]:
+                     ) -> ReturnMapPlot:
     """theta_dot(0)_k -> theta_dot(0)_k+1 of the samples, with the planar map (eq 11 moved to mid-stance)."""
     x, x_next = sample_pairs(sequences)
     grid = np.linspace(float(x[:, 4].min()), float(x[:, 4].max()), 40)
@@ -685,9 +682,9 @@ def _return_map_plot(w: theory.RimlessWheel3D, sequences: list[np.ndarray], unit
     lift = 2.0 * (math.cos(gamma - beta) - math.cos(gamma)) / (1.0 + w.J)  # theta_dot(0)^2 - theta_dot+^2
     gain = 4.0 * math.sin(beta) * math.sin(gamma) / (1.0 + w.J)
     planar = np.sqrt(w.mu**2 * (grid**2 - lift + gain) + lift)
-    return {"label": "mid-stance pitch rate theta_dot (rad/s); line: planar map", "x": x[:, 4] * unit,
-            "x_next": x_next[:, 4] * unit, "analytic_x": grid * unit, "analytic_y": planar * unit,
-            "analytic_eigenvalues": [complex(v) for v in ref.all]}
+    return ReturnMapPlot(label="mid-stance pitch rate theta_dot (rad/s); line: planar map", x=x[:, 4] * unit,
+                         x_next=x_next[:, 4] * unit, analytic_x=grid * unit, analytic_y=planar * unit,
+                         analytic_eigenvalues=[complex(v) for v in ref.all])
 
 
 # --- bench, render ----------------------------------------------------------------------------------------------

@@ -45,9 +45,19 @@ from mjpoincare.analysis.stick_slip_phases import Classifier, Rows, Steps
 from mjpoincare.analysis.theory import rimless_wheel_friction as theory
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios import rimless_wheel as rw
-from mjpoincare.scenarios.base import Evaluation, RegionMap, Scenario, Soak, StressCase, Values, at_preset
+from mjpoincare.scenarios.base import (
+    Evaluation,
+    JointIndex,
+    RegionMap,
+    ReturnMapPlot,
+    Scenario,
+    Soak,
+    StressCase,
+    Values,
+    at_preset,
+)
 from mjpoincare.settings import rollout_options
-from mjpoincare.simulate import Chunk, RolloutReport, event_rollout, plain_clip
+from mjpoincare.simulate import Batch, Chunk, RolloutReport, event_rollout, plain_clip
 
 PAPER_SLOPE = math.radians(13.0)
 
@@ -218,7 +228,7 @@ def simulate(models: Sequence[mujoco.MjModel], state0: np.ndarray, seconds: floa
     chunk = math.ceil(nstep / math.ceil(nstep / max(1, round(0.5 / dt))))  # equal chunks of <= 0.5 s: no overshoot
     parts: list[Chunk] = []
 
-    def keep(c: Chunk, _models: list[mujoco.MjModel]) -> np.ndarray:
+    def keep(c: Chunk, _batch: Batch) -> np.ndarray:
         parts.append(c if not parts else Chunk(c.time[:, 1:], c.qpos[:, 1:], c.qvel[:, 1:]))
         return np.full(c.time.shape[0], chunk)
 
@@ -247,22 +257,24 @@ def classifier(mu: np.ndarray | float, s: Values, preset: str, batch: int) -> Cl
                       v_thr=V_THRESHOLD.get(preset, V_THRESHOLD["fast"]), impact_window=window)
 
 
-def row_signals(rec: Chunk, p: Values, s: Values, cls: Classifier, gravity: np.ndarray) -> Rows:
+def row_signals(rec: Chunk, model: mujoco.MjModel, p: Values, s: Values, cls: Classifier) -> Rows:
     """002's variables of every recorded row (theta wrapped to one step, theta_dot, the stance foot's slip speed
     x_dot, the lowest foot's clearance) and the contact force per unit mass a_hub - g from the recorded velocities
-    (exact for Euler/implicitfast: v_k+1 = v_k + dt a_k; ``gravity`` is the model's slope-frame vector), classified
-    by :func:`phases.stance_rows`."""
+    (exact for Euler/implicitfast: v_k+1 = v_k + dt a_k; g is ``model``'s slope-frame gravity), classified by
+    :func:`phases.stance_rows`."""
     phi = math.pi / int(p["spokes"])
     l, unit = float(p["leg_length"]), rate_unit(p)
     r = float(s["foot_radius"])
     dt = float(s["timestep"])
-    theta = wrap_phase(rec.qpos[:, :, 2], phi)
-    omega = rec.qvel[:, :, 2]
-    slip = (rec.qvel[:, :, 0] - omega * ((l - r) * np.cos(theta) + r)) / (l * unit)
-    clearance = (rec.qpos[:, :, 1] - (l - r) * np.cos(theta) - r) / l
+    gravity = np.asarray(model.opt.gravity)
+    x, z, pitch = (JointIndex.of(model, name) for name in ("x", "z", "pitch"))
+    theta = wrap_phase(rec.qpos[:, :, pitch.qpos], phi)
+    omega = rec.qvel[:, :, pitch.dof]
+    slip = (rec.qvel[:, :, x.dof] - omega * ((l - r) * np.cos(theta) + r)) / (l * unit)
+    clearance = (rec.qpos[:, :, z.qpos] - (l - r) * np.cos(theta) - r) / l
     acc = np.diff(rec.qvel, axis=1) / dt
-    f_t = np.concatenate([acc[:, :, 0] - gravity[0], np.zeros((acc.shape[0], 1))], axis=1)
-    f_n = np.concatenate([acc[:, :, 1] - gravity[2], np.zeros((acc.shape[0], 1))], axis=1)
+    f_t = np.concatenate([acc[:, :, x.dof] - gravity[0], np.zeros((acc.shape[0], 1))], axis=1)
+    f_n = np.concatenate([acc[:, :, z.dof] - gravity[2], np.zeros((acc.shape[0], 1))], axis=1)
     return phases.stance_rows(time=rec.time, theta=theta, rate=omega / unit, slip=slip, clearance=clearance,
                               force_t=f_t, force_n=f_n, half_step=phi, timestep=dt, weight=abs(float(gravity[2])),
                               cls=cls)
@@ -314,7 +326,7 @@ def run_batch(p: Values, s: Values, preset: str, starts: np.ndarray, steps: int,
     period = period_seconds(p, mu_all)
     rec, report = simulate(models, start_states(model, p, s, starts), steps * period + extra, s)
     cls = classifier(mu_all, s, preset, len(starts))
-    rows = row_signals(rec, p, s, cls, np.asarray(model.opt.gravity))
+    rows = row_signals(rec, model, p, s, cls)
     table = phases.step_table(rows, cls, steps + 2, backward_rate=BACKWARD_RATE, flight_clearance=FLIGHT_CLEARANCE)
     return rows, table, cls, report
 
@@ -367,10 +379,10 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
         mid_sim, lam_sim = float(fit.fixed_point[0]), float(np.real(fit.eigenvalues[0]))  # 1-D map: real
         extras["fit"] = fit.to_dict()
         grid = np.linspace(float(x.min()), float(x.max()), 40)
-        extras["return_map"] = {"label": "mid-stance theta_dot (nondimensional)", "x": x, "x_next": x_next,
-                                "analytic_x": grid, "analytic_y": gait.midstance_rate
-                                + abs(gait.eigenvalues[0]) * (grid - gait.midstance_rate),
-                                "analytic_eigenvalues": [complex(e) for e in gait.eigenvalues]}
+        extras["return_map"] = ReturnMapPlot(
+            label="mid-stance theta_dot (nondimensional)", x=x, x_next=x_next, analytic_x=grid,
+            analytic_y=gait.midstance_rate + abs(gait.eigenvalues[0]) * (grid - gait.midstance_rate),
+            analytic_eigenvalues=[complex(e) for e in gait.eigenvalues]).to_dict()
     except ValueError as err:  # too few samples: every start failed or left the gait
         mid_sim = lam_sim = math.nan
         extras["fit_error"] = str(err)
@@ -475,7 +487,7 @@ def soak(p: Values, s: Values, impacts: int) -> Soak:
     seconds = impacts * period_seconds(p, np.array([w.mu])) + 0.5
     rec, report = simulate([model], start_states(model, p, s, np.array([gait_start(gait)])), seconds, s)
     cls = classifier(w.mu, s, "fast", 1)
-    rows = row_signals(rec, p, s, cls, np.asarray(model.opt.gravity))
+    rows = row_signals(rec, model, p, s, cls)
     phi = math.pi / w.spokes
     mid = level_crossings(rec.time, rows.theta, rows.rate[:, :, None], max_jump=phi)
     return Soak(mid.values[:, 0], gait.midstance_rate, "mid-stance theta_dot (nondimensional)", report)

@@ -32,7 +32,7 @@ from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios.base import Evaluation, RegionMap, Scenario, StressCase, Values, at_preset
 from mjpoincare.settings import rollout_options
-from mjpoincare.simulate import Chunk, event_clip, event_rollout, fractional_step, initial_states
+from mjpoincare.simulate import Batch, Chunk, event_clip, event_rollout, initial_states
 
 PARAMS: tuple[Param, ...] = (
     Param("l0", 1.0, "signed distance from the slot's front end forward to the mass centre, m", float, -1e3, 1e3),
@@ -127,7 +127,6 @@ class PegController:
         self.start_time = np.zeros(len(entry))
         self.peg = np.zeros((len(entry), 2))  # the current peg's position in the plane (the chart's origin)
         self.samples: list[list[tuple[float, ...]]] = [[] for _ in entry]
-        self.data: mujoco.MjData | None = None
 
     def invariants(self, state: np.ndarray) -> tuple[float, float]:
         """Energy and angular momentum about the peg (SI), from a state (t, theta, s, n, w, sdot, ndot)."""
@@ -137,7 +136,7 @@ class PegController:
         momentum = self.mass * self.rho**2 * w + self.mass * (s * vy - n * vx)
         return energy, momentum
 
-    def __call__(self, chunk: Chunk, models: list[mujoco.MjModel]) -> tuple[np.ndarray, dict[int, np.ndarray]]:
+    def __call__(self, chunk: Chunk, batch: Batch) -> tuple[np.ndarray, dict[int, np.ndarray]]:
         steps = chunk.time.shape[1] - 1
         restart = np.full(chunk.time.shape[0], steps)
         overrides: dict[int, np.ndarray] = {}
@@ -147,7 +146,7 @@ class PegController:
             k = int(np.argmax(outside[b, 1:])) + 1
             state = np.concatenate([[chunk.time[b, k - 1]], chunk.qpos[b, k - 1], chunk.qvel[b, k - 1]])
             end = self.hi[b] if s[b, k] > self.hi[b] else self.lo[b]
-            state = self._step_to(models[b], state, end)
+            state = self._step_to(batch, int(b), state, end)
             energy, momentum = self.invariants(state)
             # the stance that just ended, as a section state (D+, E+, theta+, H+) of the map (3.5) plus its start time
             self.samples[b].append((self.entry[b], energy, self.start_heading[b], momentum, self.start_time[b]))
@@ -160,17 +159,11 @@ class PegController:
             restart[b] = k - 1 if k > 1 else 1
         return restart, overrides
 
-    def _step_to(self, model: mujoco.MjModel, state: np.ndarray, end: float) -> np.ndarray:
-        """One fractional step of the model's own integrator that lands on the slot end (no overshoot)."""
-        if self.data is None:
-            self.data = mujoco.MjData(model)
-        dt = model.opt.timestep
+    def _step_to(self, batch: Batch, b: int, state: np.ndarray, end: float) -> np.ndarray:
+        """One fractional step of trajectory ``b``'s own integrator that lands on the slot end (no overshoot)."""
         speed = state[5]
-        mujoco.mj_setState(model, self.data, state, mujoco.mjtState.mjSTATE_FULLPHYSICS)
-        fractional_step(model, self.data, min(dt, max(0.0, (end - state[2]) / speed)) if speed else dt)
-        out = np.empty_like(state)
-        mujoco.mj_getState(model, self.data, out, mujoco.mjtState.mjSTATE_FULLPHYSICS)
-        return out
+        dt = batch.timestep
+        return batch.advance(b, state, min(dt, max(0.0, (end - state[2]) / speed)) if speed else dt)
 
     def _insert_peg(self, state: np.ndarray, end: float, b: int) -> np.ndarray:
         """Retract the old peg and insert one at the other slot end: a change of chart (note 000, 4.2 step 5).
