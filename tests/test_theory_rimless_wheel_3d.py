@@ -324,6 +324,22 @@ def test_midstance_section():
     assert np.max(np.abs(em.all - ep.all)) < 1e-6
 
 
+
+def test_midstance_planar_map_family_tangent_and_names():
+    """Eq 11 moved to mid-stance: fixed at the cycle's theta_dot(0) and exact against the hybrid for planar starts off
+    the cycle; the family tangent d x*/d psi is an eigenvector of eigenvalue 1 (001 Table 1); the named eigenvalues."""
+    w = TABLE2
+    xm = hy.midstance_fixed_point(w)
+    assert th.midstance_return_map(w, xm[4]) == pytest.approx(xm[4], rel=1e-12)
+    for rate in (0.7, 0.9):
+        x_next, _ = hy.midstance_map(w, [w.heading, w.bank, 0.0, 0.0, rate])
+        assert x_next[4] == pytest.approx(th.midstance_return_map(w, rate), rel=1e-10)
+    t = hy.family_tangent(hy.midstance_fixed_point, w)
+    assert np.max(np.abs(hy.midstance_jacobian(w) @ t - t)) < 1e-5 * np.linalg.norm(t)
+    named = hy.midstance_eigenvalues(w).named()
+    assert tuple(named) == hy.Eigen3D.NAMES
+    assert named["lambda2"] == pytest.approx(w.mu**2, abs=1e-6)
+
 def test_fig4_350_impacts():
     w = TABLE2
     x_star = hy.planar_fixed_point(w)

@@ -327,6 +327,14 @@ def planar_return_map(w: RimlessWheel3D, rate2: ArrayLike) -> NDArray[np.float64
     return _as_out(np.where(ok, w.mu**2 * (r2 + _gain(w)), np.nan))
 
 
+def midstance_return_map(w: RimlessWheel3D, rate: ArrayLike) -> NDArray[np.float64] | float:
+    """The planar map (001 eq 11) on mid-stance pitch rates theta_dot(0): the energy integral over theta: -beta -> 0
+    adds lift = theta_dot(0)^2 - theta_dot+^2 = 2 (cos(gamma - beta) - cos gamma)/(1 + J) to a squared post-impact
+    rate, so theta_dot(0)_k+1 = sqrt(planar_return_map(theta_dot(0)_k^2 - lift) + lift)."""
+    lift = 2.0 * (math.cos(w.gamma - w.beta) - math.cos(w.gamma)) / (1.0 + w.J)
+    return _as_out(np.sqrt(planar_return_map(w, np.asarray(rate, dtype=float) ** 2 - lift) + lift))
+
+
 def _g1(w: RimlessWheel3D) -> float:
     """alpha1 cos psi with alpha1 = n alpha (001 eq 17 scaling, eps = 1/n)."""
     return w.spokes * w.slope * math.cos(w.heading)

@@ -29,13 +29,19 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 from mjpoincare.analysis.theory.rimless_wheel_3d import (
     RimlessWheel3D,
+    asymptotic_eigenvalues,
+    existence_threshold,
+    impact_friction_ratio,
     midstance_pitch_rate,
     planar_bank,
     planar_pitch_rate,
+    stability_thresholds,
+    step_period,
     validate,
 )
 from mjpoincare.analysis.theory.shooting import central_jacobian
@@ -452,6 +458,13 @@ class Eigen3D:
     lambda2: float
     all: NDArray[np.complex128]
     wobble: tuple[complex, complex]
+    #: The keys of :meth:`named`.
+    NAMES: ClassVar[tuple[str, ...]] = ("heading_eigenvalue", "wobble_modulus", "wobble_angle", "lambda5", "lambda2")
+
+    def named(self) -> dict[str, float]:
+        """The checked eigenvalues by name: lambda1 (real part), |lambda3|, arg lambda3, lambda5, lambda2."""
+        return {"heading_eigenvalue": float(self.heading.real), "wobble_modulus": self.wobble_modulus,
+                "wobble_angle": self.wobble_angle, "lambda5": self.lambda5, "lambda2": self.lambda2}
 
 
 #: |Im lambda| below which an eigenvalue counts as real.
@@ -506,7 +519,9 @@ def identify_eigenvalues(jac: Matrix, family_tangent: Vector) -> Eigen3D:
     )
 
 
-def _family_tangent(point: Callable[[RimlessWheel3D], Vector], w: RimlessWheel3D, h: float = 1e-6) -> Vector:
+def family_tangent(point: Callable[[RimlessWheel3D], Vector], w: RimlessWheel3D, h: float = 1e-6) -> Vector:
+    """d x*/d psi of a section's fixed-point family (``point``: :func:`planar_fixed_point` or
+    :func:`midstance_fixed_point`; the planar cycles at every heading, 001 Table 1), by central differences."""
     up = RimlessWheel3D(w.spokes, w.slope, w.J, w.heading + h)
     down = RimlessWheel3D(w.spokes, w.slope, w.J, w.heading - h)
     return (point(up) - point(down)) / (2.0 * h)
@@ -514,9 +529,28 @@ def _family_tangent(point: Callable[[RimlessWheel3D], Vector], w: RimlessWheel3D
 
 def eigenvalues_3d(w: RimlessWheel3D, h: float = 1e-6) -> Eigen3D:
     """Eigenvalues of the post-impact map at the planar cycle (001 Sec. 8.1, Table 2 "numerical" row)."""
-    return identify_eigenvalues(jacobian(w, h), _family_tangent(planar_fixed_point, w))
+    return identify_eigenvalues(jacobian(w, h), family_tangent(planar_fixed_point, w))
 
 
 def midstance_eigenvalues(w: RimlessWheel3D, h: float = 1e-6) -> Eigen3D:
     """Eigenvalues of the mid-stance map at the planar cycle; equal to :func:`eigenvalues_3d` (conjugate maps)."""
-    return identify_eigenvalues(midstance_jacobian(w, h), _family_tangent(midstance_fixed_point, w))
+    return identify_eigenvalues(midstance_jacobian(w, h), family_tangent(midstance_fixed_point, w))
+
+
+def analytic_summary(w: RimlessWheel3D, ref: Eigen3D) -> dict[str, object]:
+    """The analytic quantities of a wheel (nondimensional, m = l = g = 1): the eigenvalues ``ref`` of the exact map
+    and their eq 32 asymptotics, mu (eq 6), the bank (eq 12), gamma (eq 13), the pitch rates (eq 14), the step period
+    (eq 15), the thresholds (eqs 10, 33-36) and the friction and normal force the planar cycle needs."""
+    record = step_record(w, planar_fixed_point(w))
+    return {
+        "eigenvalues": [complex(v) for v in ref.all],
+        "eigenvalues_named": ref.named(),
+        "asymptotic_eigenvalues_eq32": [complex(v) for v in asymptotic_eigenvalues(w)[1:]],
+        "collision_coefficient_mu": w.mu, "effective_slope": w.gamma, "bank": w.bank,
+        "post_impact_pitch_rate": planar_pitch_rate(w), "midstance_pitch_rate": midstance_pitch_rate(w),
+        "step_period": step_period(w), "existence_threshold": existence_threshold(w.spokes, w.J),
+        "stability_thresholds": stability_thresholds(w.J)._asdict(), "g1": w.spokes * w.slope * math.cos(
+            w.heading), "impact_friction_ratio": impact_friction_ratio(w),
+        "stance_max_friction_ratio": record.max_friction_ratio, "min_normal_force": record.min_normal_force,
+        "units": "m = l = g = 1: rates in sqrt(g/l), times in sqrt(l/g)",
+    }

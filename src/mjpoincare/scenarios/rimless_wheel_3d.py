@@ -8,28 +8,15 @@ Table 2: 1, 0.9884 e^(+-0.3989 i), 0.9613, 0.9011 = mu^2 for n = 16, alpha = 0.1
 exactly by the event-driven reference :mod:`mjpoincare.analysis.theory.rimless_wheel_3d_hybrid` (DOP853 at 1e-12
 plus the vector impact law).
 
-Two impact modes (``--set impact=contact|ideal``), reported side by side:
+Two impact modes (``--set impact=contact|ideal``), reported side by side: ``contact``, a free body whose n foot
+spheres MuJoCo's contact solver lands (what users run), and ``ideal``, the stance foot a ball joint and the impacts
+exact (:mod:`mjpoincare.scenarios.rimless_wheel_3d_ideal`); their difference is the error MuJoCo's contact model adds.
 
-* ``contact``: a free body with n foot spheres on a plane; MuJoCo's contact solver realises every impact (elliptic
-  cone, condim 3, an over-damped solref: a damping ratio of 1 acts like a restitution of ~0.1 and biases the
-  heading). This is what users run.
-* ``ideal``: the stance foot is a ball joint under a mocap "pivot" body, contact is disabled, and MuJoCo integrates
-  the stance only. An event controller (:func:`mjpoincare.simulate.event_rollout`) stops each trajectory exactly at
-  the guard theta = pi/n (two fractional steps of the model's own integrator from the last state before it), applies
-  the exact impact law (angular momentum about the new foot, 001 Sec. 3.2.2, via
-  :func:`mjpoincare.analysis.theory.rimless_wheel_3d_hybrid.impact_rates`), relabels the new stance spoke as the body
-  frame (R -> R Ry(-2 pi/n)) and moves the pivot to the new foot. The difference between the two modes is the error
-  MuJoCo's contact model adds.
-
-Poincare section (both modes): mid-stance, the stance spoke's pitch theta (3-1-2 angles R = Rz(psi) Rx(phi)
-Ry(theta) of the stance-spoke frame, :mod:`mjpoincare.analysis.rigid_body_kinematics`; the stance spoke is the
-lowest foot, i.e. theta wrapped to [-pi/n, pi/n)) crossing 0 upwards, linearly interpolated; the state there is
-(psi, phi, psi_dot, phi_dot, theta_dot). Mid-stance is far from the soft impact; its map is conjugate to the paper's
-post-impact map (same eigenvalues). The 5-D map is fitted by quadratic least squares over a batch of small
-perturbations of the planar cycle (many starts, not finite differences). The heading is neutral (eigenvalue 1), so the
-fixed point is a one-parameter family: the simulated fixed point is the fitted map's cycle at psi = ``heading``
-(:func:`~mjpoincare.analysis.returnmap.fit_drifting_cycle`), and its drift along the family is the heading drift per
-impact.
+Poincare section (both modes, :mod:`mjpoincare.analysis.theory.rimless_wheel_3d_section`): mid-stance, the stance
+spoke's pitch crossing 0 upwards, state (psi, phi, psi_dot, phi_dot, theta_dot). The 5-D map is fitted by quadratic
+least squares over a batch of small perturbations of the planar cycle (many starts, not finite differences); the
+heading is neutral (eigenvalue 1), so the simulated fixed point is the fitted map's cycle at psi = ``heading`` and its
+drift along the family is the heading drift per impact. Design, checks and presets: docs/scenarios/rimless-wheel-3d.md.
 
 Units: SI with the paper's scaling. The wheel has mass 1 kg (every checked quantity is independent of it), spoke
 length ``leg_length`` l (default 1 m) and gravity ``gravity`` g (default 9.81 m/s^2); angular rates are reported in
@@ -49,18 +36,19 @@ import numpy as np
 
 from mjpoincare import settings as sim_settings
 from mjpoincare.analysis import checks
-from mjpoincare.analysis.returnmap import DriftingCycleFit, fit_drifting_cycle, sample_pairs
-from mjpoincare.analysis.rigid_body_kinematics import euler_state, matrix_to_quat, quat_to_matrix
+from mjpoincare.analysis.returnmap import sample_pairs
+from mjpoincare.analysis.rigid_body_kinematics import matrix_to_quat
 from mjpoincare.analysis.sections import Crossings, level_crossings, wrap_phase
 from mjpoincare.analysis.start_designs import random_directions
 from mjpoincare.analysis.theory import rimless_wheel_3d as theory
 from mjpoincare.analysis.theory import rimless_wheel_3d_hybrid as hybrid
+from mjpoincare.analysis.theory.rimless_wheel_3d_section import MapFit, fit_map, section_state
 from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios.base import Evaluation, ReturnMapPlot, Scenario, Soak, StressCase, Values, at_preset
+from mjpoincare.scenarios.rimless_wheel_3d_ideal import IdealImpactController
 from mjpoincare.settings import rollout_options
 from mjpoincare.simulate import (
-    Batch,
     Chunk,
     RolloutReport,
     event_clip,
@@ -89,19 +77,7 @@ PARAMS: tuple[Param, ...] = (
 )
 MASS = 1.0  # kg; every checked quantity is independent of it
 
-#: Simulator presets (both impact modes), chosen by measurement (README "time against error"):
-#:
-#: * RK4: the ideal mode measures MuJoCo's smooth integration, where the first-order implicitfast costs 1.7e-3 on
-#:   lambda2 at 0.2 ms while RK4 reaches the fit's own floor at any step up to 2 ms. In contact mode both give errors
-#:   of the same size (the contact dominates) and ``--set integrator=implicitfast`` is 3.6x cheaper.
-#: * Damping ratio 3: ratio 1 acts like a restitution of ~0.1 (6e-3 on the fixed point, a heading drift 10x larger,
-#:   a 2 mm hop); 2 to 5 give the same errors.
-#: * solimp d0 = 0.1: with d0 = 0.99 the stance foot chatters on and off every few steps, which puts ~5e-5 of noise on
-#:   every mid-stance pitch rate and biases the fitted mu^2 by 0.01 to 0.05 (errors in the regressors).
-#: * Contact time constant: the stiffest that leaves no hop at the step (2 steps at 0.2 ms; at 50 us, 2 and 4 steps
-#:   make the lowest foot hop by 65 and 8 um and the errors grow, 6 steps do not). With the time constant at 10 steps
-#:   the errors are first order in it (pitch rate 2.1e-3 to 6e-4 from 4 ms to 0.25 ms).
-#: * Foot sphere: the fixed-point error is ~1.0 r/l, so ``accurate`` shrinks it to 0.1 mm.
+#: Simulator presets (both impact modes), chosen by measurement: docs/scenarios/rimless-wheel-3d.md, "Presets".
 PRESETS: dict[str, dict[str, float | int | str]] = {
     "fast": {"timestep": 2e-4, "solref_timeconst": 4e-4, "solref_dampratio": 3.0, "solimp_dmin": 0.1,
              "integrator": "rk4"},
@@ -280,16 +256,6 @@ def section_start_states(model: mujoco.MjModel, p: Values, s: Values, x: np.ndar
     return initial_states(model, np.array(qpos), np.array(qvel))
 
 
-def _section(chunk: Chunk, ideal: bool) -> tuple[np.ndarray, np.ndarray]:
-    """Pitch theta (B, T) and section state (psi, phi, psi_dot, phi_dot, theta_dot) (B, T, 5) of a chunk's rows.
-
-    The body frame is spoke 0's; every other spoke's frame differs from it by a rotation about the axle, so psi, phi
-    and the rates are the same for all spokes and the stance spoke's pitch is theta wrapped to [-pi/n, pi/n).
-    """
-    q = euler_state(chunk.qpos, chunk.qvel) if ideal else euler_state(chunk.qpos[..., 3:7], chunk.qvel[..., 3:6])
-    return q[..., 2], q[..., [0, 1, 3, 4, 5]]
-
-
 # --- simulation: contact mode -----------------------------------------------------------------------------------
 
 
@@ -303,77 +269,11 @@ class _ContactRecorder:
         self.max_clearance = np.zeros(batch)
 
     def __call__(self, chunk: Chunk) -> None:
-        theta, values = _section(chunk, False)
+        theta, values = section_state(chunk.qpos[..., 3:7], chunk.qvel[..., 3:6])
         phase = wrap_phase(theta, self.beta)
         self.mid = self.mid.concat(level_crossings(chunk.time, phase, values, max_jump=self.beta))
         lowest = chunk.qpos[..., 2] - (self.length - self.radius) * np.cos(values[..., 1]) * np.cos(phase)
         self.max_clearance = np.fmax(self.max_clearance, np.nanmax(lowest - self.radius, axis=1))
-
-
-# --- simulation: ideal mode -------------------------------------------------------------------------------------
-
-
-class IdealImpactController:
-    """Event controller of the ideal mode: exact guard, exact impact law, pivot moved to the new foot.
-
-    For each trajectory whose pitch passes theta = pi/n inside a chunk, the state is restarted from the last row
-    before the guard with two fractional steps of the model's own integrator (secant on the step fraction), so the
-    impact happens on the guard (measured within 1e-12 rad); the Euler rates jump by the vector law of 001 Sec. 3.2.2
-    (:func:`hybrid.impact_rates`), the orientation is relabelled to the new stance
-    spoke (R -> R Ry(-2 pi/n), theta -> theta - 2 pi/n) and the pivot moves to the new foot. Mid-stance crossings
-    are sampled on the kept rows.
-    """
-
-    def __init__(self, p: Values, batch: int) -> None:
-        self.w = wheel(p)
-        self.beta = math.pi / int(p["spokes"])
-        self.length = float(p["leg_length"])
-        self.mid = Crossings.empty(5)
-        self.pivot = np.zeros((batch, 3))
-        self.impacts = np.zeros(batch, int)
-        self.guard_error = 0.0  # largest |theta - pi/n| at an applied impact
-
-    def __call__(self, chunk: Chunk, batch: Batch) -> tuple[np.ndarray, dict[int, np.ndarray]]:
-        steps = chunk.time.shape[1] - 1
-        theta, values = _section(chunk, True)
-        with np.errstate(invalid="ignore"):
-            over = theta[:, 1:] >= self.beta
-        restart = np.full(chunk.time.shape[0], steps)
-        overrides: dict[int, np.ndarray] = {}
-        for b in np.nonzero(over.any(axis=1))[0]:
-            k = int(np.argmax(over[b])) + 1  # the guard lies between rows k-1 and k
-            overrides[int(b)] = self._impact(batch, chunk, theta, int(b), k)
-            restart[b] = max(k - 1, 1)
-        kept = np.arange(steps + 1)[None, :] <= restart[:, None]
-        phase = np.where(kept, theta, np.nan)
-        self.mid = self.mid.concat(level_crossings(chunk.time, phase, values, max_jump=self.beta))
-        return restart, overrides
-
-    def _impact(self, batch: Batch, chunk: Chunk, theta: np.ndarray, b: int, k: int) -> np.ndarray:
-        """Trajectory ``b``'s state just after the impact whose guard lies between rows k-1 and k (full physics: time,
-        qpos, qvel, the ideal model's whole state)."""
-        beta, nq = self.beta, chunk.qpos.shape[2]
-        row = np.concatenate([chunk.time[b, k - 1 : k], chunk.qpos[b, k - 1], chunk.qvel[b, k - 1]])
-        rise = theta[b, k] - theta[b, k - 1]
-        frac = (beta - theta[b, k - 1]) / rise
-        for _ in range(2):  # secant on the step fraction
-            state = batch.advance(b, row, frac * batch.timestep)
-            qpos, qvel = state[1 : 1 + nq], state[1 + nq :]
-            miss = float(euler_state(qpos, qvel)[2]) - beta
-            frac -= miss / rise
-        self.guard_error = max(self.guard_error, abs(miss))
-        R = quat_to_matrix(np.array(qpos))
-        psi, phi, pitch = hybrid.euler_angles(R)
-        rates = hybrid.euler_rates(psi, phi, R @ qvel)
-        rates_plus = hybrid.impact_rates(self.w, psi, phi, rates)
-        R_plus = hybrid.pose(psi, phi, pitch - 2.0 * beta)
-        l = self.length
-        next_spoke = np.array([math.sin(2.0 * beta), 0.0, -math.cos(2.0 * beta)])
-        self.pivot[b] += l * (R[:, 2] + R @ next_spoke)
-        self.impacts[b] += 1
-        state[1 : 1 + nq] = matrix_to_quat(R_plus)
-        state[1 + nq :] = R_plus.T @ hybrid.angular_velocity(psi, phi, rates_plus)
-        return state
 
 
 # --- runs -------------------------------------------------------------------------------------------------------
@@ -417,7 +317,7 @@ def _run(p: Values, s: Values, model: mujoco.MjModel, x0: np.ndarray, impacts: i
     nstep = _nstep(p, dt, impacts)
     options = rollout_options(s)
     if _ideal(p):
-        controller = IdealImpactController(p, len(x0))
+        controller = IdealImpactController(wheel(p), float(p["leg_length"]), len(x0))
         report = event_rollout([copy.copy(model) for _ in x0], state0, nstep, controller, **options,
                                chunk_steps=_event_chunk(p, dt))
         return _Run(_first_samples(controller.mid, len(x0), impacts, p), report, guard_error=controller.guard_error)
@@ -463,71 +363,12 @@ def _cycle_exists(w: theory.RimlessWheel3D) -> bool:
     return True
 
 
-# --- fit --------------------------------------------------------------------------------------------------------
-
-
-FIT_DEGREE = 2
-BOOTSTRAP = 100
-
-
-@dataclass(frozen=True)
-class MapFit:
-    """The fitted 5-D mid-stance map (nondimensional) read at its cycle at psi = heading, the named eigenvalues of its
-    Jacobian there (001 Sec. 8.1; None if they cannot be told apart) and the report's ``fit`` entry.
-
-    The planar cycles form a family neutral in psi (eigenvalue 1, 001 Table 1), so the map has no isolated fixed
-    point; a biased map makes the cycle drift along the family (``cycle.drift``, per impact).
-    """
-
-    cycle: DriftingCycleFit
-    eigen: hybrid.Eigen3D | None
-    fit: dict[str, object]
-
-
-def fit_map(sequences: list[np.ndarray], heading: float, tangent: np.ndarray, seed: int = 0) -> MapFit:
-    """Least-squares polynomial map (degree 2: the curvature of the map would otherwise bias the slopes by ~size^2
-    times the quadratic terms, which is what limits an affine fit near lambda5 = 1 and at few spokes), its drifting
-    cycle at ``heading`` along the family with tangent ``tangent`` (d x*/d psi), its Jacobian there and the named
-    eigenvalues (001 Sec. 8.1), with bootstrap standard deviations over the pairs (seed ``seed``)."""
-    x, x_next = sample_pairs(sequences)
-    cycle = fit_drifting_cycle(x, x_next, tangent, heading, degree=FIT_DEGREE, bootstrap=BOOTSTRAP, seed=seed,
-                               label=lambda jac: _eigen_values(hybrid.identify_eigenvalues(jac, tangent)))
-    try:
-        eigen: hybrid.Eigen3D | None = hybrid.identify_eigenvalues(cycle.jacobian, tangent)
-    except ValueError:
-        eigen = None
-    out: dict[str, object] = {
-        "fixed_point": cycle.fixed_point, "fixed_point_std": cycle.fixed_point_std,
-        "drift_per_impact": cycle.drift, "drift_std": cycle.drift_std, "jacobian": cycle.jacobian,
-        "eigenvalues": cycle.eigenvalues, "eigenvalue_std": cycle.eigenvalue_std,
-        "named_eigenvalues": _eigen_values(eigen) if eigen is not None else None,
-        "named_eigenvalue_std": {name: cycle.label_std.get(name, math.nan) for name in EIGEN_DOCS},
-        "residual_rms": cycle.residual_rms, "n_pairs": cycle.n_pairs, "degree": cycle.degree,
-        "bootstrap_replicas": cycle.replicates,
-        "note": "state (psi, phi, psi_dot, phi_dot, theta_dot) at mid-stance, rates in sqrt(g/l); fixed_point is the "
-                "fitted map's cycle at psi = heading, drifting along the family of planar cycles by drift_per_impact",
-    }
-    return MapFit(cycle, eigen, out)
-
-
-def family_tangent(w: theory.RimlessWheel3D, h: float = 1e-6) -> np.ndarray:
-    """d x*/d psi of the mid-stance fixed-point family (001 Table 1), by central differences of the closed forms."""
-    up = hybrid.midstance_fixed_point(wheel_at(w, w.heading + h))
-    down = hybrid.midstance_fixed_point(wheel_at(w, w.heading - h))
-    return (up - down) / (2.0 * h)
-
-
 def wheel_at(w: theory.RimlessWheel3D, heading: float) -> theory.RimlessWheel3D:
     """The same wheel at another heading."""
     return theory.RimlessWheel3D(w.spokes, w.slope, w.J, heading)
 
 
 # --- checks -----------------------------------------------------------------------------------------------------
-
-
-def _eigen_values(e: hybrid.Eigen3D) -> dict[str, float]:
-    return {"heading_eigenvalue": float(e.heading.real), "wobble_modulus": e.wobble_modulus,
-            "wobble_angle": e.wobble_angle, "lambda5": e.lambda5, "lambda2": e.lambda2}
 
 
 EIGEN_DOCS = {
@@ -554,8 +395,8 @@ def _fit_checks(w: theory.RimlessWheel3D, fitted: MapFit | None, ref: hybrid.Eig
         checks.absolute("bank", x_ref[1], point[1], tol["bank"], "rad",
                         "bank of the planar cycle, phi* = -atan(sin psi tan alpha) (001 eq 12), fitted fixed point"),
     ]
-    simulated = _eigen_values(fitted.eigen) if fitted is not None and fitted.eigen is not None else {}
-    for name, analytic in _eigen_values(ref).items():
+    simulated = fitted.eigen.named() if fitted is not None and fitted.eigen is not None else {}
+    for name, analytic in ref.named().items():
         out.append(checks.absolute(name, analytic, simulated.get(name, math.nan), _tolerance(tol, name), "",
                                    EIGEN_DOCS[name] + ": exact hybrid reference (DOP853 1e-12, central "
                                    "differences) vs the Jacobian of the quadratic least-squares fit of the 5-D "
@@ -619,7 +460,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     extras: dict[str, object] = {}
     sequences = [_nondim(seq, unit) for seq in fit_run.sequences]
     try:
-        fitted = fit_map(sequences, w.heading, family_tangent(w), seed)
+        fitted = fit_map(sequences, w.heading, hybrid.family_tangent(hybrid.midstance_fixed_point, w), seed)
     except (ValueError, np.linalg.LinAlgError) as err:  # too few samples: a diverged or stalled run
         out = [checks.Check(name=c.name, analytic=c.analytic, simulated=math.nan, error=math.nan, tolerance=c.tolerance,
                             kind=c.kind, unit=c.unit, why=f"no return map: {err}")
@@ -652,25 +493,8 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
         extras["max_clearance"] = max(fit_run.max_clearance, planar_run.max_clearance)
     else:
         extras["max_guard_error"] = max(fit_run.guard_error, planar_run.guard_error)
-    extras["analytic"] = _analytic(w, ref)
+    extras["analytic"] = hybrid.analytic_summary(w, ref)
     return Evaluation(out, report, extras)
-
-
-def _analytic(w: theory.RimlessWheel3D, ref: hybrid.Eigen3D) -> dict[str, object]:
-    """The analytic quantities of the run (nondimensional, m = l = g = 1)."""
-    record = hybrid.step_record(w, hybrid.planar_fixed_point(w))
-    return {
-        "eigenvalues": [complex(v) for v in ref.all],
-        "eigenvalues_named": _eigen_values(ref),
-        "asymptotic_eigenvalues_eq32": [complex(v) for v in theory.asymptotic_eigenvalues(w)[1:]],
-        "collision_coefficient_mu": w.mu, "effective_slope": w.gamma, "bank": w.bank,
-        "post_impact_pitch_rate": theory.planar_pitch_rate(w), "midstance_pitch_rate": theory.midstance_pitch_rate(w),
-        "step_period": theory.step_period(w), "existence_threshold": theory.existence_threshold(w.spokes, w.J),
-        "stability_thresholds": theory.stability_thresholds(w.J)._asdict(), "g1": w.spokes * w.slope * math.cos(
-            w.heading), "impact_friction_ratio": theory.impact_friction_ratio(w),
-        "stance_max_friction_ratio": record.max_friction_ratio, "min_normal_force": record.min_normal_force,
-        "units": "m = l = g = 1: rates in sqrt(g/l), times in sqrt(l/g)",
-    }
 
 
 def _return_map_plot(w: theory.RimlessWheel3D, sequences: list[np.ndarray], unit: float, ref: hybrid.Eigen3D
@@ -678,10 +502,7 @@ def _return_map_plot(w: theory.RimlessWheel3D, sequences: list[np.ndarray], unit
     """theta_dot(0)_k -> theta_dot(0)_k+1 of the samples, with the planar map (eq 11 moved to mid-stance)."""
     x, x_next = sample_pairs(sequences)
     grid = np.linspace(float(x[:, 4].min()), float(x[:, 4].max()), 40)
-    beta, gamma = w.beta, w.gamma
-    lift = 2.0 * (math.cos(gamma - beta) - math.cos(gamma)) / (1.0 + w.J)  # theta_dot(0)^2 - theta_dot+^2
-    gain = 4.0 * math.sin(beta) * math.sin(gamma) / (1.0 + w.J)
-    planar = np.sqrt(w.mu**2 * (grid**2 - lift + gain) + lift)
+    planar = theory.midstance_return_map(w, grid)
     return ReturnMapPlot(label="mid-stance pitch rate theta_dot (rad/s); line: planar map", x=x[:, 4] * unit,
                          x_next=x_next[:, 4] * unit, analytic_x=grid * unit, analytic_y=planar * unit,
                          analytic_eigenvalues=[complex(v) for v in ref.all])
@@ -711,13 +532,13 @@ def reference_bench(p: Values, rtol: float) -> dict[str, float]:
             x = hybrid.midstance_map(w, x, rtol=rtol, atol=rtol)[0]
             seq.append(x)
         sequences.append(np.array(seq))
-    fitted = fit_map(sequences, w.heading, family_tangent(w))
+    fitted = fit_map(sequences, w.heading, hybrid.family_tangent(hybrid.midstance_fixed_point, w))
     wall = time.perf_counter() - start
     x_ref, point = hybrid.midstance_fixed_point(w), fitted.cycle.fixed_point
     out: dict[str, float] = {"rtol": rtol, "wall_s": wall, "pitch_rate_error": abs(point[4] - x_ref[4]) / x_ref[4],
                              "bank_error": abs(point[1] - x_ref[1])}
-    simulated = _eigen_values(fitted.eigen) if fitted.eigen is not None else {}
-    for name, value in _eigen_values(ref).items():
+    simulated = fitted.eigen.named() if fitted.eigen is not None else {}
+    for name, value in ref.named().items():
         out[f"{name}_error"] = abs(simulated.get(name, math.nan) - value)
     return out
 
@@ -761,7 +582,7 @@ def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray 
     state0 = section_start_states(model, p, s, x0[None, :])
     if not _ideal(p):
         return plain_clip(model, state0, nstep)
-    controller = IdealImpactController(p, 1)
+    controller = IdealImpactController(wheel(p), float(p["leg_length"]), 1)
     kept = event_clip([copy.copy(model)], state0, nstep, controller, _event_chunk(p, model.opt.timestep),
                       tag=lambda: controller.pivot[0].copy())
     return kept.states(nstep), kept.tagged(nstep)[:, None, :]
