@@ -11,13 +11,13 @@ are compared against and how the gaits are classified.
 from __future__ import annotations
 
 import pytest
+from mjpoincare.analysis import compass_biped_stance as stance
 from mjpoincare.analysis.checks import Check
 
 from mjpoincare import gate
 from mjpoincare.cli import main
 from mjpoincare.result import Result
 from mjpoincare.scenarios import compass_biped_friction as sc
-from mjpoincare.scenarios import compass_biped_friction_stance as stance
 from mjpoincare.validation import resolve_inputs
 
 pytestmark = pytest.mark.mujoco

@@ -516,3 +516,22 @@ def post_impact_from_parallel(bp: CompassBiped, y: ArrayLike) -> NDArray[np.floa
     if sol.t_events[0].size == 0:
         raise RuntimeError(f"no post-impact state before the legs-parallel state {np.asarray(y)!r}")
     return np.asarray(sol.y_events[0][0], dtype=float)
+
+
+def lowest_swing_height(bp: CompassBiped, x_plus: np.ndarray) -> float:
+    """The exact model's lowest swing-foot height above the slope (m, along its normal; < 0: below it, the mid-swing
+    scuffing that 003 Sec. 4.1 ignores) over the passive swing (003 eq 4.19) from the post-impact state ``x_plus``
+    to the heel strike: 003 eqs 4.1-4.3 on 401 samples, the lowest refined by a bounded scalar search."""
+    period = step_period(bp, x_plus)
+    sol = solve_ivp(lambda _t, y: [y[2], y[3], *swing_dynamics(bp, y[:2], y[2:])], (0.0, period),
+                    np.asarray(x_plus, dtype=float), method="DOP853", rtol=RTOL, atol=ATOL,
+                    dense_output=True)
+
+    def height(t: float) -> float:
+        return swing_foot_height(bp, sol.sol(t)[:2])
+
+    grid = np.linspace(0.0, period, 401)
+    i = int(np.argmin([height(t) for t in grid]))
+    found = minimize_scalar(height, bounds=(grid[max(i - 1, 0)], grid[min(i + 1, grid.size - 1)]), method="bounded",
+                            options={"xatol": 1e-10})
+    return float(min(found.fun, height(grid[i])))

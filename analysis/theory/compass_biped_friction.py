@@ -1249,3 +1249,14 @@ def scuffing_crossings(bp: FrictionBiped, z_star: ArrayLike, actuation: Actuatio
             r = ref.evaluate(t)
             out.append((t, r[0], r[1]))
     return out
+
+
+def legs_parallel(g: Gait) -> tuple[np.ndarray, float]:
+    """Analytic legs-parallel state (theta1, theta1_dot, -theta2_dot) where theta1 + theta2 = 0 rises through 0
+    along the step from z* (the MuJoCo hinges are then equal), and the time of it after the impact."""
+    ref = reference_trajectory(g.biped, g.z, g.actuation, samples=2001)
+    gap = ref.theta[:, 0] + ref.theta[:, 1]
+    i = int(np.nonzero((gap[:-1] < 0) & (gap[1:] >= 0))[0][0])
+    t = float(brentq(lambda s: sum(ref.evaluate(s)[:2]), ref.times[i], ref.times[i + 1], xtol=1e-13))
+    r = ref.evaluate(t)
+    return np.array([r[0], r[2], -r[3]]), t

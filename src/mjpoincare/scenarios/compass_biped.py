@@ -8,9 +8,9 @@ Contact protocol, as the analytic model assumes (003 Sec. 4.1): the swing foot's
 from heel strike until the foot is ahead of the stance foot and clear of the ground (it passes
 through the slope mid-swing, as the exact model's foot does; how deep is reported, without a
 verdict), and the trailing foot's contact is switched off just before the next heel strike
-(so the impact impulse acts at the new foot only). The switching is done by a chunk controller through the
-rollout seam (:class:`mjpoincare.simulate.Batch`, per trajectory): MuJoCo steps natively between events and each
-event restarts from the recorded state where it happened.
+(so the impact impulse acts at the new foot only). The switching is done by
+:class:`mjpoincare.scenarios.compass_gait_controller.GaitController` through the rollout seam: MuJoCo steps natively
+between events and each event restarts from the recorded state where it happened.
 
 Poincaré section: legs parallel (003 eq 4.20), mid-swing, far from the soft impact. Its samples are
 pulled back to the post-impact section with the exact swing flow for the ``fixed_point`` check; the
@@ -25,14 +25,12 @@ import time
 
 import mujoco
 import numpy as np
-from scipy.integrate import solve_ivp
-from scipy.optimize import minimize_scalar
 
 from mjpoincare import settings as sim_settings
 from mjpoincare.analysis import checks
+from mjpoincare.analysis.compass_gait import crossing_steps, swing_foot_detail, swing_foot_report
 from mjpoincare.analysis.eigenvalues import match_eigenvalues
 from mjpoincare.analysis.returnmap import fit_return_map, regress_at, sample_pairs
-from mjpoincare.analysis.sections import level_crossings
 from mjpoincare.analysis.start_designs import sphere_offsets
 from mjpoincare.analysis.theory import compass_biped as theory
 from mjpoincare.models import compile_spec, load_spec
@@ -47,11 +45,10 @@ from mjpoincare.scenarios.base import (
     Values,
     at_preset,
 )
+from mjpoincare.scenarios.compass_gait_controller import GaitController
 from mjpoincare.settings import rollout_options
 from mjpoincare.simulate import (
     STATE_SPEC,
-    Batch,
-    Chunk,
     MujocoBatch,
     RolloutReport,
     event_clip,
@@ -72,8 +69,7 @@ PARAMS: tuple[Param, ...] = (
     Param("tau_hip", 0.0, "constant hip torque between the legs, N m (003 eq 4.5, B = (-1, 1))", float, -1e3, 1e3),
 )
 
-#: Overdamped contact (damping ratio 10): the trailing foot is free, and a Kelvin-Voigt contact with ratio 1
-#: makes the landing foot rebound at ~0.1 m/s (reference note 003, 4.1).
+#: Overdamped contact (damping ratio 10; why: docs/scenarios/compass-biped.md, "Presets and start design").
 PRESETS: dict[str, dict[str, float | int | str]] = {
     "fast": {"timestep": 1e-4, "solref_timeconst": 1e-3, "solref_dampratio": 10.0, "integrator": "implicitfast"},
     "accurate": {"timestep": 2e-5, "solref_timeconst": 2e-4, "solref_dampratio": 10.0,
@@ -92,19 +88,10 @@ WHY = {
 
 STEPS = 10  # heel strikes per trajectory
 #: Initial offsets from the fixed point on the 3-D post-impact section: STARTS random directions (fixed seed), of
-#: size PERTURBATION, x (timestep / 20 us)^(1/3) below 20 us, shrunk to a third as |lambda|max -> 1. Never larger:
-#: at 0.051 (the fast preset's size while it grew with the step) starts fell at slope 0.01 and at mu = 0.25 (stress
-#: run). The size balances the fit's bias (the exact reference through the same design: 1e-2 with a quadratic fit
-#: at 12 starts of 0.015, 1.4e-4 to 8.6e-4 with the cubic fit at 0.015-0.03) against MuJoCo's impact-onset jitter:
-#: the one-step map scatters by ~1.2e-4 rad/s (accurate preset), a sawtooth in the sub-step phase at which the foot
-#: meets the slope (correlation -0.70), which the fitted eigenvalues feel as noise / (size sqrt(pairs)). 24 starts
-#: of 0.03 with the cubic fit: 3e-3 near the flip (slope 0.073, Goswami masses), where 12 quadratic-fit starts of
-#: 0.015 gave 1.8e-2.
+#: size PERTURBATION, x (timestep / 20 us)^(1/3) below 20 us, shrunk to a third as |lambda|max -> 1 (how the size
+#: and the count were chosen: docs/scenarios/compass-biped.md, "Presets and start design").
 STARTS = 24
 PERTURBATION = 0.03
-ENABLE_AHEAD = 0.05  # swing-foot contact switches on once the foot is this far (x l) ahead of the stance foot
-ENABLE_CLEAR = 2e-3  # ... and this high (x l) above the slope
-RELEASE_WINDOW = 0.02  # s: the released trailing foot is followed this long after heel strike
 #: Steps of free fall the released trailing foot is allowed before its dip fails ``trailing_foot_release``: twice the
 #: controller's release lead (the new foot is predicted at the slope 2 steps ahead; see :func:`release_tolerance`).
 RELEASE_FALL_STEPS = 4
@@ -182,117 +169,6 @@ def post_impact_states(model: mujoco.MjModel, bp: theory.CompassBiped, x_plus: n
     return initial_states(model, qpos, qvel)
 
 
-class GaitController:
-    """Switches foot contacts at the gait's events and records legs-parallel samples and heel strikes."""
-
-    def __init__(self, model: mujoco.MjModel, bp: theory.CompassBiped, batch: int, foot_radius: float) -> None:
-        self.bp, self.radius = bp, foot_radius
-        self.feet = [model.geom("foot0").id, model.geom("foot1").id]
-        self.ankles = [model.actuator("ankle0").id, model.actuator("ankle1").id]
-        self.hip = model.actuator("hip").id
-        self.stance = np.zeros(batch, int)
-        self.swing_enabled = np.zeros(batch, bool)
-        self.samples: list[list[np.ndarray]] = [[] for _ in range(batch)]
-        self.sample_times: list[list[float]] = [[] for _ in range(batch)]
-        self.strikes: list[list[tuple[float, float]]] = [[] for _ in range(batch)]  # (time, new stance foot x)
-        # per swing, while the swing foot's contact is off: its lowest height above the slope (m, along the normal;
-        # < 0: below the slope) and the stance foot's height at that row (< 0: sunk into the slope)
-        self._lowest = np.full((batch, 2), np.inf)
-        self.swing_low: list[list[tuple[float, float]]] = [[] for _ in range(batch)]
-        # the released trailing foot: (release time, height then, lowest height since), and per strike the depth it
-        # went below its release height within RELEASE_WINDOW and its upward speed at the end of the window
-        self._release: list[tuple[float, float, float] | None] = [None] * batch
-        self.release_depth: list[float] = []
-        self.release_speed: list[float] = []
-        #: swing-foot contact switch-on thresholds (x l); a scenario with low foot clearance may lower them
-        self.enable_ahead, self.enable_clear = ENABLE_AHEAD, ENABLE_CLEAR
-
-    def configure(self, batch: Batch) -> None:
-        """Initial contacts: leg 0 stands, leg 1 swings with its contact off; the torques act accordingly."""
-        for b in range(self.stance.size):
-            batch.set_contact(b, self.feet[1], False)
-            self._actuate(batch, b, 0)
-
-    def _actuate(self, batch: Batch, b: int, stance: int) -> None:
-        """Trajectory ``b``'s ankle torque on leg ``stance``'s hinge only; the hip tendon (leg1 - leg0) geared so that
-        +tau_hip acts on the swing leg (003 eq 4.5, B = (-1, 1))."""
-        for leg, actuator in enumerate(self.ankles):
-            batch.set_actuator(b, actuator, bias=self.bp.tau_ankle if leg == stance else 0.0)
-        batch.set_actuator(b, self.hip, bias=self.bp.tau_hip, gear=1.0 if stance == 0 else -1.0)
-
-    def _feet(self, chunk: Chunk, b: int, leg: int) -> tuple[np.ndarray, np.ndarray]:
-        lever = self.bp.l - self.radius
-        q = chunk.qpos[b, :, 2 + leg]
-        x = chunk.qpos[b, :, 0] - lever * np.sin(q)
-        h = chunk.qpos[b, :, 1] - lever * np.cos(q) - self.radius
-        return x, h
-
-    def __call__(self, chunk: Chunk, batch: Batch) -> np.ndarray:
-        steps = chunk.time.shape[1] - 1
-        restart = np.full(chunk.time.shape[0], steps)
-        for b in range(chunk.time.shape[0]):
-            if np.isnan(chunk.time[b, 1]):
-                continue
-            st, sw = self.stance[b], 1 - self.stance[b]
-            x_st, h_st = self._feet(chunk, b, st)
-            x_sw, h_sw = self._feet(chunk, b, sw)
-            length = self.bp.l
-            if self._release[b] is not None:
-                self._watch_release(chunk, b, sw, h_sw)
-            strike = False
-            if not self.swing_enabled[b]:
-                ready = np.nonzero((x_sw[1:] > x_st[1:] + self.enable_ahead * length)
-                                   & (h_sw[1:] > self.enable_clear * length))[0]
-                last = int(ready[0]) + 1 if ready.size else steps
-                i = int(np.nanargmin(h_sw[1 : last + 1])) + 1
-                if h_sw[i] < self._lowest[b, 0]:
-                    self._lowest[b] = h_sw[i], h_st[i]
-                if ready.size:
-                    restart[b] = last
-                    batch.set_contact(b, self.feet[sw], True)
-                    self.swing_enabled[b] = True
-                    self.swing_low[b].append((float(self._lowest[b, 0]), float(self._lowest[b, 1])))
-                    self._lowest[b] = np.inf
-            else:
-                predicted = h_sw[1:] + 2.0 * (h_sw[1:] - h_sw[:-1])  # two steps ahead: before any contact starts
-                hits = np.nonzero(predicted <= 0.0)[0]
-                if hits.size:
-                    k = int(hits[0]) + 1
-                    restart[b], strike = k, True
-                    batch.set_contact(b, self.feet[st], False)  # release the trailing foot before impact
-                    self._actuate(batch, b, sw)
-                    self.strikes[b].append((float(chunk.time[b, k]), float(x_sw[k])))
-                    self._release[b] = (float(chunk.time[b, k]), float(h_st[k]), float(h_st[k]))
-            self._sample(chunk, b, st, sw, int(restart[b]))
-            if strike:
-                self.stance[b], self.swing_enabled[b] = sw, False
-        return restart
-
-    def _watch_release(self, chunk: Chunk, b: int, leg: int, height: np.ndarray) -> None:
-        """Follow the released trailing foot for RELEASE_WINDOW: it must rise (no impulse was needed there)."""
-        t_release, h_release, lowest = self._release[b]  # type: ignore[misc]
-        inside = chunk.time[b] <= t_release + RELEASE_WINDOW
-        lowest = min(lowest, float(np.nanmin(np.where(inside, height, np.inf))))
-        after = np.nonzero(~inside & np.isfinite(chunk.time[b]))[0]
-        if after.size == 0:
-            self._release[b] = (t_release, h_release, lowest)
-            return
-        i = int(after[0])
-        q, qd = chunk.qpos[b, i, 2 + leg], chunk.qvel[b, i, 2 + leg]
-        self.release_speed.append(float(chunk.qvel[b, i, 1] + (self.bp.l - self.radius) * math.sin(q) * qd))
-        self.release_depth.append(max(0.0, h_release - lowest))
-        self._release[b] = None
-
-    def _sample(self, chunk: Chunk, b: int, st: int, sw: int, last: int) -> None:
-        """Legs-parallel crossings (theta_st - theta_sw rising through 0, 003 eq 4.20) in rows 0..last."""
-        rows = slice(0, last + 1)
-        q = chunk.qpos[b, rows]
-        qd = chunk.qvel[b, rows]
-        gap = (q[:, 2 + st] - q[:, 2 + sw])[None, :]
-        values = np.stack([0.5 * (q[:, 2 + st] + q[:, 2 + sw]) + self.bp.slope, qd[:, 2 + st], qd[:, 2 + sw]], 1)
-        found = level_crossings(chunk.time[b : b + 1, rows], gap, values[None])
-        self.samples[b].extend(found.values)
-        self.sample_times[b].extend(found.time.tolist())
 
 
 def initial_section_states(bp: theory.CompassBiped, timestep: float) -> np.ndarray:
@@ -325,39 +201,6 @@ def _simulate(p: Values, s: Values) -> tuple[GaitController, RolloutReport, theo
     controller, report = _run(model, bp, initial_section_states(bp, model.opt.timestep), STEPS, s)
     return controller, report, bp, model
 
-
-def lowest_swing_height(bp: theory.CompassBiped, x_plus: np.ndarray) -> float:
-    """The exact model's lowest swing-foot height above the slope (m, along its normal; < 0: below it, the mid-swing
-    scuffing that 003 Sec. 4.1 ignores) over the passive swing (003 eq 4.19) from the post-impact state ``x_plus``
-    to the heel strike: 003 eqs 4.1-4.3 on 401 samples, the lowest refined by a bounded scalar search."""
-    period = theory.step_period(bp, x_plus)
-    sol = solve_ivp(lambda _t, y: [y[2], y[3], *theory.swing_dynamics(bp, y[:2], y[2:])], (0.0, period),
-                    np.asarray(x_plus, dtype=float), method="DOP853", rtol=theory.RTOL, atol=theory.ATOL,
-                    dense_output=True)
-
-    def height(t: float) -> float:
-        return theory.swing_foot_height(bp, sol.sol(t)[:2])
-
-    grid = np.linspace(0.0, period, 401)
-    i = int(np.argmin([height(t) for t in grid]))
-    found = minimize_scalar(height, bounds=(grid[max(i - 1, 0)], grid[min(i + 1, grid.size - 1)]), method="bounded",
-                            options={"xatol": 1e-10})
-    return float(min(found.fun, height(grid[i])))
-
-
-def swing_foot_report(controller: GaitController, exact_depth: float) -> dict[str, object]:
-    """The reported swing-foot depth (no verdict: the exact model lets the foot pass through the slope, 003 Sec.
-    4.1): the deepest the switched-off swing foot went below the slope over the run, beside ``exact_depth`` (the
-    exact gait's own dip) and the stance foot's depth in the slope at the same rows."""
-    lows = [low for swings in controller.swing_low for low in swings]
-    value = -min((h for h, _ in lows), default=math.nan)
-    gait = -min((h for h, _ in controller.swing_low[0]), default=math.nan)
-    sink = -min((h for _, h in lows), default=math.nan)
-    return {"value": value, "unit": "m", "note": (
-        f"deepest the switched-off swing foot went below the slope over the run's {len(lows)} swings (perturbed "
-        f"starts included; from the fixed point {gait:.4g} m); the exact gait's swing dips {exact_depth:.4g} m; "
-        f"MuJoCo's stance foot was up to {sink:.3g} m deep in the slope then (the soft contact's penetration under "
-        "the load and left over from the impact)")}
 
 
 def release_tolerance(model: mujoco.MjModel, bp: theory.CompassBiped, x_star: np.ndarray, foot_radius: float
@@ -411,7 +254,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
                             error=float(np.max(np.abs(matched - lam))), tolerance=tol["eigenvalues"], kind="max-abs",
                             unit="", why="3 multipliers of the 3-D section map (Newton shooting + finite "
                             "differences on the exact model) vs the cubic fit of the MuJoCo samples"))
-    ys, dts, lengths = _step_data(controller)
+    ys, dts, lengths, _ = crossing_steps(controller.samples, controller.sample_times, controller.strikes)
     period_sim = regress_at(y_star, ys, dts) if len(dts) > 4 else math.nan
     length_sim = regress_at(y_star, ys, lengths) if len(lengths) > 4 else math.nan
     out.append(checks.relative("step_period", theory.step_period(bp, x_star), period_sim, tol["step_period"], "s",
@@ -432,9 +275,10 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
                             "(accurate; the spread is the foot's speed at release, up to ~1e-3 m/s either way). A "
                             "deeper dip: the foot was released steps early, or kept falling after the heel strike, "
                             "whose impact law (003 eqs 4.15-4.17) has it lift off unloaded"))
-    exact_depth = -lowest_swing_height(bp, x_star)
-    extras["reported"] = {"swing_foot_depth": swing_foot_report(controller, exact_depth)}
-    extras["swing_foot"] = _swing_foot_detail(bp, controller, float(s["foot_radius"]), exact_depth)
+    exact_depth = -theory.lowest_swing_height(bp, x_star)
+    extras["reported"] = {"swing_foot_depth": swing_foot_report(controller.swing_low, exact_depth)}
+    extras["swing_foot"] = swing_foot_detail(bp, controller.swing_low[0], controller.samples[0],
+                                             float(s["foot_radius"]), exact_depth)
     extras["fit"] = fit.to_dict()
     extras["trailing_foot"] = {"analytic_liftoff_velocity": theory.step(bp, x_star).liftoff_velocity,
                                "measured_vertical_speed_20ms": float(np.mean(controller.release_speed))
@@ -448,42 +292,12 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     return Evaluation(out, report, extras)
 
 
-def _swing_foot_detail(bp: theory.CompassBiped, controller: GaitController, foot_radius: float, exact_depth: float
-                       ) -> dict[str, object]:
-    """Trajectory 0's swings (it starts on the exact fixed point): the switched-off swing foot's depth below the
-    slope and below the stance foot, and the exact depth of the same swing, from the post-impact state its
-    legs-parallel sample pulls back to (003 eq 4.19), scaled by (l - r)/l (MuJoCo's legs reach the slope at l - r
-    from the foot sphere's centre)."""
-    lows = controller.swing_low[0]
-    scale = (bp.l - foot_radius) / bp.l
-    same = [-scale * lowest_swing_height(bp, theory.post_impact_from_parallel(bp, y))
-            for y in controller.samples[0][: len(lows)]]
-    return {"exact_depth": exact_depth, "depth": [-h for h, _ in lows],
-            "depth_below_stance_foot": [h_st - h for h, h_st in lows], "exact_depth_same_swing": same,
-            "note": "trajectory 0 (from the exact fixed point), per swing, m; below the slope = below the stance foot "
-                    "+ the stance foot's depth in the slope"}
-
 
 def _step_summary(bp: theory.CompassBiped, x_star: np.ndarray) -> dict[str, float]:
     step = theory.step(bp, x_star)
     return {"required_friction": step.required_friction, "min_normal_force_ratio": step.min_normal_force_ratio,
             "trailing_foot_liftoff_velocity": step.liftoff_velocity}
 
-
-def _step_data(controller: GaitController) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Per swing k: section sample y_k, time to the next crossing, and the length of the step that swing ends
-    (new stance foot minus old; the first stance foot is at x = 0)."""
-    ys, dts, lengths = [], [], []
-    for samples, times, strikes in zip(controller.samples, controller.sample_times, controller.strikes, strict=True):
-        strike_t = np.array([t for t, _ in strikes])
-        feet = np.array([0.0, *(x for _, x in strikes)])
-        for k in range(len(samples) - 1):
-            j = int(np.searchsorted(strike_t, times[k]))  # first heel strike after crossing k
-            if j < len(strike_t):
-                ys.append(samples[k])
-                dts.append(times[k + 1] - times[k])
-                lengths.append(feet[j + 1] - feet[j])
-    return np.array(ys), np.array(dts), np.array(lengths)
 
 
 def probe(p: Values, s: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:

@@ -2,12 +2,12 @@
 
 Analytic reference: Gamus & Or (2015), seed 002, Sec. 4 (passive Gaits A, B on a 1 deg slope, eq 27, Figs
 4.1-4.2) and Sec. 5 (Gait I: constant torques, eq 28; Gait III: PD tracking with phase reset, eq 30; cost of
-transport eq 29); re-derived in :mod:`mjpoincare.analysis.theory.compass_biped_friction` (reference card 002 Secs. 3-4,
-7).
+transport eq 29); re-derived in :mod:`mjpoincare.analysis.theory.compass_biped_friction`.
 
 MuJoCo side: the ``compass-biped`` model rebuilt with 002's parameters (l = 1.6 m, d = 0.8 m: a = b = 0.8 m,
 m = 4 kg, m_h = 2 kg, g = 9.8 m/s^2) by :func:`mjpoincare.scenarios.compass_biped.build`, and its contact
-protocol (swing foot off until ahead and clear, trailing foot released at heel strike). Angles: the stance hinge
+protocol (swing foot off until ahead and clear, trailing foot released at heel strike;
+:class:`mjpoincare.scenarios.compass_gait_controller.FrictionGaitController`). Angles: the stance hinge
 is 002's theta1, the swing hinge is -theta2 (002 eq 27: theta2 is the swing leg's hip->foot direction), so the
 paper's generalised forces map to hinge torques as stance = Q_theta1, swing = -Q_theta2:
 
@@ -23,8 +23,9 @@ mid-stance, away from the soft impact; fitted from perturbed starts), step lengt
 the cost of transport with the actuator work integrated from the recorded rows; Gait A: the friction ratio
 |f_t/f_n| from the centre-of-mass acceleration (the only contact is the stance foot) against 002's mu_c; every
 gait: the stance phases, the impact kind and the slide in the first 5 ms after the impact from the stance foot's
-tangential velocity and position, against the exact step read the same way
-(:mod:`mjpoincare.scenarios.compass_biped_friction_stance`). Reported without a verdict: how deep the switched-off
+tangential velocity and position, against the exact step read the same way (measured by
+:mod:`mjpoincare.analysis.compass_biped_stance`, checked in :mod:`mjpoincare.scenarios.compass_biped_friction_stance`).
+Reported without a verdict: how deep the switched-off
 swing foot goes below the slope (002 Sec. 4.1 ignores this scuffing).
 """
 
@@ -37,19 +38,21 @@ from functools import lru_cache
 
 import mujoco
 import numpy as np
-from scipy.optimize import brentq
 
 from mjpoincare.analysis import checks
+from mjpoincare.analysis.compass_biped_stance import stance_rows
+from mjpoincare.analysis.compass_gait import crossing_steps, swing_foot_report
 from mjpoincare.analysis.eigenvalues import match_eigenvalues
 from mjpoincare.analysis.returnmap import fit_return_map, regress_at, sample_pairs
 from mjpoincare.analysis.start_designs import sphere_offsets
 from mjpoincare.analysis.theory import compass_biped_friction as theory
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios import compass_biped as cb
-from mjpoincare.scenarios import compass_biped_friction_stance as stance
 from mjpoincare.scenarios.base import Evaluation, ReturnMapPlot, Scenario, StressCase, Values, at_preset
+from mjpoincare.scenarios.compass_biped_friction_stance import stance_checks
+from mjpoincare.scenarios.compass_gait_controller import FrictionGaitController
 from mjpoincare.settings import rollout_options
-from mjpoincare.simulate import Batch, Chunk, KeptRows, RolloutReport, event_rollout, initial_states
+from mjpoincare.simulate import KeptRows, RolloutReport, event_rollout, initial_states
 
 GAITS = ("a", "b", "c", "i", "ii", "iii")
 #: 002's friction per gait when ``mu`` = 0: A above mu_c (any mu >= 0.175 is the same gait), B 0.14 (Fig. 4.2a),
@@ -72,10 +75,7 @@ PARAMS: tuple[Param, ...] = (
 )
 
 PRESETS: dict[str, dict[str, float | int | str]] = cb.PRESETS
-#: Same contact and step sizes as ``compass-biped``, hence its fixed-point and eigenvalue tolerances and reasons.
-#: friction_ratio: |f_t/f_n| is an acceleration ratio; the soft contact's creep and the 0.1 ms finite difference
-#: of the momentum make it good to ~1 % of mu_c (fast). cost/speed/length: per-step integrals over the settled
-#: gait, limited by the impact-onset jitter of the step grid (~1e-3 relative, fast).
+#: Why each tolerance is what it is: docs/scenarios/compass-biped-friction.md, "Tolerances and start design".
 TOLERANCES: dict[str, dict[str, float]] = {
     "accurate": {"fixed_point": 1e-3, "eigenvalues": 0.01, "step_period": 1e-3, "step_length": 1e-3,
                  "speed": 1e-3, "cost_of_transport": 5e-3, "friction_ratio": 2e-3, "phase_time": 2e-3},
@@ -88,9 +88,8 @@ STEPS = 8  # heel strikes per trajectory
 STARTS = 16  # perturbed starts around the fixed point (plus the fixed point itself)
 PERTURBATION = 0.03  # as compass-biped: size x (timestep / 20 us)^(1/3), shrunk as |lambda|max -> 1
 SETTLE = 3  # steps of the unperturbed trajectory skipped before per-step averages
-#: Unstable gaits (|lambda|max > 1): the map is fitted from the first UNSTABLE_STEPS steps only, before the
-#: perturbations grow out of the linear range (x 1.53^2 = 2.3 for Gait C), from more starts and a quadratic fit
-#: (2 pairs per start: 64 pairs for the 10 coefficients per coordinate; a cubic has 20)
+#: Unstable gaits (|lambda|max > 1): the map is fitted from the first UNSTABLE_STEPS steps only, from more starts
+#: and a quadratic fit (why: docs/scenarios/compass-biped-friction.md, "Tolerances and start design")
 UNSTABLE_STEPS = 2
 UNSTABLE_STARTS = 32
 UNSTABLE_DEGREE = 2
@@ -98,10 +97,7 @@ ENABLE_AHEAD = 0.05  # swing-foot contact on once the foot is this far (x l) ahe
 ENABLE_CLEAR = 2e-4  # ... and this high (x l) above the ground (Gait III's swing foot clears only ~1 mm)
 CHUNK_SECONDS = 0.05
 FIT_DEGREE = 3
-#: Type-B gaits: starts inside the impact border are 8x closer than the compass-biped size, so the map is linear
-#: over them (exact map through this design, Gait B at mu = 0.14: eigenvalue bias 9.5e-4 linear, 3e-6 cubic) and a
-#: cubic's 16 extra coefficients per coordinate only carry MuJoCo's scatter (B, fast: 0.131 linear, 0.151 cubic;
-#: accurate 0.036, 0.047)
+#: Type-B gaits: starts inside the impact border, fitted linearly (why: the same docs section)
 BORDER_DEGREE = 1
 
 
@@ -197,101 +193,6 @@ def post_impact_states(model: mujoco.MjModel, bp: theory.FrictionBiped, z: np.nd
     return initial_states(model, qpos, qvel)
 
 
-def legs_parallel(g: theory.Gait) -> tuple[np.ndarray, float]:
-    """Analytic legs-parallel state (theta1, theta1_dot, -theta2_dot) where theta1 + theta2 = 0 rises through 0
-    along the step from z* (the MuJoCo hinges are then equal), and the time of it after the impact."""
-    ref = theory.reference_trajectory(g.biped, g.z, g.actuation, samples=2001)
-    gap = ref.theta[:, 0] + ref.theta[:, 1]
-    i = int(np.nonzero((gap[:-1] < 0) & (gap[1:] >= 0))[0][0])
-    t = float(brentq(lambda s: sum(ref.evaluate(s)[:2]), ref.times[i], ref.times[i + 1], xtol=1e-13))
-    r = ref.evaluate(t)
-    return np.array([r[0], r[2], -r[3]]), t
-
-
-class FrictionGaitController(cb.GaitController):
-    """compass-biped's contact switching, plus per-step actuator work and feet, force ratios and stance-foot
-    velocities of trajectory 0, and (Gait III) the PD reference as native control."""
-
-    def __init__(self, model: mujoco.MjModel, g: theory.Gait, batch: int, foot_radius: float,
-                 actuated: tuple[float, float], pd: tuple[float, float] | None) -> None:
-        bp = g.biped
-        shim = cb.theory.CompassBiped(m_h=bp.m_h, m_l=bp.m, a=bp.d, b=bp.b, slope=0.0, gravity=bp.g,
-                                      tau_ankle=actuated[0], tau_hip=actuated[1])
-        super().__init__(model, shim, batch, foot_radius)
-        self.fb, self.pd, self.dt = bp, pd, model.opt.timestep
-        self.ref = theory.gait_c_reference() if pd is not None else None
-        self.last_strike = np.zeros(batch)
-        self.work = np.zeros(batch)
-        self.step_work: list[list[float]] = [[] for _ in range(batch)]
-        self.rows0: list[np.ndarray] = []  # trajectory 0: (time, stance, qpos, qvel) of kept rows
-        self.nu = model.nu
-        self.enable_ahead, self.enable_clear = ENABLE_AHEAD, ENABLE_CLEAR
-
-    def configure(self, batch: Batch) -> None:
-        """As compass-biped, but Gait III's PD bias stays on both ankles (the stance leg is chosen by ctrl)."""
-        if self.pd is None:
-            super().configure(batch)
-            return
-        for b in range(self.stance.size):
-            batch.set_contact(b, self.feet[1], False)
-
-    def _actuate(self, batch: Batch, b: int, stance: int) -> None:
-        if self.pd is None:
-            super()._actuate(batch, b, stance)
-
-    def control(self, t0: np.ndarray, steps: int) -> np.ndarray:
-        """ctrl (B, steps, nu): Gait III's reference term kp theta^r + kd theta_dot^r per hinge (002 eq 30)."""
-        out = np.zeros((t0.size, steps, self.nu))
-        if self.pd is None or self.ref is None:
-            return out
-        kp, kd = self.pd
-        phase = (t0 - self.last_strike)[:, None] + self.dt * np.arange(steps)[None, :]
-        th1, th2, w1, w2 = stance.reference_at(self.ref, np.nan_to_num(phase))
-        rows = np.arange(t0.size)
-        st = self.stance
-        out[rows, :, self.ankles[0]] = np.where((st == 0)[:, None], kp * th1 + kd * w1, -(kp * th2 + kd * w2))
-        out[rows, :, self.ankles[1]] = np.where((st == 1)[:, None], kp * th1 + kd * w1, -(kp * th2 + kd * w2))
-        return out
-
-    def __call__(self, chunk: Chunk, batch: Batch) -> np.ndarray:
-        stance_before = self.stance.copy()
-        strikes_before = [len(s) for s in self.strikes]
-        restart = super().__call__(chunk, batch)
-        for b in range(chunk.time.shape[0]):
-            if np.isnan(chunk.time[b, 1]):
-                continue
-            k = int(restart[b])
-            st = int(stance_before[b])
-            self.work[b] += self._work(chunk, b, st, k)
-            if b == 0:
-                self.rows0.append(np.column_stack([chunk.time[0, 1 : k + 1], np.full(k, st), chunk.qpos[0, 1 : k + 1],
-                                                   chunk.qvel[0, 1 : k + 1]]))
-            if len(self.strikes[b]) > strikes_before[b]:
-                self.step_work[b].append(self.work[b])
-                self.work[b] = 0.0
-                self.last_strike[b] = self.strikes[b][-1][0]
-        return restart
-
-    def _work(self, chunk: Chunk, b: int, st: int, k: int) -> float:
-        """Actuator work sum(actuator force . actuator velocity) dt over rows 0..k-1 (002 eq 29), from the
-        recorded hinge rates: constant torques (tau_ankle - tau_hip) on the stance hinge and tau_hip on the swing
-        hinge; Gait III: the PD force with the same reference as the control."""
-        qd = chunk.qvel[b, :k]
-        sw = 1 - st
-        if self.pd is None:
-            ta, th = self.bp.tau_ankle, self.bp.tau_hip
-            power = (ta - th) * qd[:, 2 + st] + th * qd[:, 2 + sw]
-        else:
-            kp, kd = self.pd
-            q = chunk.qpos[b, :k]
-            phase = chunk.time[b, :k] - self.last_strike[b]
-            r1, r2, w1, w2 = stance.reference_at(self.ref, phase)  # type: ignore[arg-type]
-            f_st = kp * (r1 - q[:, 2 + st]) + kd * (w1 - qd[:, 2 + st])
-            f_sw = kp * (-r2 - q[:, 2 + sw]) + kd * (-w2 - qd[:, 2 + sw])
-            power = f_st * qd[:, 2 + st] + f_sw * qd[:, 2 + sw]
-        return float(np.sum(power) * self.dt)
-
-
 def unstable(g: theory.Gait) -> bool:
     """|lambda|max >= 1: fitted over UNSTABLE_STEPS steps only."""
     return g.spectral_radius >= 1.0
@@ -341,7 +242,7 @@ def _run(p: Values, s: Values, model: mujoco.MjModel, starts: np.ndarray, steps:
     g = gait(p)
     pd = (float(p["kp"]), float(p["kd"])) if gait_name(p) == "III" else None
     radius = float(s["foot_radius"])
-    controller = FrictionGaitController(model, g, len(starts), radius, _torques(p), pd)
+    controller = FrictionGaitController(model, g, len(starts), radius, _torques(p), pd, (ENABLE_AHEAD, ENABLE_CLEAR))
     chunk = max(10, round(CHUNK_SECONDS / model.opt.timestep))
     nstep = math.ceil((steps + 0.5) * g.record.period / model.opt.timestep)
     kept = KeptRows(controller) if wrap else None
@@ -350,23 +251,6 @@ def _run(p: Values, s: Values, model: mujoco.MjModel, starts: np.ndarray, steps:
                            control=(lambda t0: controller.control(t0, chunk)) if pd is not None else None,
                            setup=controller.configure)
     return controller, report, kept
-
-
-def _step_data(c: FrictionGaitController) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Per legs-parallel sample k followed by a heel strike: y_k, time to the next sample, the length of the step
-    the swing ends and the actuator work over that step (heel strike to heel strike)."""
-    ys, dts, lengths, works = [], [], [], []
-    for b in range(len(c.samples)):
-        strike_t = np.array([t for t, _ in c.strikes[b]])
-        feet = np.array([0.0, *(x for _, x in c.strikes[b])])
-        for k in range(len(c.samples[b]) - 1):
-            j = int(np.searchsorted(strike_t, c.sample_times[b][k]))
-            if 1 <= j < len(strike_t) and j < len(c.step_work[b]):
-                ys.append(c.samples[b][k])
-                dts.append(c.sample_times[b][k + 1] - c.sample_times[b][k])
-                lengths.append(feet[j + 1] - feet[j])
-                works.append(c.step_work[b][j])  # work from strike j-1 to strike j (the step with this crossing)
-    return np.array(ys), np.array(dts), np.array(lengths), np.array(works)
 
 
 def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
@@ -381,7 +265,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     c, report, _ = _run(p, s, model, initial_section_states(g, model.opt.timestep), steps)
     out: list[checks.Check] = []
     extras: dict[str, object] = {"gait": name, "mu": friction(p), "analytic_pattern": theory.describe(g.record)}
-    y_star_th, _ = legs_parallel(g)
+    y_star_th, _ = theory.legs_parallel(g)
     lam = g.eigenvalues[:3]  # sorted by modulus, descending
     try:
         x, x_next = sample_pairs([np.array(v) for v in c.samples])
@@ -403,7 +287,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
                             f"differences) vs the degree-{degree} fit of the MuJoCo legs-parallel samples (bootstrap "
                             f"std of the fitted multipliers {float(np.max(np.abs(fit.eigenvalue_std))):.2g}: an "
                             "error well above it is MuJoCo's map, not the sampling); " + why))
-    ys, dts, lengths, works = _step_data(c)
+    ys, dts, lengths, works = crossing_steps(c.samples, c.sample_times, c.strikes, first=1, step_work=c.step_work)
     rec = g.record
     period_sim = regress_at(y_star, ys, dts) if len(dts) > 4 else math.nan
     length_sim = regress_at(y_star, ys, lengths) if len(lengths) > 4 else math.nan
@@ -421,11 +305,11 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
                                    "of actuator force x hinge rate x dt over the recorded rows of a step, regressed at "
                                    "the fitted fixed point"))
         extras["actuator_work"] = {"analytic": rec.actuator_work, "simulated": work_sim}
-    stances = stance.stance_rows(np.concatenate(c.rows0), [t for t, _ in c.strikes[0]], g.biped,
-                                 float(s["foot_radius"]))[settle:]
-    out += stance.stance_checks(g, name, stances, model.opt.timestep, float(s["solref_timeconst"]), tol, extras)
+    stances = stance_rows(np.concatenate(c.rows0), [t for t, _ in c.strikes[0]], g.biped,
+                          float(s["foot_radius"]))[settle:]
+    out += stance_checks(g, name, stances, model.opt.timestep, float(s["solref_timeconst"]), tol, extras)
     extras["fit"] = fit.to_dict()
-    extras["reported"] = {"swing_foot_depth": cb.swing_foot_report(c, -g.record.min_swing_height)}
+    extras["reported"] = {"swing_foot_depth": swing_foot_report(c.swing_low, -g.record.min_swing_height)}
     extras["analytic"] = {"z": g.z, "eigenvalues": g.eigenvalues, "legs_parallel": y_star_th}
     grid = np.linspace(float(x[:, 0].min()), float(x[:, 0].max()), 2)
     extras["return_map"] = ReturnMapPlot(label="legs-parallel angle theta1 (rad)", x=x[:, 0], x_next=x_next[:, 0],
@@ -447,13 +331,13 @@ def reference_bench(p: Values, rtol: float) -> dict[str, float]:
     the same fit."""
     g = gait(p)
     start = time.perf_counter()
-    y_star, _ = legs_parallel(g)
+    y_star, _ = theory.legs_parallel(g)
     sequences = []
     for z in initial_section_states(g, float(PRESETS["fast"]["timestep"]))[:6]:
         seq = []
         for _ in range(design(g)[0]):
             gz = theory.Gait(g.biped, g.actuation, z, g.jacobian, g.eigenvalues, g.record, g.kind)
-            seq.append(legs_parallel(gz)[0])
+            seq.append(theory.legs_parallel(gz)[0])
             z = theory.return_map(g.biped, z, g.actuation)
         sequences.append(np.array(seq))
     fit = fit_return_map(*sample_pairs(sequences), degree=design(g)[1])
