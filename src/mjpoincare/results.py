@@ -56,8 +56,10 @@ def _cpu_model() -> str:
 
 
 def _git_state() -> tuple[str | None, bool]:
-    """The commit checked out and whether a tracked file differs from it."""
-    return _git("rev-parse", "HEAD") or None, bool(_git("status", "--porcelain", "--untracked-files=no"))
+    """The commit checked out and whether a tracked file other than the results themselves differs from it (the
+    JSON this command writes must not mark the next scenario's run as dirty)."""
+    return _git("rev-parse", "HEAD") or None, bool(
+        _git("status", "--porcelain", "--untracked-files=no", "--", ".", ":(top,exclude)docs/results"))
 
 
 def environment() -> dict[str, Any]:
