@@ -400,3 +400,24 @@ def test_validation(kwargs, message):
 def test_small_spoke_counts_are_valid():
     rw.validate(RimlessWheel(3, 0.1))
     assert RimlessWheel(4, 0.1, gyration=0.5).beta == pytest.approx(0.25 / 1.25)
+
+
+def test_start_speeds_and_band_table() -> None:
+    w = RimlessWheel(8, 0.08, gyration=0.01)
+    star, omega_f = rw.rolling_fixed_point(w), rw.forward_threshold(w)
+    fit = rw.fit_initial_speeds(w, 6)
+    assert fit.shape == (6,) and np.all(np.diff(fit) > 0)
+    assert omega_f < fit[0] < star < fit[-1] <= 1.15 * star
+    assert all(rw.step_stays_in_contact(w, float(om)) for om in fit)
+    bands = rw.basin_bands(w)
+    assert len(bands) == 8 and bands[-1] == [omega_f, 1.3 * star, "rolling"]
+    for low, high, label in bands:
+        assert low < high
+        assert rw.predicted_outcome(w, 0.5 * (float(low) + float(high))) == label
+    probes = rw.basin_initial_speeds(w)
+    assert probes.shape == (12,) and np.all(np.diff(probes) > 0)
+    assert {rw.predicted_outcome(w, float(om)) for om in probes} == {"rolling", "standing"}
+    edges = rw.basin_edges(w)
+    omega1, omega2 = rw.basin_band_edges(w, 8)
+    assert edges.size == 2 + omega1.size + omega2.size and edges[0] == omega_f and edges[1] == 0.0
+    assert min(abs(om - e) for om in probes for e in edges) > 0.0

@@ -602,3 +602,47 @@ def flight_free(w: RimlessWheel, omega0: float, steps: int) -> bool:
             return False
         omega = float(return_map(w, omega))
     return True
+
+
+def fit_initial_speeds(w: RimlessWheel, count: int) -> NDArray[np.float64]:
+    """``count`` post-impact speeds around the rolling fixed point (003 eq 3.13), inside its basin (above
+    omega_f) and flight-free on the first step (:func:`step_stays_in_contact`): from
+    max(0.85 omega*, omega_f + 0.3 (omega* - omega_f)) to at most 1.15 omega*."""
+    star = rolling_fixed_point(w)
+    low = max(0.85 * star, forward_threshold(w) + 0.3 * (star - forward_threshold(w)))
+    high = 1.15 * star
+    while not step_stays_in_contact(w, high) and high > 1.01 * star:
+        high = star + 0.5 * (high - star)
+    return np.linspace(low, high, count)
+
+
+def basin_initial_speeds(w: RimlessWheel, bands: int = 3) -> NDArray[np.float64]:
+    """Post-impact speeds probing every basin of 003 Table 1 / Def. 3.20 (region Ω5), sorted.
+
+    The midpoint of each rolling band I^m_roll and standing band I^m_stop for m < ``bands``, two
+    speeds in (omega_2^0, 0) and in (0, omega_f) (standing), two above omega_f (rolling).
+    """
+    omega1, omega2 = basin_band_edges(w, bands)
+    roll = 0.5 * (omega1[:bands] + omega2[:bands])
+    stop = 0.5 * (omega2[1 : bands + 1] + omega1[:bands])
+    omega_f, star = forward_threshold(w), rolling_fixed_point(w)
+    near_zero = [omega2[0] * 2 / 3, omega2[0] / 3, omega_f / 3, omega_f * 2 / 3]
+    forward = [omega_f + 0.5 * (star - omega_f), 1.2 * star]
+    return np.sort(np.concatenate([roll, stop, near_zero, forward]))
+
+
+def basin_edges(w: RimlessWheel, bands: int = 8) -> NDArray[np.float64]:
+    """Every basin edge down to band ``bands`` (003 Def. 3.20): omega_f, 0 and the band edges omega_1^m, omega_2^m."""
+    omega1, omega2 = basin_band_edges(w, bands)
+    return np.concatenate([[forward_threshold(w), 0.0], omega1, omega2])
+
+
+def basin_bands(w: RimlessWheel, bands: int = 3) -> list[list[float | str]]:
+    """[low, high, outcome] of the bands I^m_roll and I^m_stop for m < ``bands`` (003 eqs 3.17-3.18), then the
+    standing band (omega_2^0, omega_f) and the rolling band (omega_f, 1.3 omega*)."""
+    omega1, omega2 = basin_band_edges(w, bands)
+    out: list[list[float | str]] = [[float(omega1[m]), float(omega2[m]), "rolling"] for m in range(bands)]
+    out += [[float(omega2[m + 1]), float(omega1[m]), "standing"] for m in range(bands)]
+    out += [[float(omega2[0]), float(forward_threshold(w)), "standing"],
+            [float(forward_threshold(w)), float(1.3 * rolling_fixed_point(w)), "rolling"]]
+    return out

@@ -24,6 +24,7 @@ import numpy as np
 from mjpoincare import settings as sim_settings
 from mjpoincare.analysis import checks
 from mjpoincare.analysis.outcomes import classify_outcomes
+from mjpoincare.analysis.period_regression import period_at
 from mjpoincare.analysis.returnmap import fit_return_map, sample_pairs
 from mjpoincare.analysis.sections import Crossings, level_crossings, wrap_events, wrap_phase
 from mjpoincare.analysis.theory import rimless_wheel as theory
@@ -55,14 +56,12 @@ PARAMS: tuple[Param, ...] = (
     Param("gravity", 9.81, "gravity, m/s^2", float, 0.0, 1e3, low_open=True),
 )
 
-#: Simulator presets. ``accurate``: contact time constant 0.5 ms (10 steps of 50 us), stiff solimp,
-#: 0.5 mm feet. ``fast``: 4 ms contact, 0.4 ms steps: 20x fewer steps.
+#: Simulator presets (why: docs/scenarios/rimless-wheel.md, "Presets and experiment design").
 PRESETS: dict[str, dict[str, float | int | str]] = {
     "fast": {"timestep": 4e-4, "solref_timeconst": 4e-3, "integrator": "implicitfast"},
     "accurate": {"timestep": 5e-5, "solref_timeconst": 5e-4, "integrator": "implicitfast"},
 }
 
-#: Tolerances per preset, with where they come from (see README "time against error").
 TOLERANCES: dict[str, dict[str, float]] = {
     "accurate": {"omega_post_impact": 1e-3, "eigenvalue": 0.01, "impact_coefficient": 1e-3,
                  "step_period": 1e-3},
@@ -75,19 +74,14 @@ WHY = {
             "contact time constant; 1e-2 leaves no margin beyond that scaling",
 }
 
-#: A point-mass hub (gyration 0) leaves the pitch degree of freedom massless: in MuJoCo a contact pulse then
-#: spins the wheel at -80 rad/s within a step and launches it (measured at n = 8, slope 0.12, fast preset).
-#: The model therefore has kappa >= 1e-4, and the analytic reference is evaluated at the same kappa (for
-#: n = 8 it moves beta by 4e-5 relative to kappa = 0).
+#: Floor on the hub's radius of gyration / leg_length (kappa >= 1e-4; why: docs/scenarios/rimless-wheel.md).
 MIN_GYRATION = 1e-2
 
 FIT_STEPS = 6  # impacts per fitting trajectory: beta^12 of the initial offset remains (0.016 for n = 8)
 FIT_BATCH = 6
 BASIN_SECONDS = 6.0  # the slowest standing case of the default grid settles after 3.3 s
 TAIL_SECONDS = 1.0  # final window classified by the basin check; also the rollout chunk length
-#: All feet this far (x leg_length) above the ground = flight. MuJoCo's soft impacts make the wheel hop by
-#: ~1 mm (contact damping ratio 1: a Kelvin-Voigt rebound, reported as ``max_clearance``); lift-off in the
-#: sense of the no-flight bound is a centimetre-scale flight.
+#: All feet this far (x leg_length) above the ground = flight (a centimetre, above MuJoCo's ~1 mm impact hop).
 FLIGHT_CLEARANCE = 1e-2
 
 
@@ -219,31 +213,6 @@ def _simulate(model: mujoco.MjModel, w: theory.RimlessWheel, omega0: np.ndarray,
     return recorder, report
 
 
-def fit_initial_speeds(w: theory.RimlessWheel) -> np.ndarray:
-    """Post-impact speeds around the rolling fixed point, inside its basin, flight-free on the first step."""
-    star = theory.rolling_fixed_point(w)
-    low = max(0.85 * star, theory.forward_threshold(w) + 0.3 * (star - theory.forward_threshold(w)))
-    high = 1.15 * star
-    while not theory.step_stays_in_contact(w, high) and high > 1.01 * star:
-        high = star + 0.5 * (high - star)
-    return np.linspace(low, high, FIT_BATCH)
-
-
-def basin_initial_speeds(w: theory.RimlessWheel, bands: int = 3) -> np.ndarray:
-    """Post-impact speeds probing every basin of 003 Table 1 / Def. 3.20 (region Ω5).
-
-    The midpoint of each rolling band I^m_roll and standing band I^m_stop for m < ``bands``, two
-    speeds in (omega_2^0, 0) and in (0, omega_f) (standing), two above omega_f (rolling).
-    """
-    omega1, omega2 = theory.basin_band_edges(w, bands)
-    roll = 0.5 * (omega1[:bands] + omega2[:bands])
-    stop = 0.5 * (omega2[1 : bands + 1] + omega1[:bands])
-    omega_f, star = theory.forward_threshold(w), theory.rolling_fixed_point(w)
-    near_zero = [omega2[0] * 2 / 3, omega2[0] / 3, omega_f / 3, omega_f * 2 / 3]
-    forward = [omega_f + 0.5 * (star - omega_f), 1.2 * star]
-    return np.sort(np.concatenate([roll, stop, near_zero, forward]))
-
-
 def _fit_checks(w: theory.RimlessWheel, rec: _Recorder, batch: int, tol: Mapping[str, float],
                 why: str, seed: int) -> tuple[list[checks.Check], dict[str, object]]:
     gamma, alpha = w.slope, w.alpha
@@ -256,7 +225,7 @@ def _fit_checks(w: theory.RimlessWheel, rec: _Recorder, batch: int, tol: Mapping
     eig_sim = complex(fit.eigenvalues[0])
     pre = np.asarray(theory.phase_speed(w, x[:, 0], gamma + alpha), float)
     beta_sim = float(np.median(x_next[:, 0] / pre))
-    period_sim = _period_at(star_sim, [p[:-1] for p in post], [p[1:] for p in post], [np.diff(t) for t in times])
+    period_sim = period_at(star_sim, [p[:-1] for p in post], [p[1:] for p in post], [np.diff(t) for t in times])
     star = theory.rolling_fixed_point(w)
     out = [
         checks.relative("omega_post_impact", star, star_sim, tol["omega_post_impact"], "rad/s",
@@ -279,15 +248,6 @@ def _fit_checks(w: theory.RimlessWheel, rec: _Recorder, batch: int, tol: Mapping
                  "return_map": plot.to_dict()}
 
 
-def _period_at(star: float, before: list[np.ndarray], after: list[np.ndarray], dts: list[np.ndarray]) -> float:
-    """Mid-stance-to-mid-stance time at the fixed point: quadratic least squares in (omega_k, omega_k+1)."""
-    u = np.concatenate(before) - star
-    v = np.concatenate(after) - star
-    design = np.stack([np.ones_like(u), u, v, u * u, u * v, v * v], axis=1)
-    coef, *_ = np.linalg.lstsq(design, np.concatenate(dts), rcond=None)
-    return float(coef[0])
-
-
 def _basin_checks(w: theory.RimlessWheel, rec: _Recorder, omega0: np.ndarray) -> tuple[list[checks.Check],
                                                                                         dict[str, object]]:
     tail = rec.tail
@@ -304,7 +264,7 @@ def _basin_checks(w: theory.RimlessWheel, rec: _Recorder, omega0: np.ndarray) ->
         if outcome != "boundary" and not theory.flight_free(w, float(om), 6):
             outcome = "flight"
         predicted.append(outcome)
-    edges = _basin_edges(w)
+    edges = theory.basin_edges(w)
     margin = 0.02
     near = np.array([np.min(np.abs(om - edges)) < margin * max(abs(om), 0.1) for om in omega0])
     judged = np.array([p in ("rolling", "standing") for p in predicted]) & ~near
@@ -316,17 +276,7 @@ def _basin_checks(w: theory.RimlessWheel, rec: _Recorder, omega0: np.ndarray) ->
         "end state (rolling/standing) from a grid of post-impact speeds vs the regions of attraction "
         "(003 Table 1, eq 3.17-3.18); speeds within 2% of a basin edge or whose analytic run would lift off are "
         "reported, not judged")
-    omega1, omega2 = theory.basin_band_edges(w, 3)
-    bands = [[float(omega1[m]), float(omega2[m]), "rolling"] for m in range(3)]
-    bands += [[float(omega2[m + 1]), float(omega1[m]), "standing"] for m in range(3)]
-    bands += [[float(omega2[0]), float(theory.forward_threshold(w)), "standing"],
-              [float(theory.forward_threshold(w)), float(1.3 * theory.rolling_fixed_point(w)), "rolling"]]
-    return [check], {"basins": table, "basin_bands": bands}
-
-
-def _basin_edges(w: theory.RimlessWheel) -> np.ndarray:
-    omega1, omega2 = theory.basin_band_edges(w, 8)
-    return np.concatenate([[theory.forward_threshold(w), 0.0], omega1, omega2])
+    return [check], {"basins": table, "basin_bands": theory.basin_bands(w)}
 
 
 def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
@@ -335,7 +285,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     model = build(p, s)
     tol = at_preset(TOLERANCES, RIMLESS_WHEEL.name, preset)
     why = at_preset(WHY, RIMLESS_WHEEL.name, preset)
-    fit_speeds = fit_initial_speeds(w)
+    fit_speeds = theory.fit_initial_speeds(w, FIT_BATCH)
     fit_rec, fit_report = _simulate(model, w, fit_speeds, _fit_seconds(w), s)
     try:
         fit_checks, extras = _fit_checks(w, fit_rec, len(fit_speeds), tol, why, seed)
@@ -343,7 +293,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
         fit_checks = [checks.relative("omega_post_impact", theory.rolling_fixed_point(w), math.nan,
                                       tol["omega_post_impact"], "rad/s", f"no return map: {err}")]
         extras = {}
-    basin_speeds = basin_initial_speeds(w)
+    basin_speeds = theory.basin_initial_speeds(w)
     basin_rec, basin_report = _simulate(model, w, basin_speeds, BASIN_SECONDS, s)
     basin_checks, basin_extras = _basin_checks(w, basin_rec, basin_speeds)
     extras.update(basin_extras)
@@ -364,7 +314,8 @@ def probe(p: Values, s: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, 
     model = build(p, s)
     radius = float(s["foot_radius"])
     batches = []
-    for speeds, seconds in ((fit_initial_speeds(w), _fit_seconds(w)), (basin_initial_speeds(w), BASIN_SECONDS)):
+    for speeds, seconds in ((theory.fit_initial_speeds(w, FIT_BATCH), _fit_seconds(w)),
+                            (theory.basin_initial_speeds(w), BASIN_SECONDS)):
         batches.append((post_impact_states(model, w, speeds, radius), _whole_chunks(model, seconds)))
     return model, batches
 
@@ -374,7 +325,7 @@ def reference_bench(p: Values, rtol: float) -> dict[str, float]:
     w = wheel(p)
     start = time.perf_counter()
     sequences = []
-    for omega0 in fit_initial_speeds(w):
+    for omega0 in theory.fit_initial_speeds(w, FIT_BATCH):
         run = simulate_hybrid(w, float(omega0), FIT_STEPS, rtol=rtol, atol=0.1 * rtol)
         sequences.append(np.concatenate([[omega0], run.omega_post]))
     fit = fit_return_map(*sample_pairs(sequences), degree=2)

@@ -4,9 +4,10 @@ Analytic reference: Coleman & Holmes (1999), return map in (D, E, theta, H) (B.3
 (3.6)-(3.7), stability eigenvalue sigma_4 (3.10); see :mod:`mjpoincare.analysis.theory.slotted_skate`.
 
 The peg is a MuJoCo joint equality in the "peg chart" (models/slotted_skate.xml): the controller
-(:class:`PegController`) stops each trajectory exactly at the slot end (a fractional step from the
-last state inside the slot), reads E and H about the old peg there, and re-parametrises the state
-for the new peg at the other slot end; the next constraint solve is the plastic impact. Stepping
+(:class:`~mjpoincare.scenarios.slotted_skate_pegs.PegController`) stops each trajectory exactly at the
+slot end (a fractional step from the last state inside the slot), reads E and H about the old peg there,
+and re-parametrises the state for the new peg at the other slot end; the next constraint solve is the
+plastic impact. Stepping
 between events is native (:func:`mjpoincare.simulate.event_rollout`); contact is disabled, gravity
 is off, and the skate is the only body.
 
@@ -31,8 +32,9 @@ from mjpoincare.analysis.theory import slotted_skate as theory
 from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios.base import Evaluation, RegionMap, Scenario, StressCase, Values, at_preset
+from mjpoincare.scenarios.slotted_skate_pegs import PegController
 from mjpoincare.settings import rollout_options
-from mjpoincare.simulate import Batch, Chunk, event_clip, event_rollout, initial_states
+from mjpoincare.simulate import event_clip, event_rollout, initial_states
 
 PARAMS: tuple[Param, ...] = (
     Param("l0", 1.0, "signed distance from the slot's front end forward to the mass centre, m", float, -1e3, 1e3),
@@ -61,9 +63,7 @@ WHY = {
     "fast": "semi-implicit Euler at 0.5 ms with a dead-beat peg constraint: first order in the step (measured on "
             "the default P1 set: 6e-4 on sigma4 in the unstable backward direction)",
 }
-#: H_k+1/H_k is judged only while |H_k| >= RATIO_FLOOR x the run's largest |H|: a fast-decaying motion (|sigma4| =
-#: 0.27 in P3 backward) reaches |H| ~ 1e-8 within the run, where the integration's absolute error dominates the ratio
-#: (measured: 1.8e-5 error at such H, 6e-11 for the fitted slope).
+#: H_k+1/H_k is judged only while |H_k| >= RATIO_FLOOR x the run's largest |H| (why: docs/scenarios/slotted-skate.md)
 RATIO_FLOOR = 1e-4
 IMPACTS = 14  # enough for P1's backward starts to reach their reversal (B.6: 11 impacts at Omega0 = 0.1)
 SCALES = (0.5, 1.0, 1.5)  # the batch: Omega0 x these, in the given direction and mirrored
@@ -107,75 +107,6 @@ def start_states(model: mujoco.MjModel, p: Values, V0: np.ndarray, Omega0: np.nd
     qpos = np.stack([np.full_like(V0, float(p["heading0"])), s0, np.zeros_like(V0)], axis=1)
     qvel = np.stack([Omega0, V0, np.zeros_like(V0)], axis=1)
     return initial_states(model, qpos, qvel)
-
-
-class PegController:
-    """Ends each stance exactly at a slot end, samples it and inserts the next peg.
-
-    Each sample is one stance as a point of the map's section (3.5): the end where its peg went in (D+),
-    E and H about that peg read at the stance's end (stance invariants, so the impact's duration does not
-    matter), the heading and time when the peg went in."""
-
-    def __init__(self, p: Values, entry: np.ndarray, slot: tuple[np.ndarray, np.ndarray] | None = None) -> None:
-        # the slot's ends in the chart coordinate s, per trajectory (a region map gives each its own l0, delta)
-        lo, hi = slot if slot is not None else (float(p["l0"]), float(p["l0"]) + float(p["delta"]))
-        self.lo = np.broadcast_to(np.asarray(lo, float), (len(entry),))
-        self.hi = np.broadcast_to(np.asarray(hi, float), (len(entry),))
-        self.mass, self.rho = float(p["mass"]), float(p["rho"])
-        self.entry = np.array(entry, float)  # slot end (s value) where each trajectory's current peg went in
-        self.start_heading = np.full(len(entry), float(p["heading0"]))  # heading when the current peg went in
-        self.start_time = np.zeros(len(entry))
-        self.peg = np.zeros((len(entry), 2))  # the current peg's position in the plane (the chart's origin)
-        self.samples: list[list[tuple[float, ...]]] = [[] for _ in entry]
-
-    def invariants(self, state: np.ndarray) -> tuple[float, float]:
-        """Energy and angular momentum about the peg (SI), from a state (t, theta, s, n, w, sdot, ndot)."""
-        _, _, s, n, w, sd, nd = state
-        vx, vy = sd - w * n, nd + w * s  # mass-centre velocity in the body frame
-        energy = 0.5 * self.mass * (vx * vx + vy * vy) + 0.5 * self.mass * self.rho**2 * w * w
-        momentum = self.mass * self.rho**2 * w + self.mass * (s * vy - n * vx)
-        return energy, momentum
-
-    def __call__(self, chunk: Chunk, batch: Batch) -> tuple[np.ndarray, dict[int, np.ndarray]]:
-        steps = chunk.time.shape[1] - 1
-        restart = np.full(chunk.time.shape[0], steps)
-        overrides: dict[int, np.ndarray] = {}
-        s = chunk.qpos[:, :, 1]
-        outside = (s > self.hi[:, None]) | (s < self.lo[:, None])
-        for b in np.nonzero(outside[:, 1:].any(axis=1))[0]:
-            k = int(np.argmax(outside[b, 1:])) + 1
-            state = np.concatenate([[chunk.time[b, k - 1]], chunk.qpos[b, k - 1], chunk.qvel[b, k - 1]])
-            end = self.hi[b] if s[b, k] > self.hi[b] else self.lo[b]
-            state = self._step_to(batch, int(b), state, end)
-            energy, momentum = self.invariants(state)
-            # the stance that just ended, as a section state (D+, E+, theta+, H+) of the map (3.5) plus its start time
-            self.samples[b].append((self.entry[b], energy, self.start_heading[b], momentum, self.start_time[b]))
-            overrides[int(b)] = self._insert_peg(state, end, int(b))
-            self.entry[b], self.start_heading[b], self.start_time[b] = overrides[int(b)][2], state[1], state[0]
-            heading, s_old, n_old, s_new = state[1], state[2], state[3], overrides[int(b)][2]
-            along, normal = np.array([math.cos(heading), math.sin(heading)]), np.array([-math.sin(heading),
-                                                                                      math.cos(heading)])
-            self.peg[b] = self.peg[b] + (s_old - s_new) * along + n_old * normal
-            restart[b] = k - 1 if k > 1 else 1
-        return restart, overrides
-
-    def _step_to(self, batch: Batch, b: int, state: np.ndarray, end: float) -> np.ndarray:
-        """One fractional step of trajectory ``b``'s own integrator that lands on the slot end (no overshoot)."""
-        speed = state[5]
-        dt = batch.timestep
-        return batch.advance(b, state, min(dt, max(0.0, (end - state[2]) / speed)) if speed else dt)
-
-    def _insert_peg(self, state: np.ndarray, end: float, b: int) -> np.ndarray:
-        """Retract the old peg and insert one at the other slot end: a change of chart (note 000, 4.2 step 5).
-
-        The new chart's n-velocity is the normal velocity of the material point over the new peg; the
-        next constraint solve removes it (the plastic impact)."""
-        out = state.copy()
-        s_new = self.lo[b] if end == self.hi[b] else self.hi[b]
-        w, s, nd = state[4], state[2], state[6]
-        out[2], out[3] = s_new, 0.0
-        out[6] = nd + w * (s - s_new)
-        return out
 
 
 def initial_conditions(p: Values) -> tuple[np.ndarray, np.ndarray]:
@@ -429,63 +360,3 @@ SLOTTED_SKATE = Scenario(
     region_map=RegionMap(grid="x=START:STOP:N,y=START:STOP:N with x = l0/delta, y = 1/delta^2",
                          output="renders/regions-{scenario}.png", run=_region_map),
 )
-
-
-def region_map(p: Values, s: Values, x: np.ndarray, y: np.ndarray, impacts: int = 3,
-               omega0: float = 0.01) -> dict[str, np.ndarray]:
-    """Stability of straight motion over a grid of (L0/Delta, 1/Delta^2) (the paper's Fig. 2 axes), simulated.
-
-    Every grid point runs forward and backward (V0 = +-1, Omega0 = ``omega0``, rho = 1) in ONE batched
-    event rollout (each trajectory with its own slot ends); sigma4 is measured as H_k+1/H_k of the first two
-    stances that keep the initial direction (an unstable motion may later reverse and settle the other way).
-    Returns the measured and analytic (3.10) sigma4 arrays, shape (2, len(y), len(x)),
-    index 0 forward and 1 backward.
-    """
-    X, Y = np.meshgrid(x, y)
-    delta = 1.0 / np.sqrt(Y.ravel())
-    l0 = X.ravel() * delta
-    cells = l0.size
-    V = np.concatenate([np.ones(cells), -np.ones(cells)])
-    l0_all, delta_all = np.tile(l0, 2), np.tile(delta, 2)
-    base = {**p, "rho": 1.0, "mass": 1.0, "V0": 1.0, "heading0": 0.0}
-    model = build(base, s)
-    entry = np.where(V > 0, l0_all, l0_all + delta_all)
-    controller = PegController(base, entry, (l0_all, l0_all + delta_all))
-    start = initial_states(model, np.stack([np.zeros_like(V), entry, np.zeros_like(V)], 1),
-                           np.stack([np.full_like(V, omega0), V, np.zeros_like(V)], 1))
-    seconds = 1.2 * (impacts + 1) * float(delta_all.max())
-    nstep = math.ceil(seconds / model.opt.timestep)
-    report = event_rollout([model] * len(V), start, nstep, controller, **rollout_options(s),
-                           chunk_steps=max(10, min(500, nstep // 10)))
-    measured = np.full(2 * cells, np.nan)
-    for b, samples in enumerate(controller.samples):
-        ok = [(a[3], c[3]) for a, c in itertools.pairwise(samples)
-              if a[0] == c[0] == entry[b] and abs(a[3]) > 1e-12]
-        if ok:
-            measured[b] = ok[0][1] / ok[0][0]
-    analytic = np.array([[theory.sigma4(theory.SlottedSkate(L0=a, Delta=d), forward) for a, d in zip(l0, delta,
-                                                                                                      strict=True)]
-                         for forward in (True, False)])
-    return {"x": x, "y": y, "measured": measured.reshape(2, len(y), len(x)),
-            "analytic": analytic.reshape(2, len(y), len(x)), "steps": float(report.steps),
-            "wall_s": report.wall_s, "diverged": int(report.diverged.sum())}
-
-
-def region_classes(sigma: np.ndarray) -> np.ndarray:
-    """0 unstable, 1 stable, 2 stable wobble (-1 < sigma4 < 0), 3 unstable wobble (sigma4 < -1); NaN -> -1."""
-    stable, wobble = np.abs(sigma) < 1, sigma < 0
-    out = np.where(wobble, np.where(stable, 2, 3), np.where(stable, 1, 0))
-    return np.where(np.isfinite(sigma), out, -1)
-
-
-def boundary_cells(classes: np.ndarray, sigma: np.ndarray, tol: float = 1e-3) -> np.ndarray:
-    """Cells the analytic boundary crosses: a neighbour has another class, or |sigma4| is within ``tol`` of 1
-    or sigma4 of 0 (the class there is decided by round-off)."""
-    edge = (np.abs(np.abs(sigma) - 1.0) < tol) | (np.abs(sigma) < tol)
-    for axis in (-1, -2):
-        diff = np.diff(classes, axis=axis) != 0
-        pad_lo = [(0, 0)] * classes.ndim
-        pad_hi = [(0, 0)] * classes.ndim
-        pad_lo[axis], pad_hi[axis] = (1, 0), (0, 1)
-        edge |= np.pad(diff, pad_lo) | np.pad(diff, pad_hi)
-    return edge
