@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -85,3 +86,15 @@ def fraction(name: str, agree: int, total: int, tolerance: float, why: str) -> C
     error = (total - agree) / total if total else math.nan
     return Check(name=name, analytic=0.0, simulated=(total - agree) / total if total else math.nan, error=error,
                  tolerance=tolerance, kind="fraction", unit="", why=why)
+
+
+def categorical(name: str, analytic: str, simulated: str, wrong: int, total: int, why: str) -> Check:
+    """A check on categories: the analytic and the simulated category (``"none"`` if empty), error = the fraction
+    ``wrong / total`` of cases whose category differs."""
+    return Check(name=name, analytic=analytic, simulated=simulated or "none",
+                 error=wrong / total if total else math.nan, tolerance=0.0, kind="fraction", unit="", why=why)
+
+
+def most_common(items: Sequence[str]) -> str:
+    """The most frequent of ``items`` ("" if none)."""
+    return max(set(items), key=list(items).count) if items else ""

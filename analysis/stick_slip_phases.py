@@ -26,7 +26,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from mjpoincare.analysis.returnmap import sample_pairs
+from mjpoincare.analysis.returnmap import ReturnMapFit, fit_return_map, sample_pairs
 from mjpoincare.analysis.sections import level_crossings
 
 STICK, SLIP_POS, SLIP_NEG, EXCLUDED = 0, 1, 2, 3
@@ -366,6 +366,14 @@ def midstance_pairs(steps: Steps, trajectories: Sequence[int], kind: str, max_pa
         xs.append(x[:max_pairs])
         ys.append(y[:max_pairs])
     return np.concatenate(xs), np.concatenate(ys)
+
+
+def fit_midstance_map(steps: Steps, trajectories: Sequence[int], kind: str, max_pairs: int, seed: int
+                      ) -> tuple[ReturnMapFit, np.ndarray, np.ndarray]:
+    """Quadratic fit of the mid-stance map theta_dot_k -> theta_dot_k+1 (002 Sec. 3.3) from the pairs of
+    :func:`midstance_pairs`; returns the fit and the pairs (N,), (N,)."""
+    x, y = midstance_pairs(steps, trajectories, kind, max_pairs)
+    return fit_return_map(x, y, degree=2, seed=seed), x[:, 0], y[:, 0]
 
 
 def steps_to_converge(mid_rate: np.ndarray, kinds: np.ndarray, final_kind: str, tol: float) -> int:

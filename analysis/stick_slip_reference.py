@@ -1,6 +1,7 @@
 """The friction wheel's reference from given post-impact starts: runs of the event-driven hybrid simulator of
 :mod:`mjpoincare.analysis.theory.rimless_wheel_friction` (002 = Gamus & Or 2015, Sec. 3.3 and Appendix A), the
-generic integrator's mid-stance map (bench), and a gait's analytic values (numpy/scipy only)."""
+generic integrator's mid-stance map (bench), a gait's analytic values and the measured force ratio against the
+no-slip wheel's (numpy/scipy only)."""
 
 from __future__ import annotations
 
@@ -11,7 +12,9 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+from mjpoincare.analysis.force_ratio import critical_ratio, ratio_profile
 from mjpoincare.analysis.returnmap import fit_return_map, sample_pairs
+from mjpoincare.analysis.stick_slip_phases import Rows
 from mjpoincare.analysis.theory import rimless_wheel_friction as theory
 
 
@@ -90,3 +93,15 @@ def gait_values(w: theory.FrictionWheel, gait: theory.Gait) -> dict[str, Any]:
             "mu_c": theory.critical_friction(rigid)[0],
             "sticking_impulse_ratio": theory.impulse_ratio(w.spokes, w.kappa),
             "slope_bounds": theory.slope_bounds(w.spokes, w.kappa)}
+
+
+def force_ratio_comparison(w: theory.FrictionWheel, rows: Rows, select: np.ndarray
+                           ) -> tuple[float, float, dict[str, Any]]:
+    """The no-slip wheel's critical friction mu_c (002 eq 23), the measured max |f_t/f_n| of the rows ``select`` (B, T)
+    (:func:`critical_ratio` of their :func:`ratio_profile`) and the profile beside the no-slip wheel's (eq 19-22)."""
+    centres, ratio = ratio_profile(rows.theta, rows.force_t, rows.force_n, select, w.phi)
+    rigid = theory.FrictionWheel(w.spokes, w.kappa, w.slope, math.inf)
+    analytic = np.asarray(theory.force_ratio(rigid, centres), float)
+    profile = {"theta": centres, "simulated": ratio, "analytic": analytic,
+               "max_abs_error": float(np.nanmax(np.abs(ratio - analytic)))}
+    return theory.critical_friction(rigid)[0], critical_ratio(centres, ratio, w.phi), profile

@@ -224,3 +224,13 @@ def test_step_report_pads_a_short_reference() -> None:
     assert [r["reference_kind"] for r in report] == ["B", "B", "", "", ""]
     assert np.isnan(report[2]["reference_mid_rate"]) and report[0]["phases"] == ["stick", "slip+"]
     assert all(r["impact"] == "sticking" for r in report)
+
+
+def test_fit_midstance_map_recovers_a_linear_map() -> None:
+    """theta_dot_k+1 = 1 + 0.5 (theta_dot_k - 1) along the C steps: fixed point 1, multiplier 0.5."""
+    rate = [1.0 + 0.4 * 0.5**k for k in range(10)]
+    fit, x, x_next = phases.fit_midstance_map(bare_steps(["C"] * 10, rate), [0], "C", 12, seed=0)
+    np.testing.assert_allclose(x_next, 1.0 + 0.5 * (x - 1.0))
+    assert x.shape == (9,)
+    assert float(fit.fixed_point[0]) == pytest.approx(1.0)
+    assert float(np.real(fit.eigenvalues[0])) == pytest.approx(0.5)

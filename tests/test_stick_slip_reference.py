@@ -7,6 +7,7 @@ import math
 import numpy as np
 import pytest
 from mjpoincare.analysis import stick_slip_reference as reference
+from mjpoincare.analysis.stick_slip_phases import Rows
 from mjpoincare.analysis.theory import rimless_wheel_friction as theory
 
 WHEEL = theory.FrictionWheel(10, 1.0 / 3.0, math.radians(13.0), 0.3)  # 002's set at its stick-slip mu: Type B
@@ -65,3 +66,17 @@ def test_generic_bench_agrees_with_the_fast_method() -> None:
     bench = reference.generic_bench(WHEEL, gait, starts, 6)
     assert bench["rtol"] == theory.RTOL and bench["wall_s"] > 0
     assert bench["midstance_rate_error"] < 1e-5 and bench["eigenvalue_error"] < 1e-4  # measured 8e-7 and 1.1e-5
+
+
+def test_force_ratio_comparison_of_the_exact_profile() -> None:
+    """Rows whose force ratio is the no-slip wheel's (002 eq 19-22) give its critical friction (eq 23)."""
+    rigid = theory.FrictionWheel(WHEEL.spokes, WHEEL.kappa, WHEEL.slope, math.inf)
+    theta = np.linspace(-WHEEL.phi, WHEEL.phi, 40001)[None]
+    ones = np.ones(theta.shape)
+    rows = Rows(time=ones, theta=theta, rate=ones, slip=ones, clearance=ones, ratio=ones,
+                force_t=np.asarray(theory.force_ratio(rigid, theta), float), force_n=ones, stance=ones.astype(int),
+                since=ones, wrap=ones.astype(bool), mode=ones, vmode=ones)
+    mu_c, measured, profile = reference.force_ratio_comparison(WHEEL, rows, np.ones(theta.shape, bool))
+    assert mu_c == pytest.approx(theory.critical_friction(rigid)[0])
+    assert measured == pytest.approx(mu_c, rel=2e-3)  # the 2 mrad bins' mean near theta = phi
+    assert profile["max_abs_error"] < 5e-3  # bin means against the centres' values

@@ -460,3 +460,14 @@ def test_gait_boundaries():
     assert b.c_lower == pytest.approx(math.tan(ALPHA), abs=2e-5)  # C ends where D has Delta x_dot = 0 (grazing)
     # the paper's rounded values (+-0.01): A mu >= 0.91, B [0.25, 0.91], C (0.24, 0.25), D [0.1, 0.32]
     assert (b.ab, b.bc, b.d_upper) == pytest.approx((0.91, 0.25, 0.32), abs=0.01)
+
+
+def test_longest_period_and_no_gait_reason():
+    w = paper(0.3)
+    rigid = rf.find_gait(paper(math.inf), "A")
+    longest = max(rf.attractors(w)[0].period, rigid.period)
+    assert rf.longest_period(w, [0.3]) == pytest.approx(longest)
+    assert rf.longest_period(w, [0.3, 2.0]) >= longest
+    low = paper(0.05)
+    assert not rf.attractors(low)
+    assert rf.no_gait_reason(low).startswith(f"mu must be >= {rf.gait_boundaries(KAPPA, 10, ALPHA).d_lower:.4f}")

@@ -58,7 +58,7 @@ from __future__ import annotations
 import math
 import warnings
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import lru_cache
 
 import numpy as np
@@ -1018,6 +1018,26 @@ def attractors(w: FrictionWheel) -> tuple[Gait, ...]:
     return tuple(out)
 
 
+def longest_period(w: FrictionWheel, mus: Sequence[float]) -> float:
+    """The longest period (nondimensional) of the stable gaits of ``w`` at each friction of ``mus`` (0 where there is
+    none), and at least the no-slip wheel's sticking gait's (1 if it has none): the time a run of one step needs."""
+    periods = [max([g.period for g in attractors(replace(w, mu=float(mu)))], default=0.0) for mu in mus]
+    rigid = find_gait(replace(w, mu=math.inf), "A")
+    periods.append(rigid.period if rigid is not None else 1.0)
+    return max(periods)
+
+
+def no_gait_reason(w: FrictionWheel) -> str:
+    """Why ``w`` has no stable gait of types A-D+ (002 Sec. 3.3): mu below the D branch (the wheel rolls back), or
+    none found."""
+    edges = gait_boundaries(w.kappa, w.spokes, w.slope)
+    if math.isfinite(edges.d_lower) and w.mu < edges.d_lower:
+        return (f"mu must be >= {edges.d_lower:.4f} for spokes={w.spokes}, kappa={w.kappa:g}, slope={w.slope:g} (got "
+                f"{w.mu:g}): below the Type D branch no stable gait exists and the wheel rolls back (002 Sec. 3.3)")
+    return (f"mu={w.mu:g} has no stable gait of types A-D+ for spokes={w.spokes}, kappa={w.kappa:g}, "
+            f"slope={w.slope:g} (the reference finds none; 002 Sec. 3.3): choose another mu or kappa")
+
+
 def _distance(gait: Gait, z: tuple[float, float]) -> float:
     if gait.kind == "C":
         return max(abs(z[0] - gait.fixed_point[0]), abs(z[1] - gait.fixed_point[1]))
@@ -1091,6 +1111,7 @@ def _d_record(w: FrictionWheel) -> StepRecord | None:
     return rec
 
 
+@lru_cache(maxsize=16)
 def gait_boundaries(kappa: float, spokes: int, slope: float, tol: float = 1e-6) -> GaitBoundaries:
     """Locate the gait-type boundaries of :class:`GaitBoundaries` by bisection in mu on the simulator (to ``tol``):
     A/B on whether the eq-16 orbit stays a Type A step; B/C on :func:`find_gait` "B"; C's lower end on

@@ -1,35 +1,26 @@
 """Scenario ``rimless-wheel-friction``: the planar rimless wheel with Coulomb friction, stick-slip gaits A-D.
 
 Analytic reference: Gamus & Or (2015), Sec. 3 and Appendix A, through the exact event-driven hybrid simulator of
-:mod:`mjpoincare.analysis.theory.rimless_wheel_friction` (sticking map eq 12-17, force ratio and mu_c eq 19-23, sticking
-impulse ratio eq 25, slip dynamics eq 42, frictional impacts eq 43-45 as corrected there, regions of attraction
-eq 26 / Fig. 3.8), run from the simulated starts by :mod:`mjpoincare.analysis.stick_slip_reference`. Gait types
-(002 Sec. 3.3): A sticking impact and stick throughout; B sticking impact, stick -> slip; C slipping impact,
-slip -> stick -> slip; D slipping impact and forward slip throughout (D+ / D-: the slip speed grows / shrinks each
-step; D- is a transient).
+:mod:`mjpoincare.analysis.theory.rimless_wheel_friction`, run from the simulated starts by
+:mod:`mjpoincare.analysis.stick_slip_reference`. Gait types (002 Sec. 3.3): A sticking impact and stick throughout;
+B sticking impact, stick -> slip; C slipping impact, slip -> stick -> slip; D slipping impact and forward slip
+throughout (D+ / D-: the slip speed grows / shrinks each step; D- is a transient).
 
-Model: the planar wheel of :mod:`mjpoincare.scenarios.rimless_wheel` (``models/rimless_wheel_2d.xml``, slope by
-tilted gravity), rebuilt by its ``build`` with the hub's radius of gyration sqrt(kappa) l and friction ``mu`` on
-both the feet and the floor (MuJoCo combines friction by the element-wise max: the floor's default would cap mu).
-
-Measurement, all vectorised on the recorded states (no Python between MuJoCo steps): 002's variables of each row
-and the contact force, m (a_hub - g) (the spokes are massless), from the hub's recorded acceleration
-(:func:`row_signals`); mid-stance section theta = 0, far from the soft impact; contact modes from friction-cone
-saturation, phases, impacts and gait types per step by :mod:`mjpoincare.analysis.stick_slip_phases`, with this
-module's per-preset thresholds (``V_THRESHOLD``, the impact window of :func:`classifier`); the force-ratio profile
-and mu_c by :mod:`mjpoincare.analysis.force_ratio`.
-
-All rates are reported nondimensionally (002's units, m = l = 1, omega_c = sqrt(g/(l(1+kappa))) = 1).
-The friction sweep and the regions of attraction are in :mod:`mjpoincare.scenarios.rimless_wheel_friction_sweep`
-and :mod:`mjpoincare.scenarios.rimless_wheel_friction_basins`; they reuse this module's measurement.
+Model: the planar wheel of :mod:`mjpoincare.scenarios.rimless_wheel`, rebuilt by its ``build`` with the hub's radius
+of gyration sqrt(kappa) l and friction ``mu`` on both the feet and the floor. Measurement, vectorised on the
+recorded rows (:mod:`mjpoincare.scenarios.rimless_wheel_friction_rollout`): mid-stance section theta = 0; contact
+modes from friction-cone saturation, phases, impacts and gait types by :mod:`mjpoincare.analysis.stick_slip_phases`
+with this module's per-preset thresholds; the force ratio and mu_c by :mod:`mjpoincare.analysis.force_ratio`. Rates
+are nondimensional (002's units, m = l = 1, omega_c = sqrt(g/(l(1+kappa))) = 1). The friction sweep and the regions
+of attraction, which reuse this module's experiment: :mod:`mjpoincare.scenarios.rimless_wheel_friction_sweep` and
+:mod:`mjpoincare.scenarios.rimless_wheel_friction_basins`. Why the presets, thresholds and starts are what they are:
+docs/scenarios/rimless-wheel-friction.md.
 """
 
 from __future__ import annotations
 
-import copy
 import math
 from collections.abc import Mapping, Sequence
-from functools import lru_cache
 from typing import Any
 
 import mujoco
@@ -38,16 +29,13 @@ import numpy as np
 from mjpoincare.analysis import checks
 from mjpoincare.analysis import stick_slip_phases as phases
 from mjpoincare.analysis import stick_slip_reference as reference
-from mjpoincare.analysis.force_ratio import critical_ratio, ratio_profile
-from mjpoincare.analysis.returnmap import ReturnMapFit, fit_return_map
-from mjpoincare.analysis.sections import level_crossings, wrap_phase
+from mjpoincare.analysis.sections import level_crossings
 from mjpoincare.analysis.stick_slip_phases import Classifier, Rows, Steps
 from mjpoincare.analysis.theory import rimless_wheel_friction as theory
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios import rimless_wheel as rw
 from mjpoincare.scenarios.base import (
     Evaluation,
-    JointIndex,
     RegionMap,
     ReturnMapPlot,
     Scenario,
@@ -56,8 +44,8 @@ from mjpoincare.scenarios.base import (
     Values,
     at_preset,
 )
-from mjpoincare.settings import rollout_options
-from mjpoincare.simulate import Batch, Chunk, RolloutReport, event_rollout, plain_clip
+from mjpoincare.scenarios.rimless_wheel_friction_rollout import classifier, row_signals, simulate, with_friction
+from mjpoincare.simulate import RolloutReport, plain_clip
 
 PAPER_SLOPE = math.radians(13.0)
 
@@ -71,11 +59,8 @@ PARAMS: tuple[Param, ...] = (
     Param("gravity", 9.81, "gravity, m/s^2", float, 0.0, 1e3, low_open=True),
 )
 
-#: Contact: the stiffest time constant MuJoCo allows (2 steps) and damping ratio 3. Measured (paper set, A gait at
-#: mu = 2, mid-stance theta_dot): damping ratio 1 makes the wheel hop after every impact (6 mm high, 35-55 % of the
-#: time in flight) and biases the rate by -1.3 % to -3.4 % (tc = 2 dt) or +0.5 % (tc = 10 dt); ratio 3 removes the
-#: flight and leaves +0.06 % to +0.1 % (the 0.5 mm foot's rolling predicts +0.06 %). A longer time constant both
-#: raises the creep while stuck (proportional to it) and delays the normal force (slow pole 2 tc dampratio^2).
+#: Contact: the stiffest time constant MuJoCo allows (2 steps) and damping ratio 3 (why, and the measurements behind
+#: every constant of this block: docs/scenarios/rimless-wheel-friction.md, "Presets, thresholds and starts").
 PRESETS: dict[str, dict[str, float | int | str]] = {
     "fast": {"timestep": 2e-4, "solref_timeconst": 4e-4, "solref_dampratio": 3.0, "integrator": "implicitfast",
              "cone": "elliptic"},
@@ -85,20 +70,12 @@ PRESETS: dict[str, dict[str, float | int | str]] = {
                "cone": "elliptic"},
 }
 
-#: Speed (nondimensional, units l omega_c) above which the stance foot moves: impacts and the velocity-only
-#: classification. Measured creep of stuck feet (|x_dot| over the stick rows, paper set): fast median 1e-4, 99th
-#: percentile 1.1e-3; accurate 2.5e-5 / 2.9e-4; coarse 1.9e-4 / 2.3e-3.
-V_THRESHOLD: dict[str, float] = {"fast": 5e-3, "accurate": 2e-3, "coarse": 1e-2}
 TOLERANCES: dict[str, dict[str, float]] = {
     "fast": {"midstance_rate": 5e-3, "eigenvalue": 0.02, "dx_per_step": 0.1, "slip_onset": 0.02,
              "critical_friction": 0.02},
     "accurate": {"midstance_rate": 2e-3, "eigenvalue": 0.02, "dx_per_step": 0.1, "slip_onset": 0.02,
                  "critical_friction": 0.02},
-    # coarse, the region maps' preset (0.4 ms steps, 0.8 ms contact), keeps the fast tolerances: its errors are of the
-    # fast preset's size (measured, paper set, A/B/C at mu = 2/0.3/0.24: mid-stance rate 1.1/1.6/1.8e-3, eigenvalue
-    # 1.8e-3/1.9e-3/0.012, B's slip onset 2.2e-3 rad) and a map classifies gaits, which needs no looser bound; mu_c
-    # misses (-2.9 %: the normal force lags near theta = phi, longer with the contact time constant), stated, not
-    # loosened
+    # coarse, the region maps' preset, keeps the fast tolerances
     "coarse": {"midstance_rate": 5e-3, "eigenvalue": 0.02, "dx_per_step": 0.1, "slip_onset": 0.02,
                "critical_friction": 0.02},
 }
@@ -123,20 +100,12 @@ WHY: dict[str, str] = {
 FIT_OFFSETS = (-0.12, -0.06, 0.0, 0.06, 0.12)  # relative offsets of theta_dot0 around the gait's post-impact state
 FIT_PAIRS = 12  # mid-stance pairs per fitting trajectory (beta^24 of the offset remains: near the fixed point)
 SIM_STEPS = 30  # steps simulated per trajectory (the slowest reference transient settles to 1e-3 within ~25)
-#: x_dot0 of the slipping start checked for its settled type (a D- transient at mu = 0.3). A sliding foot lifts off at
-#: normal speed mu x_dot in MuJoCo (measured): 0.05 keeps that lift at 0.2 mm; 0.3 flies 6 mm (see the README).
-SLIP_START = 0.05
-#: x_dot0 of starts on a Type D gait (its theta_dot map does not depend on x_dot > 0). Small, because the slip speed
-#: of D+ grows every step and MuJoCo's sliding foot lifts off at mu x_dot (measured): 0.1 flies after 1-6 steps.
-D_START_SLIP = 0.02
+SLIP_START = 0.05  # x_dot0 of the slipping start checked for its settled type (a D- transient at mu = 0.3)
+D_START_SLIP = 0.02  # x_dot0 of starts on a Type D gait (its theta_dot map does not depend on x_dot > 0)
 D_SIM_STEPS = 12  # D gaits: theta_dot converges within ~5 steps (lambda ~ 0.34) and the slip speed keeps growing
 SETTLED_STEPS = 5  # the last steps of a run compared with the reference gait
-IMPACT_WINDOW_TC = 5.0  # the impact window is at least this many contact time constants
 BACKWARD_RATE = -0.01  # nondimensional theta_dot below which the wheel rolls back
-#: Lowest foot this high (x leg_length) = flight ("detached"). MuJoCo's convex contact lifts a slipping foot by up to
-#: 0.6 mm below the reference's detachment edge (measured, mu = 0.3); above the edge the flight exceeds 3 mm within
-#: 0.02 of theta_dot0.
-FLIGHT_CLEARANCE = 1e-3
+FLIGHT_CLEARANCE = 1e-3  # lowest foot this high (x leg_length) = flight ("detached")
 MU_NO_SLIP = 10.0  # "unbounded" friction in simulation: far above mu_c; the reference uses the same finite mu
 
 
@@ -161,16 +130,6 @@ def rigid_params(p: Values) -> dict[str, float | int]:
             "gyration": math.sqrt(float(p["kappa"])) * l, "mu": float(p["mu"]), "gravity": float(p["gravity"])}
 
 
-@lru_cache(maxsize=64)
-def attractors(w: theory.FrictionWheel) -> tuple[theory.Gait, ...]:
-    return theory.attractors(w)
-
-
-@lru_cache(maxsize=16)
-def cached_boundaries(kappa: float, spokes: int, slope: float) -> theory.GaitBoundaries:
-    return theory.gait_boundaries(kappa, spokes, slope)
-
-
 def check_params(p: Values) -> None:
     """Refuse what the theory excludes (002 Sec. 3, eqs 18/21; Appendix A): the theory's own validation, kappa > 0
     (slip needs hub inertia: eq 42 gives f_n = 0 at kappa = 0; MuJoCo's pitch needs inertia too) and a mu with a
@@ -185,15 +144,8 @@ def check_params(p: Values) -> None:
         raise ParameterError(
             f"kappa must be in [{low:g}, 1] (got {w.kappa:g}): slipping needs hub inertia (002 eq 42: f_n = "
             f"kappa (...)/D vanishes at kappa = 0) and MuJoCo's pitch joint needs it (see rimless-wheel)")
-    if not attractors(w):
-        edges = cached_boundaries(w.kappa, w.spokes, w.slope)
-        if math.isfinite(edges.d_lower) and w.mu < edges.d_lower:
-            raise ParameterError(
-                f"mu must be >= {edges.d_lower:.4f} for spokes={w.spokes}, kappa={w.kappa:g}, slope={w.slope:g} (got "
-                f"{w.mu:g}): below the Type D branch no stable gait exists and the wheel rolls back (002 Sec. 3.3)")
-        raise ParameterError(
-            f"mu={w.mu:g} has no stable gait of types A-D+ for spokes={w.spokes}, kappa={w.kappa:g}, "
-            f"slope={w.slope:g} (the reference finds none; 002 Sec. 3.3): choose another mu or kappa")
+    if not theory.attractors(w):
+        raise ParameterError(theory.no_gait_reason(w))
 
 
 def build(p: Values, s: Values) -> mujoco.MjModel:
@@ -209,83 +161,12 @@ def start_states(model: mujoco.MjModel, p: Values, s: Values, starts: np.ndarray
     return rw.post_impact_states(model, w, starts[:, 0] * unit, float(s["foot_radius"]), starts[:, 1] * l * unit)
 
 
-def with_friction(model: mujoco.MjModel, mu: float) -> mujoco.MjModel:
-    """A copy of ``model`` whose feet and floor have friction ``mu`` (one model per trajectory in a batch)."""
-    out = copy.copy(model)
-    out.geom_friction[:, 0] = mu
-    return out
-
-
-# --- simulation -------------------------------------------------------------------------------------------------
-
-
-def simulate(models: Sequence[mujoco.MjModel], state0: np.ndarray, seconds: float, s: Values
-             ) -> tuple[Chunk, RolloutReport]:
-    """Roll every initial state out for ``seconds`` (one :func:`mujoco.rollout` batch, a model per trajectory, native
-    chunks of 0.5 s) and keep every recorded row: ``time`` (B, T), ``qpos`` and ``qvel`` (B, T, 3)."""
-    dt = models[0].opt.timestep
-    nstep = max(1, math.ceil(seconds / dt))
-    chunk = math.ceil(nstep / math.ceil(nstep / max(1, round(0.5 / dt))))  # equal chunks of <= 0.5 s: no overshoot
-    parts: list[Chunk] = []
-
-    def keep(c: Chunk, _batch: Batch) -> np.ndarray:
-        parts.append(c if not parts else Chunk(c.time[:, 1:], c.qpos[:, 1:], c.qvel[:, 1:]))
-        return np.full(c.time.shape[0], chunk)
-
-    report = event_rollout(list(models), state0, nstep, keep, chunk_steps=chunk, **rollout_options(s))
-    time_ = np.concatenate([c.time for c in parts], axis=1)[:, : nstep + 1]
-    qpos = np.concatenate([c.qpos for c in parts], axis=1)[:, : nstep + 1]
-    qvel = np.concatenate([c.qvel for c in parts], axis=1)[:, : nstep + 1]
-    return Chunk(time_, qpos, qvel), report
-
-
-# --- measurement on the recorded rows ---------------------------------------------------------------------------
-
-
-def classifier(mu: np.ndarray | float, s: Values, preset: str, batch: int) -> Classifier:
-    """Thresholds for ``preset``: ``V_THRESHOLD``; the impact window, four of the contact's slow time constants
-    2 tc dampratio^2. The soft impact leaves the new foot 0.2-0.3 mm deep (fast preset); that penetration relaxes at
-    the slow rate and meanwhile the normal force lags the rigid one (zero for 1-6 ms, then ramping up): measured at
-    mu = 0.3 (where the theory holds the post-impact force 15 % inside the cone), the friction stays on the cone, at
-    creep speed, for up to 17 ms (2.3 slow time constants) after 12-25 % of the sticking impacts. At least
-    IMPACT_WINDOW_TC time constants. The other thresholds are the classifier's (a slipping row reads mu to 4 digits,
-    inside its ``eps``)."""
-    dt = float(s["timestep"])
-    tc = max(float(s["solref_timeconst"]), 2 * dt)
-    window = max(IMPACT_WINDOW_TC * tc, 8 * tc * float(s["solref_dampratio"]) ** 2, 3 * dt)
-    return Classifier(mu=np.broadcast_to(np.asarray(mu, float), (batch,)).copy(),
-                      v_thr=V_THRESHOLD.get(preset, V_THRESHOLD["fast"]), impact_window=window)
-
-
-def row_signals(rec: Chunk, model: mujoco.MjModel, p: Values, s: Values, cls: Classifier) -> Rows:
-    """002's variables of every recorded row (theta wrapped to one step, theta_dot, the stance foot's slip speed
-    x_dot, the lowest foot's clearance) and the contact force per unit mass a_hub - g from the recorded velocities
-    (exact for Euler/implicitfast: v_k+1 = v_k + dt a_k; g is ``model``'s slope-frame gravity), classified by
-    :func:`phases.stance_rows`."""
-    phi = math.pi / int(p["spokes"])
-    l, unit = float(p["leg_length"]), rate_unit(p)
-    r = float(s["foot_radius"])
-    dt = float(s["timestep"])
-    gravity = np.asarray(model.opt.gravity)
-    x, z, pitch = (JointIndex.of(model, name) for name in ("x", "z", "pitch"))
-    theta = wrap_phase(rec.qpos[:, :, pitch.qpos], phi)
-    omega = rec.qvel[:, :, pitch.dof]
-    slip = (rec.qvel[:, :, x.dof] - omega * ((l - r) * np.cos(theta) + r)) / (l * unit)
-    clearance = (rec.qpos[:, :, z.qpos] - (l - r) * np.cos(theta) - r) / l
-    acc = np.diff(rec.qvel, axis=1) / dt
-    f_t = np.concatenate([acc[:, :, x.dof] - gravity[0], np.zeros((acc.shape[0], 1))], axis=1)
-    f_n = np.concatenate([acc[:, :, z.dof] - gravity[2], np.zeros((acc.shape[0], 1))], axis=1)
-    return phases.stance_rows(time=rec.time, theta=theta, rate=omega / unit, slip=slip, clearance=clearance,
-                              force_t=f_t, force_n=f_n, half_step=phi, timestep=dt, weight=abs(float(gravity[2])),
-                              cls=cls)
-
-
 # --- the experiment -----------------------------------------------------------------------------------------------
 
 
 def reference_gait(w: theory.FrictionWheel) -> theory.Gait:
     """The stable gait this mu settles on (002 Sec. 3.3; at most one of A, B, C, D+ per mu for the paper set)."""
-    gaits = attractors(w)
+    gaits = theory.attractors(w)
     if not gaits:
         raise ParameterError(f"mu={w.mu:g} has no stable gait of types A-D+")
     return gaits[0]
@@ -326,29 +207,14 @@ def run_batch(p: Values, s: Values, preset: str, starts: np.ndarray, steps: int,
     period = period_seconds(p, mu_all)
     rec, report = simulate(models, start_states(model, p, s, starts), steps * period + extra, s)
     cls = classifier(mu_all, s, preset, len(starts))
-    rows = row_signals(rec, model, p, s, cls)
+    rows = row_signals(rec, model, p, s, rate_unit(p), cls)
     table = phases.step_table(rows, cls, steps + 2, backward_rate=BACKWARD_RATE, flight_clearance=FLIGHT_CLEARANCE)
     return rows, table, cls, report
 
 
 def period_seconds(p: Values, mus: np.ndarray) -> float:
     """Longest gait period over the friction values (s), at least the sticking gait's, for sizing the runs."""
-    base = dict(p)
-    periods = []
-    for mu in np.unique(mus):
-        w = friction_wheel({**base, "mu": float(mu)})
-        gaits = attractors(w)
-        periods.append(max([g.period for g in gaits], default=0.0))
-    rigid = theory.find_gait(friction_wheel({**base, "mu": math.inf}), "A")
-    periods.append(rigid.period if rigid is not None else 1.0)
-    return max(periods) / rate_unit(p)
-
-
-def fit_steps(steps: Steps, mask: np.ndarray, kind: str, seed: int) -> tuple[ReturnMapFit, np.ndarray, np.ndarray]:
-    """Quadratic fit of the mid-stance map from the first FIT_PAIRS pairs of each fitting trajectory whose two steps
-    are of the gait's type (:func:`phases.midstance_pairs`); returns the fit and the pairs (N,), (N,)."""
-    x, y = phases.midstance_pairs(steps, np.nonzero(mask)[0], kind, FIT_PAIRS)
-    return fit_return_map(x, y, degree=2, seed=seed), x[:, 0], y[:, 0]
+    return theory.longest_period(friction_wheel(p), np.unique(mus)) / rate_unit(p)
 
 
 # --- the checks ---------------------------------------------------------------------------------------------------
@@ -368,14 +234,14 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     sim_types = [phases.outcome(steps, b) for b in range(len(starts))]
     agree = sum(r.outcome == t for r, t in zip(refs, sim_types, strict=True))
     main = int(np.nonzero(fit_mask)[0][len(FIT_OFFSETS) // 2])
-    out.append(_match("gait_type", refs[main].outcome, sim_types[main], len(starts) - agree, len(starts),
-                      "settled type (failure, else the type of the last step) of each start (the gait's post-impact "
-                      "state, theta_dot0 offsets, a slipping start) vs the reference's theory.settle from the same "
-                      f"start (002 Sec. 3.3); error = fraction that differ: simulated {sim_types}, reference "
-                      f"{[r.outcome for r in refs]}"))
+    out.append(checks.categorical(
+        "gait_type", refs[main].outcome, sim_types[main], len(starts) - agree, len(starts),
+        "settled type (failure, else the type of the last step) of each start (the gait's post-impact state, "
+        "theta_dot0 offsets, a slipping start) vs the reference's theory.settle from the same start (002 Sec. 3.3); "
+        f"error = fraction that differ: simulated {sim_types}, reference {[r.outcome for r in refs]}"))
     extras: dict[str, Any] = {}
     try:
-        fit, x, x_next = fit_steps(steps, fit_mask, gait.kind, seed)
+        fit, x, x_next = phases.fit_midstance_map(steps, np.nonzero(fit_mask)[0], gait.kind, FIT_PAIRS, seed)
         mid_sim, lam_sim = float(fit.fixed_point[0]), float(np.real(fit.eigenvalues[0]))  # 1-D map: real
         extras["fit"] = fit.to_dict()
         grid = np.linspace(float(x.min()), float(x.max()), 40)
@@ -394,18 +260,18 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
                                tol["eigenvalue"], "", WHY["eigenvalue"]))
     settled = phases.settled_steps(steps, main, SETTLED_STEPS)
     impact_sim = ["slipping" if steps.impact_slipping[main, j] else "sticking" for j in settled]
-    out.append(_match("impact_kind", gait.impact, _most_common(impact_sim),
-                      sum(k != gait.impact for k in impact_sim), len(settled),
-                      f"kind of the settled steps' impacts ({impact_sim}) vs the gait's (002 eq 44): slipping when "
-                      "the new foot's speed after the impact window exceeds v_thr or the impulse ratio is on the cone; "
-                      f"v_thr = {cls.v_thr:g} ({WHY['v_thr']}); error = fraction that differ"))
+    out.append(checks.categorical(
+        "impact_kind", gait.impact, checks.most_common(impact_sim), sum(k != gait.impact for k in impact_sim),
+        len(settled), f"kind of the settled steps' impacts ({impact_sim}) vs the gait's (002 eq 44): slipping when "
+        "the new foot's speed after the impact window exceeds v_thr or the impulse ratio is on the cone; "
+        f"v_thr = {cls.v_thr:g} ({WHY['v_thr']}); error = fraction that differ"))
     measured = [phases.phase_sequence(steps.runs, main, int(j)) for j in settled]
     names = [" > ".join(ph[0]) for ph in measured]
-    out.append(_match("phase_sequence", " > ".join(gait.phases), _most_common(names),
-                      sum(ph[0] != gait.phases for ph in measured), len(settled),
-                      f"stick/slip phases of the settled steps ({names}) vs the gait's (002 eq 35): a row slips when "
-                      "its friction is on the cone (force ratio of the hub's recorded acceleration over 1 ms); error "
-                      "= fraction that differ"))
+    out.append(checks.categorical(
+        "phase_sequence", " > ".join(gait.phases), checks.most_common(names),
+        sum(ph[0] != gait.phases for ph in measured), len(settled),
+        f"stick/slip phases of the settled steps ({names}) vs the gait's (002 eq 35): a row slips when its friction "
+        "is on the cone (force ratio of the hub's recorded acceleration over 1 ms); error = fraction that differ"))
     if gait.kind == "B":
         onset_sim = float(np.nanmedian(steps.onset[main, settled])) if settled.size else math.nan
         out.append(checks.absolute("slip_onset", gait.phase_angles[-1], onset_sim, tol["slip_onset"], "rad",
@@ -417,16 +283,10 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
         out.append(checks.relative("dx_per_step", gait.dx_per_step, dx_sim, tol["dx_per_step"], "",
                                    WHY["dx_per_step"]))
     if gait.kind == "A":
-        phi = math.pi / w.spokes
         pooled = phases.settled_rows(rows, steps, np.nonzero(fit_mask)[0], "A", SETTLED_STEPS)
-        centres, ratio = ratio_profile(rows.theta, rows.force_t, rows.force_n, pooled, phi)
-        rigid = theory.FrictionWheel(w.spokes, w.kappa, w.slope, math.inf)
-        mu_c = theory.critical_friction(rigid)[0]
-        out.append(checks.relative("critical_friction", mu_c, critical_ratio(centres, ratio, phi),
-                                   tol["critical_friction"], "", WHY["critical_friction"]))
-        analytic_ratio = np.asarray(theory.force_ratio(rigid, centres), float)
-        extras["force_ratio_profile"] = {"theta": centres, "simulated": ratio, "analytic": analytic_ratio,
-                                         "max_abs_error": float(np.nanmax(np.abs(ratio - analytic_ratio)))}
+        mu_c, mu_c_sim, extras["force_ratio_profile"] = reference.force_ratio_comparison(w, rows, pooled)
+        out.append(checks.relative("critical_friction", mu_c, mu_c_sim, tol["critical_friction"], "",
+                                   WHY["critical_friction"]))
     extras["analytic"] = reference.gait_values(w, gait)
     extras["steps"] = phases.step_report(steps, main, refs[main].kinds, refs[main].mid_rate)
     extras["thresholds"] = {"v_thr": cls.v_thr, "saturation_eps": cls.eps, "impact_window_s": cls.impact_window,
@@ -436,16 +296,6 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
                          "reference": r.outcome, "reference_steps": r.settle_steps}
                         for b, (z, t, r) in enumerate(zip(starts, sim_types, refs, strict=True))]
     return Evaluation(out, report, extras)
-
-
-def _match(name: str, analytic: str, simulated: str, wrong: int, total: int, why: str) -> checks.Check:
-    """A categorical check: the reference's and the (main) simulated category, error = fraction that differ."""
-    return checks.Check(name=name, analytic=analytic, simulated=simulated or "none",
-                        error=wrong / total if total else math.nan, tolerance=0.0, kind="fraction", unit="", why=why)
-
-
-def _most_common(items: Sequence[str]) -> str:
-    return max(set(items), key=list(items).count) if items else ""
 
 
 # --- probe, reference bench, render clip, soak ----------------------------------------------------------------------
@@ -487,7 +337,7 @@ def soak(p: Values, s: Values, impacts: int) -> Soak:
     seconds = impacts * period_seconds(p, np.array([w.mu])) + 0.5
     rec, report = simulate([model], start_states(model, p, s, np.array([gait_start(gait)])), seconds, s)
     cls = classifier(w.mu, s, "fast", 1)
-    rows = row_signals(rec, model, p, s, cls)
+    rows = row_signals(rec, model, p, s, rate_unit(p), cls)
     phi = math.pi / w.spokes
     mid = level_crossings(rec.time, rows.theta, rows.rate[:, :, None], max_jump=phi)
     return Soak(mid.values[:, 0], gait.midstance_rate, "mid-stance theta_dot (nondimensional)", report)

@@ -14,7 +14,7 @@ import numpy as np
 
 from mjpoincare.analysis.checks import jsonable
 from mjpoincare.analysis.force_ratio import critical_ratio, ratio_profile
-from mjpoincare.analysis.stick_slip_phases import Steps, outcome, settled_rows
+from mjpoincare.analysis.stick_slip_phases import Steps, fit_midstance_map, outcome, settled_rows
 from mjpoincare.analysis.theory import rimless_wheel_friction as theory
 from mjpoincare.params import ParameterError
 from mjpoincare.result import write_json
@@ -22,10 +22,8 @@ from mjpoincare.scenarios.base import Values
 from mjpoincare.scenarios.rimless_wheel_friction import (
     D_SIM_STEPS,
     FIT_OFFSETS,
+    FIT_PAIRS,
     SETTLED_STEPS,
-    attractors,
-    cached_boundaries,
-    fit_steps,
     friction_wheel,
     gait_start,
     run_batch,
@@ -43,7 +41,7 @@ def sweep_reference(p: Values, mu: float) -> dict[str, Any]:
     :func:`theory.settle` reaches from the simulation's middle start (the gait's start, or eq 16's sticking fixed point
     where no gait exists)."""
     w = friction_wheel({**p, "mu": mu})
-    gaits = attractors(w)
+    gaits = theory.attractors(w)
     if gaits:
         gait = gaits[0]
         start = gait_start(gait)
@@ -77,7 +75,7 @@ def sweep_batch(p: Values, s: Values, preset: str, refs: list[dict[str, Any]], s
         if ref["gait"]:
             try:
                 mine = np.isin(np.arange(len(starts)), range(i * n, (i + 1) * n))
-                fit, _, _ = fit_steps(steps, mine, ref["gait"], seed)
+                fit, _, _ = fit_midstance_map(steps, np.nonzero(mine)[0], ref["gait"], FIT_PAIRS, seed)
                 lam = float(np.real(fit.eigenvalues[0]))
             except ValueError:
                 lam = math.nan
@@ -192,7 +190,7 @@ def run_mu_sweep(values: Sequence[str], assignments: Mapping[str, str], preset: 
                   f"({time.perf_counter() - start:.0f} s)", file=sys.stderr)
     rows.sort(key=lambda r: r["mu"])
     w = friction_wheel(p)
-    summary = sweep_summary(rows, cached_boundaries(w.kappa, w.spokes, w.slope))
+    summary = sweep_summary(rows, theory.gait_boundaries(w.kappa, w.spokes, w.slope))
     wall = time.perf_counter() - start
     print(sweep_table(rows, summary, wall, ref_wall, len(todo)))
     if json_path:
