@@ -22,6 +22,7 @@ from mjpoincare import gate
 from mjpoincare.cli import main
 from mjpoincare.params import ParameterError
 from mjpoincare.scenarios import rimless_wheel_3d as rw3
+from mjpoincare.scenarios import rimless_wheel_3d_runs as rw3_runs
 from mjpoincare.validation import resolve_inputs
 
 pytestmark = pytest.mark.mujoco
@@ -124,7 +125,7 @@ def test_start_quaternions_are_mujocos() -> None:
     """The start and post-impact orientations written into qpos are the quaternions MuJoCo itself would give the
     stance-spoke frames (mju_mat2Quat), on every branch of the conversion."""
     w = theory.RimlessWheel3D(16, 0.125, 0.5, math.pi / 10)
-    poses = [rw3.hybrid.pose(x[0], x[1], theta) for x in rw3.fit_starts(w, 2e-3) for theta in (0.0, 0.2, 3.0)]
+    poses = [rw3.hybrid.pose(x[0], x[1], theta) for x in rw3_runs.fit_starts(w, 2e-3) for theta in (0.0, 0.2, 3.0)]
     for R in [*poses, np.diag([1.0, -1.0, -1.0]), np.diag([-1.0, 1.0, -1.0]), np.diag([-1.0, -1.0, 1.0])]:
         expected = np.empty(4)
         mujoco.mju_mat2Quat(expected, np.ascontiguousarray(R).ravel())

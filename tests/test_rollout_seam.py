@@ -119,7 +119,7 @@ def test_event_rollout_restarts_at_the_returned_row_and_takes_overrides(free: mu
         seen.append(np.concatenate([chunk.time[:, :, None], chunk.qpos, chunk.qvel], axis=2))
         return np.array([5, 20, 20]), {1: override}
 
-    report = event_rollout(_copies(free, 3), start, 40, on_chunk, chunk_steps=20)
+    report = event_rollout(free, start, 40, on_chunk, chunk_steps=20)
     for before, after in itertools.pairwise(seen):
         np.testing.assert_array_equal(after[0, 0], before[0, 5])
         np.testing.assert_array_equal(after[1, 0], override)
@@ -166,7 +166,7 @@ def test_setup_switches_before_the_first_chunk(model: mujoco.MjModel) -> None:
         first.append(chunk.qpos[:, 1, drop - 1])
         return np.full(2, 10)
 
-    event_rollout(_copies(model, 2), _states(model, 2), 10, on_chunk, chunk_steps=10,
+    event_rollout(model, _states(model, 2), 10, on_chunk, chunk_steps=10,
                   setup=lambda batch: batch.set_contact(0, ball, False))
     assert first[0][0] < first[0][1]  # the released ball drops from the first step on
 
@@ -215,6 +215,26 @@ def test_advance_steps_a_fraction_of_the_timestep(model: mujoco.MjModel) -> None
     assert state[0] == pytest.approx(0.0005) and models[0].opt.timestep == 0.002
 
 
-def test_a_shared_model_refuses_events(model: mujoco.MjModel) -> None:
-    with MujocoBatch(model, _states(model, 2)) as batch, pytest.raises(ValueError, match="one model per trajectory"):
-        batch.set_contact(0, model.geom("ball").id, False)
+def test_a_shared_model_is_copied_for_the_trajectory_an_event_changes(model: mujoco.MjModel) -> None:
+    """Events on one trajectory of a shared model change that trajectory's own copy: the caller's model and the
+    other trajectories keep theirs, and the released ball falls through as with a model of its own."""
+    ball, drop = model.geom("ball").id, _column(model, "drop")
+    margins, frictions = model.geom_margin.copy(), model.geom_friction.copy()
+    with MujocoBatch(model, _states(model, 3)) as batch:
+        batch.set_contact(1, ball, False)
+        batch.set_friction(2, 0.25)
+        rows = batch.run_chunk(200)
+        assert batch.models[0] is model and batch.models[1] is not model and batch.models[2] is not model
+        assert batch.models[1].geom_margin[ball] == RELEASED_MARGIN and batch.models[2].geom_friction[ball, 0] == 0.25
+    np.testing.assert_array_equal(model.geom_margin, margins)
+    np.testing.assert_array_equal(model.geom_friction, frictions)
+    assert rows[0, -1, drop] > -0.01 and rows[2, -1, drop] > -0.01 and rows[1, -1, drop] < -0.5
+
+
+def test_friction_set_per_trajectory_only(model: mujoco.MjModel) -> None:
+    """Every geom's sliding friction in the changed trajectory's copy, and nowhere else."""
+    with MujocoBatch(model, _states(model, 2)) as batch:
+        batch.set_friction(1, 0.5)
+        assert batch.models[1].geom_friction[:, 0].tolist() == [0.5] * model.ngeom
+        np.testing.assert_array_equal(batch.models[1].geom_friction[:, 1:], model.geom_friction[:, 1:])
+        assert batch.models[0] is model and model.geom_friction[0, 0] == 1.0

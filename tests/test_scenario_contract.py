@@ -18,7 +18,7 @@ import pytest
 from mjpoincare import gate
 from mjpoincare.result import write_json
 from mjpoincare.scenarios import REGISTRY, Scenario
-from mjpoincare.scenarios.base import MissingTolerances, at_preset
+from mjpoincare.scenarios.base import MissingTolerances, Tolerances, at_preset
 from mjpoincare.simulate import STATE_SPEC
 from mjpoincare.validation import resolve_inputs
 
@@ -37,7 +37,9 @@ def test_defaults_pass_check_params_and_tolerances_exist(name: str, preset: str)
     scenario.check_params({p.name: p.default for p in scenario.params})
     for table in _tolerance_tables(scenario):
         tolerances = at_preset(table, name, preset)
-        assert tolerances and all(np.isfinite(v) and v >= 0 for v in tolerances.values()), tolerances
+        assert isinstance(tolerances, Tolerances) and tolerances.bounds, tolerances
+        assert all(np.isfinite(v) and v >= 0 for v in tolerances.bounds.values()), tolerances
+        assert tolerances.why or tolerances.reasons, f"{name}[{preset}]: no reason given for its tolerances"
 
 
 def test_a_missing_preset_is_an_error_not_a_fallback() -> None:

@@ -18,6 +18,7 @@ MuJoCo's warnings, captured by :func:`mjpoincare.mjlog.captured_mujoco_log`.
 
 from __future__ import annotations
 
+import copy
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
@@ -193,6 +194,11 @@ class Batch(Protocol):
         (MuJoCo docs, "Actuation model")."""
         ...
 
+    def set_friction(self, index: int, mu: float) -> None:
+        """Trajectory ``index``'s sliding friction coefficient: every geom's ``friction[0]`` (MuJoCo mixes a contact's
+        friction as the larger of its two geoms', so every contact of the trajectory then has ``mu``)."""
+        ...
+
     def advance(self, index: int, state: np.ndarray, seconds: float) -> np.ndarray:
         """``state`` (nstate,) after one step of ``seconds`` (a fraction of the timestep) of trajectory ``index``'s
         model and integrator: how an event controller lands a state on its guard."""
@@ -200,15 +206,18 @@ class Batch(Protocol):
 
 
 class MujocoBatch:
-    """:class:`Batch` on MuJoCo C: ``mujoco.rollout``'s thread pool and ``models`` (one per trajectory, or one shared
-    model for a batch without events); a trajectory's events change its own model copy. A context manager (the pool
-    and, at exit, the data's warnings in ``report``)."""
+    """:class:`Batch` on MuJoCo C: ``mujoco.rollout``'s thread pool over ``models``. One model is shared by every
+    trajectory until an event changes a trajectory's: that trajectory then gets its own copy (the caller's model is
+    never changed). A list gives each trajectory its own model, changed in place by its events. A context manager
+    (the pool and, at exit, the data's warnings in ``report``)."""
 
     def __init__(self, models: Sequence[mujoco.MjModel] | mujoco.MjModel, state0: np.ndarray, threads: int = 2
                  ) -> None:
-        self.models = models if isinstance(models, mujoco.MjModel) else list(models)
-        first = self.models if isinstance(self.models, mujoco.MjModel) else self.models[0]
         self._current = np.array(state0, dtype=float)
+        batch = self._current.shape[0]
+        self._shared = models if isinstance(models, mujoco.MjModel) else None
+        self.models: list[mujoco.MjModel] = [models] * batch if isinstance(models, mujoco.MjModel) else list(models)
+        first = self.models[0]
         self._datas = [mujoco.MjData(first) for _ in range(max(1, threads))]
         self._event_data: mujoco.MjData | None = None
         self._released: dict[tuple[int, int], float] = {}
@@ -226,12 +235,15 @@ class MujocoBatch:
         self.report.warnings = _warning_lines(self._datas) + self.report.warnings
 
     def _model(self, index: int) -> mujoco.MjModel:
-        if isinstance(self.models, mujoco.MjModel):
-            raise ValueError("events need one model per trajectory; this batch shares one")
+        """Trajectory ``index``'s own model, to change (copied from the shared one on its first change)."""
+        if self._shared is not None and self.models[index] is self._shared:
+            self.models[index] = copy.copy(self._shared)
         return self.models[index]
 
     def run_chunk(self, nstep: int, control: np.ndarray | None = None) -> np.ndarray:
-        states, full = _native_chunk(self._pool, self.models, self._datas, self._current, nstep, self.timestep,
+        models = self._shared if self._shared is not None and all(m is self._shared for m in self.models) \
+            else self.models
+        states, full = _native_chunk(self._pool, models, self._datas, self._current, nstep, self.timestep,
                                      self.report, control)
         self._current = states[:, -1, :].copy()
         return full
@@ -262,9 +274,13 @@ class MujocoBatch:
         if gear is not None:
             model.actuator_gear[actuator, 0] = gear
 
+    def set_friction(self, index: int, mu: float) -> None:
+        model = self._model(index)
+        model.geom_friction[:, 0] = mu
+
     def advance(self, index: int, state: np.ndarray, seconds: float) -> np.ndarray:
         """One event ``mjData`` serves the batch, set from ``state`` each time (its solver warmstart carries over)."""
-        model = self.models if isinstance(self.models, mujoco.MjModel) else self.models[index]
+        model = self.models[index]
         if self._event_data is None:
             self._event_data = mujoco.MjData(model)
         mujoco.mj_setState(model, self._event_data, state, STATE_SPEC)
@@ -309,7 +325,7 @@ def rollout_batch(
 
 
 def event_rollout(
-    models: list[mujoco.MjModel],
+    model: mujoco.MjModel,
     state0: np.ndarray,
     nstep: int,
     on_chunk: Callable[[Chunk, Batch], np.ndarray | tuple[np.ndarray, dict[int, np.ndarray]]],
@@ -322,7 +338,8 @@ def event_rollout(
 ) -> RolloutReport:
     """Batched rollout with a controller that acts at events, without Python between steps.
 
-    ``models``: one per trajectory (same sizes); events change a trajectory's own through the :class:`Batch`.
+    ``model``: shared by every trajectory; an event changes a trajectory's own copy through the :class:`Batch`
+    (``model`` itself is never changed).
     ``setup(batch)`` (optional) runs before the first chunk (e.g. the initial contacts). The batch is stepped in
     native chunks of ``chunk_steps``; ``on_chunk(chunk, batch)`` inspects the recorded chunk (vectorised), may switch
     trajectories' contacts, constraints or actuators through ``batch``, and for each trajectory returns the row to
@@ -341,10 +358,10 @@ def event_rollout(
     ``start_perturbation``: as in :func:`rollout_batch`.
     """
     batch_size = state0.shape[0]
-    nq, nv = models[0].nq, models[0].nv
+    nq, nv = model.nq, model.nv
     kept = np.zeros(batch_size, int)
     with captured_mujoco_log() as log:
-        with MujocoBatch(models, perturbed_starts(state0, nq, nv, start_perturbation), threads) as batch:
+        with MujocoBatch(model, perturbed_starts(state0, nq, nv, start_perturbation), threads) as batch:
             if setup is not None:
                 setup(batch)
             while (kept < nstep).any():
@@ -419,13 +436,13 @@ class KeptRows:
         return np.concatenate(self.tags)[:nstep]
 
 
-def event_clip(models: list[mujoco.MjModel], state0: np.ndarray, nstep: int,
+def event_clip(model: mujoco.MjModel, state0: np.ndarray, nstep: int,
                controller: Callable[[Chunk, Batch], np.ndarray | tuple[np.ndarray, dict]],
                chunk_steps: int, tag: Callable[[], np.ndarray] | None = None,
                setup: Callable[[Batch], None] | None = None) -> KeptRows:
-    """A render clip with events: ``state0`` (1, nstate) run ``nstep`` steps by :func:`event_rollout` on ``models``
-    (one copy, one thread) with ``controller`` (and ``setup``, as there); the kept rows (:meth:`KeptRows.states`,
+    """A render clip with events: ``state0`` (1, nstate) run ``nstep`` steps by :func:`event_rollout` on ``model``
+    (one thread) with ``controller`` (and ``setup``, as there); the kept rows (:meth:`KeptRows.states`,
     :meth:`KeptRows.tagged`)."""
     kept = KeptRows(controller, tag=tag)
-    event_rollout(models, state0, nstep, kept, threads=1, chunk_steps=chunk_steps, setup=setup)
+    event_rollout(model, state0, nstep, kept, threads=1, chunk_steps=chunk_steps, setup=setup)
     return kept

@@ -3,13 +3,9 @@
 A :class:`Scenario` is declared once (in its own module) and used by the CLI, the tests, the
 benchmark and the renderer alike; :mod:`mjpoincare.scenarios` keeps the registry.
 
-Tolerances and their reasons. A scenario module's ``TOLERANCES`` maps a preset to the bound of each check by check
-name (rimless-wheel-3d: one such table per impact mode); :func:`at_preset` reads it. Its ``WHY`` holds the reasons a
-check's ``why`` text gives for its bound: what sets the error at that preset (contact time constant, step, fit bias)
-and what was measured. Three shapes are in use, each keeping today's report text: a sentence per preset appended to
-the checks that share it (rimless-wheel, compass-biped, compass-biped-friction, slotted-skate), the same per impact
-mode then preset (rimless-wheel-3d), and a sentence per check, the same at every preset (rimless-wheel-friction, whose
-presets share their reasons).
+Tolerances and their reasons. A scenario module's ``TOLERANCES`` maps a preset to its :class:`Tolerances` (the bound of
+each check by name, and why; rimless-wheel-3d: one such table per impact mode); :func:`at_preset` reads it, and a
+preset without tolerances is an error, never a fallback.
 """
 
 from __future__ import annotations
@@ -44,6 +40,25 @@ def at_preset(table: Mapping[str, T], scenario: str, preset: str) -> T:
     except KeyError:
         raise MissingTolerances(f"scenario {scenario!r} declares no tolerances for preset {preset!r} "
                                 f"(declared: {', '.join(table)})") from None
+
+
+@dataclass(frozen=True)
+class Tolerances:
+    """A preset's tolerances: the bound of each check, and why each bound is what it is.
+
+    Attributes:
+        bounds: check name -> bound (absolute or relative, as the check's ``kind`` says).
+        why: what sets the error at this preset and what was measured (the sentence the checks' texts end with).
+        reasons: check name -> the reason for that check's bound, where it has its own.
+    """
+
+    bounds: Mapping[str, float]
+    why: str = ""
+    reasons: Mapping[str, str] = field(default_factory=dict)
+
+    def __getitem__(self, check: str) -> float:
+        """The bound of ``check`` (KeyError for a check the table does not bound)."""
+        return self.bounds[check]
 
 
 @dataclass(frozen=True)

@@ -42,6 +42,7 @@ from mjpoincare.scenarios.base import (
     Scenario,
     Soak,
     StressCase,
+    Tolerances,
     Values,
     at_preset,
 )
@@ -75,15 +76,17 @@ PRESETS: dict[str, dict[str, float | int | str]] = {
     "accurate": {"timestep": 2e-5, "solref_timeconst": 2e-4, "solref_dampratio": 10.0,
                  "integrator": "implicitfast"},
 }
-TOLERANCES: dict[str, dict[str, float]] = {
-    "accurate": {"fixed_point": 1e-3, "eigenvalues": 0.01, "step_period": 1e-3, "step_length": 1e-3},
-    "fast": {"fixed_point": 5e-3, "eigenvalues": 0.03, "step_period": 5e-3, "step_length": 5e-3},
-}
-WHY = {
-    "accurate": "0.2 ms overdamped contact and 20 us steps: impact window ~1 ms; 1e-3 is the accuracy the accurate "
-                "preset promises",
-    "fast": "1 ms overdamped contact and 0.1 ms steps: the impact onset jitters on the step grid (one-step map "
-            "errors ~1e-3 against the exact map), which limits the eigenvalues to a few 1e-2",
+TOLERANCES: dict[str, Tolerances] = {
+    "accurate": Tolerances(
+        bounds={"fixed_point": 1e-3, "eigenvalues": 0.01, "step_period": 1e-3, "step_length": 1e-3},
+        why="0.2 ms overdamped contact and 20 us steps: impact window ~1 ms; 1e-3 is the accuracy the accurate "
+            "preset promises"
+    ),
+    "fast": Tolerances(
+        bounds={"fixed_point": 5e-3, "eigenvalues": 0.03, "step_period": 5e-3, "step_length": 5e-3},
+        why="1 ms overdamped contact and 0.1 ms steps: the impact onset jitters on the step grid (one-step map "
+            "errors ~1e-3 against the exact map), which limits the eigenvalues to a few 1e-2"
+    ),
 }
 
 STEPS = 10  # heel strikes per trajectory
@@ -188,8 +191,7 @@ def _run(model: mujoco.MjModel, bp: theory.CompassBiped, starts: np.ndarray, ste
     controller = GaitController(model, bp, len(starts), float(s["foot_radius"]))
     period = theory.step_period(bp, theory.fixed_point(bp))
     nstep = math.ceil((steps + 0.5) * period / model.opt.timestep)
-    report = event_rollout([copy.copy(model) for _ in starts],
-                           post_impact_states(model, bp, starts, float(s["foot_radius"])), nstep, controller,
+    report = event_rollout(model, post_impact_states(model, bp, starts, float(s["foot_radius"])), nstep, controller,
                            **rollout_options(s), chunk_steps=max(10, round(CHUNK_SECONDS / model.opt.timestep)),
                            setup=controller.configure)
     return controller, report
@@ -229,7 +231,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     """Simulate the perturbed gaits, fit the legs-parallel return map and check it against the theory."""
     controller, report, bp, model = _simulate(p, s)
     tol = at_preset(TOLERANCES, COMPASS_BIPED.name, preset)
-    why = at_preset(WHY, COMPASS_BIPED.name, preset)
+    why = tol.why
     x_star = theory.fixed_point(bp)
     lam = theory.eigenvalues(bp, x_star)
     sequences = [np.array(seq) for seq in controller.samples]
@@ -363,7 +365,7 @@ def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
     start = post_impact_states(model, bp, theory.fixed_point(bp)[None, :], float(s["foot_radius"]))
     controller = GaitController(model, bp, 1, float(s["foot_radius"]))
     chunk = max(10, round(CHUNK_SECONDS / model.opt.timestep))
-    return event_clip([copy.copy(model)], start, nstep, controller, chunk, setup=controller.configure).states(nstep)
+    return event_clip(model, start, nstep, controller, chunk, setup=controller.configure).states(nstep)
 
 
 COMPASS_BIPED = Scenario(

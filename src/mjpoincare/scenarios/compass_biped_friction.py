@@ -31,7 +31,6 @@ swing foot goes below the slope (002 Sec. 4.1 ignores this scuffing).
 
 from __future__ import annotations
 
-import copy
 import math
 import time
 from functools import lru_cache
@@ -48,7 +47,7 @@ from mjpoincare.analysis.start_designs import sphere_offsets
 from mjpoincare.analysis.theory import compass_biped_friction as theory
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios import compass_biped as cb
-from mjpoincare.scenarios.base import Evaluation, ReturnMapPlot, Scenario, StressCase, Values, at_preset
+from mjpoincare.scenarios.base import Evaluation, ReturnMapPlot, Scenario, StressCase, Tolerances, Values, at_preset
 from mjpoincare.scenarios.compass_biped_friction_stance import stance_checks
 from mjpoincare.scenarios.compass_gait_controller import FrictionGaitController
 from mjpoincare.settings import rollout_options
@@ -76,13 +75,18 @@ PARAMS: tuple[Param, ...] = (
 
 PRESETS: dict[str, dict[str, float | int | str]] = cb.PRESETS
 #: Why each tolerance is what it is: docs/scenarios/compass-biped-friction.md, "Tolerances and start design".
-TOLERANCES: dict[str, dict[str, float]] = {
-    "accurate": {"fixed_point": 1e-3, "eigenvalues": 0.01, "step_period": 1e-3, "step_length": 1e-3,
-                 "speed": 1e-3, "cost_of_transport": 5e-3, "friction_ratio": 2e-3, "phase_time": 2e-3},
-    "fast": {"fixed_point": 5e-3, "eigenvalues": 0.03, "step_period": 5e-3, "step_length": 5e-3,
-             "speed": 5e-3, "cost_of_transport": 1e-2, "friction_ratio": 5e-3, "phase_time": 5e-3},
+TOLERANCES: dict[str, Tolerances] = {
+    "accurate": Tolerances(
+        bounds={"fixed_point": 1e-3, "eigenvalues": 0.01, "step_period": 1e-3, "step_length": 1e-3, "speed": 1e-3,
+                "cost_of_transport": 5e-3, "friction_ratio": 2e-3, "phase_time": 2e-3},
+        why=cb.TOLERANCES["accurate"].why,
+    ),
+    "fast": Tolerances(
+        bounds={"fixed_point": 5e-3, "eigenvalues": 0.03, "step_period": 5e-3, "step_length": 5e-3, "speed": 5e-3,
+                "cost_of_transport": 1e-2, "friction_ratio": 5e-3, "phase_time": 5e-3},
+        why=cb.TOLERANCES["fast"].why,
+    ),
 }
-WHY = cb.WHY
 
 STEPS = 8  # heel strikes per trajectory
 STARTS = 16  # perturbed starts around the fixed point (plus the fixed point itself)
@@ -246,7 +250,7 @@ def _run(p: Values, s: Values, model: mujoco.MjModel, starts: np.ndarray, steps:
     chunk = max(10, round(CHUNK_SECONDS / model.opt.timestep))
     nstep = math.ceil((steps + 0.5) * g.record.period / model.opt.timestep)
     kept = KeptRows(controller) if wrap else None
-    report = event_rollout([copy.copy(model) for _ in starts], post_impact_states(model, g.biped, starts, radius),
+    report = event_rollout(model, post_impact_states(model, g.biped, starts, radius),
                            nstep, kept if kept is not None else controller, **rollout_options(s), chunk_steps=chunk,
                            control=(lambda t0: controller.control(t0, chunk)) if pd is not None else None,
                            setup=controller.configure)
@@ -260,7 +264,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     name = gait_name(p)
     model = build(p, s)
     tol = at_preset(TOLERANCES, COMPASS_BIPED_FRICTION.name, preset)
-    why = at_preset(WHY, COMPASS_BIPED_FRICTION.name, preset)
+    why = tol.why
     steps, degree, settle = design(g)
     c, report, _ = _run(p, s, model, initial_section_states(g, model.opt.timestep), steps)
     out: list[checks.Check] = []

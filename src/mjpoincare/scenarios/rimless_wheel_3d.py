@@ -25,11 +25,8 @@ rad/s and compared with the paper's nondimensional rates times sqrt(g/l); eigenv
 
 from __future__ import annotations
 
-import copy
 import math
 import time
-from collections.abc import Mapping
-from dataclasses import dataclass
 
 import mujoco
 import numpy as np
@@ -37,25 +34,26 @@ import numpy as np
 from mjpoincare import settings as sim_settings
 from mjpoincare.analysis import checks
 from mjpoincare.analysis.returnmap import sample_pairs
-from mjpoincare.analysis.rigid_body_kinematics import matrix_to_quat
-from mjpoincare.analysis.sections import Crossings, level_crossings, wrap_phase
-from mjpoincare.analysis.start_designs import random_directions
 from mjpoincare.analysis.theory import rimless_wheel_3d as theory
 from mjpoincare.analysis.theory import rimless_wheel_3d_hybrid as hybrid
-from mjpoincare.analysis.theory.rimless_wheel_3d_section import MapFit, fit_map, section_state
+from mjpoincare.analysis.theory.rimless_wheel_3d_section import MapFit, fit_map, planar_tails
 from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
-from mjpoincare.scenarios.base import Evaluation, ReturnMapPlot, Scenario, Soak, StressCase, Values, at_preset
+from mjpoincare.scenarios import rimless_wheel_3d_runs as runs
+from mjpoincare.scenarios.base import (
+    Evaluation,
+    ReturnMapPlot,
+    Scenario,
+    Soak,
+    StressCase,
+    Tolerances,
+    Values,
+    at_preset,
+)
 from mjpoincare.scenarios.rimless_wheel_3d_ideal import IdealImpactController
-from mjpoincare.settings import rollout_options
 from mjpoincare.simulate import (
-    Chunk,
-    RolloutReport,
     event_clip,
-    event_rollout,
-    initial_states,
     plain_clip,
-    rollout_batch,
 )
 
 MODES = ("contact", "ideal")
@@ -86,57 +84,40 @@ PRESETS: dict[str, dict[str, float | int | str]] = {
 }
 
 #: Tolerances per impact mode and preset (absolute on eigenvalues, angles in rad; pitch rates relative).
-TOLERANCES: dict[str, dict[str, dict[str, float]]] = {
+TOLERANCES: dict[str, dict[str, Tolerances]] = {
     "ideal": {
-        "fast": {"pitch_rate": 1e-4, "bank": 1e-4, "eigenvalue": 1e-3, "planar_pitch_rate": 1e-4,
-                 "planar_bank": 1e-4},
-        "accurate": {"pitch_rate": 1e-4, "bank": 1e-4, "eigenvalue": 1e-3, "planar_pitch_rate": 1e-4,
-                     "planar_bank": 1e-4},
-    },
-    "contact": {
-        "fast": {"pitch_rate": 5e-3, "bank": 2e-3, "eigenvalue": 5e-3, "planar_pitch_rate": 5e-3, "planar_bank": 2e-3},
-        "accurate": {"pitch_rate": 5e-3, "bank": 2e-3, "eigenvalue": 5e-3, "planar_pitch_rate": 5e-3,
-                     "planar_bank": 2e-3},
-    },
-}
-WHY: dict[str, dict[str, str]] = {
-    "ideal": {
-        "fast": "exact guard and impact law, RK4 stance at 0.2 ms (one-step map error ~1e-9): the issue's Table-2 "
+        "fast": Tolerances(
+            bounds={"pitch_rate": 1e-4, "bank": 1e-4, "eigenvalue": 1e-3, "planar_pitch_rate": 1e-4,
+                    "planar_bank": 1e-4},
+            why="exact guard and impact law, RK4 stance at 0.2 ms (one-step map error ~1e-9): the issue's Table-2 "
                 "target 1e-3; the design's own floor (exact map through the same starts and fit, 'reference_fit') "
                 "is 1.5e-5 for the Table-2 case and grows as lambda5 nears 1",
-        "accurate": "as fast, RK4 at 50 us: the same numbers (the fit's floor, not the integration, dominates)",
+        ),
+        "accurate": Tolerances(
+            bounds={"pitch_rate": 1e-4, "bank": 1e-4, "eigenvalue": 1e-3, "planar_pitch_rate": 1e-4,
+                    "planar_bank": 1e-4},
+            why="as fast, RK4 at 50 us: the same numbers (the fit's floor, not the integration, dominates)",
+        ),
     },
     "contact": {
-        "fast": "the issue's contact-mode targets (0.5 % fixed point, 0.005 on the eigenvalues, 2e-3 rad bank); soft "
+        "fast": Tolerances(
+            bounds={"pitch_rate": 5e-3, "bank": 2e-3, "eigenvalue": 5e-3, "planar_pitch_rate": 5e-3,
+                    "planar_bank": 2e-3},
+            why="the issue's contact-mode targets (0.5 % fixed point, 0.005 on the eigenvalues, 2e-3 rad bank); soft "
                 "over-damped contact (0.4 ms, 2 steps) and 0.5 mm feet",
-        "accurate": "the issue's contact-mode targets (0.5 % fixed point, 0.005 on the eigenvalues, 2e-3 rad bank); "
-                    "contact at 0.3 ms (6 steps of 50 us) and 0.1 mm feet",
+        ),
+        "accurate": Tolerances(
+            bounds={"pitch_rate": 5e-3, "bank": 2e-3, "eigenvalue": 5e-3, "planar_pitch_rate": 5e-3,
+                    "planar_bank": 2e-3},
+            why="the issue's contact-mode targets (0.5 % fixed point, 0.005 on the eigenvalues, 2e-3 rad bank); "
+                "contact at 0.3 ms (6 steps of 50 us) and 0.1 mm feet",
+        ),
     },
 }
 
-FIT_STARTS = 24  # random directions around the planar cycle (plus the cycle itself)
-FIT_IMPACTS = 12  # mid-stance samples per fitting trajectory
-#: Size of the 5-D offsets of the fitting starts (rad and sqrt(g/l) units), per impact mode; see :func:`fit_starts`.
-PERTURBATION: dict[str, float] = {"ideal": 5e-4, "contact": 3e-3}
-PLANAR_IMPACTS = 40  # planar-cycle runs: mu^2 = 0.90 per impact leaves 1.5 % of a start offset after 40 impacts
-PLANAR_HEADINGS = (0.0, 0.5)  # extra headings of the planar-cycle check (besides ``heading``)
-PLANAR_TAIL = 10  # the last samples of a planar run are compared with the cycle at their own heading
-CHUNK_SECONDS = 0.5  # native steps between looks (contact mode)
-EVENT_CHUNK_FRACTION = 0.25  # ideal mode: chunk = this fraction of a step period (steps after an event are wasted)
 
 
 # --- parameters -------------------------------------------------------------------------------------------------
-
-
-def wheel(p: Values, heading: float | None = None) -> theory.RimlessWheel3D:
-    """The nondimensional analytic wheel (001 Sec. 2) for the parameters (at ``heading`` if given)."""
-    return theory.RimlessWheel3D(spokes=int(p["spokes"]), slope=float(p["slope"]), J=float(p["J"]),
-                                 heading=float(p["heading"]) if heading is None else heading)
-
-
-def rate_unit(p: Values) -> float:
-    """sqrt(g/l): the paper's rates (m = l = g = 1) times this are rad/s."""
-    return math.sqrt(float(p["gravity"]) / float(p["leg_length"]))
 
 
 def check_params(p: Values) -> None:
@@ -147,7 +128,7 @@ def check_params(p: Values) -> None:
     stay positive (no flight; not in the paper), and in contact mode ``mu`` must cover the friction
     the gait needs: the impact impulse ratio on the banked cycle and the stance max |F_t|/N of the exact reference.
     """
-    w = wheel(p)
+    w = runs.wheel(p)
     try:
         theory.validate(w)
     except ValueError as err:  # "name: bound (got value)"
@@ -218,156 +199,6 @@ def build(p: Values, s: Values) -> mujoco.MjModel:
     return compile_spec(spec, s)
 
 
-def _ideal(p: Values) -> bool:
-    return str(p["impact"]) == "ideal"
-
-
-# --- state mapping ----------------------------------------------------------------------------------------------
-
-
-def _nondim(x: np.ndarray, unit: float) -> np.ndarray:
-    """Section states with rates in rad/s -> the paper's units (rates / sqrt(g/l))."""
-    out = np.array(x, dtype=float)
-    out[..., 2:] /= unit
-    return out
-
-
-def section_start_states(model: mujoco.MjModel, p: Values, s: Values, x: np.ndarray) -> np.ndarray:
-    """MuJoCo states at mid-stance (theta = 0 on spoke 0) for nondimensional section states x (B, 5).
-
-    Contact mode: the stance foot sphere touches the plane at the origin and the body moves as a rotation about
-    that contact point (no slip). Ideal mode: the ball joint's quaternion and body angular velocity.
-    """
-    l, unit = float(p["leg_length"]), rate_unit(p)
-    radius = float(s["foot_radius"])
-    x = np.atleast_2d(x)
-    qpos, qvel = [], []
-    for psi, phi, *rates in x:
-        R = hybrid.pose(psi, phi, 0.0)
-        omega = hybrid.angular_velocity(psi, phi, rates) * unit
-        quat = matrix_to_quat(R)
-        if _ideal(p):
-            qpos.append(quat)
-            qvel.append(R.T @ omega)
-        else:
-            hub = np.array([0.0, 0.0, radius]) + (l - radius) * R[:, 2]
-            qpos.append(np.concatenate([hub, quat]))
-            qvel.append(np.concatenate([np.cross(omega, hub), R.T @ omega]))
-    return initial_states(model, np.array(qpos), np.array(qvel))
-
-
-# --- simulation: contact mode -----------------------------------------------------------------------------------
-
-
-class _ContactRecorder:
-    """Consumes rollout chunks: mid-stance samples and the largest clearance of the lowest foot (hops)."""
-
-    def __init__(self, p: Values, s: Values, batch: int) -> None:
-        self.beta = math.pi / int(p["spokes"])
-        self.length, self.radius = float(p["leg_length"]), float(s["foot_radius"])
-        self.mid = Crossings.empty(5)
-        self.max_clearance = np.zeros(batch)
-
-    def __call__(self, chunk: Chunk) -> None:
-        theta, values = section_state(chunk.qpos[..., 3:7], chunk.qvel[..., 3:6])
-        phase = wrap_phase(theta, self.beta)
-        self.mid = self.mid.concat(level_crossings(chunk.time, phase, values, max_jump=self.beta))
-        lowest = chunk.qpos[..., 2] - (self.length - self.radius) * np.cos(values[..., 1]) * np.cos(phase)
-        self.max_clearance = np.fmax(self.max_clearance, np.nanmax(lowest - self.radius, axis=1))
-
-
-# --- runs -------------------------------------------------------------------------------------------------------
-
-
-@dataclass
-class _Run:
-    """Mid-stance samples of one batch (per trajectory, rates in rad/s), the rollout report and diagnostics."""
-
-    sequences: list[np.ndarray]
-    report: RolloutReport
-    max_clearance: float = math.nan
-    guard_error: float = math.nan
-
-
-def _step_seconds(p: Values) -> float:
-    """Step period of the planar cycle, s (001 eq 15 quadrature)."""
-    return theory.step_period(wheel(p)) / rate_unit(p)
-
-
-def _nstep(p: Values, dt: float, impacts: int) -> int:
-    """Native steps that cover ``impacts`` + 1.2 step periods."""
-    return math.ceil((impacts + 1.2) * _step_seconds(p) / dt)
-
-
-def _event_chunk(p: Values, dt: float) -> int:
-    """Steps per chunk of the ideal mode's event rollout."""
-    return max(10, round(EVENT_CHUNK_FRACTION * _step_seconds(p) / dt))
-
-
-def _batches(p: Values, w: theory.RimlessWheel3D) -> tuple[tuple[np.ndarray, int], tuple[np.ndarray, int]]:
-    """(nondimensional starts, impacts) of the fit batch and of the planar batch (one cycle per planar heading)."""
-    planar = np.array([hybrid.midstance_fixed_point(wheel_at(w, h)) for h in planar_headings(p)])
-    return (fit_starts(w, PERTURBATION[str(p["impact"])]), FIT_IMPACTS), (planar, PLANAR_IMPACTS)
-
-
-def _run(p: Values, s: Values, model: mujoco.MjModel, x0: np.ndarray, impacts: int) -> _Run:
-    """Simulate the starts x0 (nondimensional mid-stance states) for ``impacts`` + 1 step periods."""
-    state0 = section_start_states(model, p, s, x0)
-    dt = model.opt.timestep
-    nstep = _nstep(p, dt, impacts)
-    options = rollout_options(s)
-    if _ideal(p):
-        controller = IdealImpactController(wheel(p), float(p["leg_length"]), len(x0))
-        report = event_rollout([copy.copy(model) for _ in x0], state0, nstep, controller, **options,
-                               chunk_steps=_event_chunk(p, dt))
-        return _Run(_first_samples(controller.mid, len(x0), impacts, p), report, guard_error=controller.guard_error)
-    recorder = _ContactRecorder(p, s, len(x0))
-    report = rollout_batch(model, state0, nstep, recorder, **options,
-                           chunk_steps=max(1, round(CHUNK_SECONDS / dt)))
-    return _Run(_first_samples(recorder.mid, len(x0), impacts, p), report,
-                max_clearance=float(np.nanmax(recorder.max_clearance)))
-
-
-def _first_samples(mid: Crossings, batch: int, impacts: int, p: Values) -> list[np.ndarray]:
-    """Per trajectory, the first ``impacts`` mid-stance samples after the start (which is itself on the section:
-    a crossing in its first half step period is the start, not a sample), as the exact reference takes them."""
-    late = mid.time > 0.5 * _step_seconds(p)
-    kept = Crossings(mid.trajectory[late], mid.time[late], mid.values[late])
-    return [seq[:impacts] for seq in kept.sequences(batch)]
-
-
-def fit_starts(w: theory.RimlessWheel3D, size: float, starts: int = FIT_STARTS) -> np.ndarray:
-    """The mid-stance fixed point and ``starts`` offsets of size ``size`` in +- pairs of random 5-D directions (seed 0).
-
-    The pairs keep the samples' centroid on the cycle to second order (one-sided offsets biased an affine fit at
-    first order in ``size``). With the quadratic fit of :func:`fit_map`, the exact map through the same starts and
-    fit ('reference_fit') is off by at most 4e-5 (Table-2 case), 1e-4 (n = 8, alpha = 0.25) and 1e-3 (n = 12,
-    alpha = 0.125, where lambda5 = 0.973 nears the neutral 1) at ``size`` = 3e-3, 4e-6 / 3e-6 / 5e-5 at 5e-4. The
-    ideal mode, free of noise, uses 5e-4; the contact mode 3e-3, against the ~1e-5 scatter soft impacts put on the
-    mid-stance pitch rate (bootstrap std of lambda2: 1.6e-3 at 2e-3)."""
-    x_star = hybrid.midstance_fixed_point(w)
-    directions = random_directions(starts // 2, 5)
-    return np.vstack([x_star, x_star + size * directions, x_star - size * directions])
-
-
-def planar_headings(p: Values) -> list[float]:
-    """Headings of the planar-cycle check: PLANAR_HEADINGS and ``heading``, where a rolling cycle exists."""
-    return [h for h in sorted({float(p["heading"]), *PLANAR_HEADINGS}) if _cycle_exists(wheel(p, h))]
-
-
-def _cycle_exists(w: theory.RimlessWheel3D) -> bool:
-    try:
-        theory.validate(w)
-    except ValueError:
-        return False
-    return True
-
-
-def wheel_at(w: theory.RimlessWheel3D, heading: float) -> theory.RimlessWheel3D:
-    """The same wheel at another heading."""
-    return theory.RimlessWheel3D(w.spokes, w.slope, w.J, heading)
-
-
 # --- checks -----------------------------------------------------------------------------------------------------
 
 
@@ -380,12 +211,12 @@ EIGEN_DOCS = {
 }
 
 
-def _tolerance(tol: Mapping[str, float], name: str) -> float:
-    return tol.get(name, tol["eigenvalue"])
+def _tolerance(tol: Tolerances, name: str) -> float:
+    return tol.bounds.get(name, tol["eigenvalue"])
 
 
 def _fit_checks(w: theory.RimlessWheel3D, fitted: MapFit | None, ref: hybrid.Eigen3D, unit: float,
-                tol: Mapping[str, float], why: str) -> list[checks.Check]:
+                tol: Tolerances, why: str) -> list[checks.Check]:
     x_ref = hybrid.midstance_fixed_point(w)
     point = fitted.cycle.fixed_point if fitted is not None else np.full(5, math.nan)
     out = [
@@ -404,61 +235,47 @@ def _fit_checks(w: theory.RimlessWheel3D, fitted: MapFit | None, ref: hybrid.Eig
     return out
 
 
-def _planar_checks(p: Values, headings: list[float], run: _Run, tol: Mapping[str, float]
+def _planar_checks(p: Values, headings: list[float], run: runs.Run, tol: Tolerances
                    ) -> tuple[list[checks.Check], dict[str, object]]:
-    """Planar cycles started on the analytic fixed point at each heading: the last PLANAR_TAIL samples against the
-    cycle at their own (current) heading (eqs 12-14), never against the starting heading."""
-    unit = rate_unit(p)
-    rate_ref, rate_sim, bank_ref, bank_sim, drift = [], [], [], [], {}
-    rate_err, bank_err = 0.0, 0.0
-    for h, seq in zip(headings, run.sequences, strict=True):
-        if len(seq) < PLANAR_TAIL + 1 or not np.isfinite(seq).all():
-            rate_err = bank_err = math.nan
-            continue
-        tail = seq[-PLANAR_TAIL:]
-        ref_rate = np.array([theory.midstance_pitch_rate(wheel_at(wheel(p), float(psi))) * unit for psi in tail[:, 0]])
-        ref_bank = np.array([theory.planar_bank(float(p["slope"]), float(psi)) for psi in tail[:, 0]])
-        rate_err = max(rate_err, float(np.max(np.abs(tail[:, 4] - ref_rate) / ref_rate)))
-        bank_err = max(bank_err, float(np.max(np.abs(tail[:, 1] - ref_bank))))
-        rate_ref.append(float(ref_rate[-1]))
-        rate_sim.append(float(tail[-1, 4]))
-        bank_ref.append(float(ref_bank[-1]))
-        bank_sim.append(float(tail[-1, 1]))
-        drift[f"{h:.6g}"] = 100.0 * float(seq[-1, 0] - seq[0, 0]) / (len(seq) - 1)
-    where = f"headings {', '.join(f'{h:.4g}' for h in headings)}, last {PLANAR_TAIL} of {PLANAR_IMPACTS} samples"
+    """Planar cycles started on the analytic fixed point at each heading, read at their own heading
+    (:func:`planar_tails`)."""
+    t = planar_tails(runs.wheel(p), headings, run.sequences, runs.PLANAR_TAIL, runs.rate_unit(p))
+    where = (f"headings {', '.join(f'{h:.4g}' for h in headings)}, last {runs.PLANAR_TAIL} of "
+             f"{runs.PLANAR_IMPACTS} samples")
     out = [
-        checks.Check(name="planar_pitch_rate", analytic=rate_ref, simulated=rate_sim, error=rate_err,
+        checks.Check(name="planar_pitch_rate", analytic=t.rate_analytic, simulated=t.rate_simulated, error=t.rate_error,
                      tolerance=tol["planar_pitch_rate"], kind="max-relative", unit="rad/s",
                      why=f"planar cycle at several headings: mid-stance pitch rate against eq 14 + energy "
                      f"integral at the sample's own heading ({where})"),
-        checks.Check(name="planar_bank", analytic=bank_ref, simulated=bank_sim, error=bank_err,
+        checks.Check(name="planar_bank", analytic=t.bank_analytic, simulated=t.bank_simulated, error=t.bank_error,
                      tolerance=tol["planar_bank"], kind="max-abs", unit="rad",
                      why=f"planar cycle at several headings: bank against eq 12 at the sample's own heading ({where})"
                      + ("; impact=ideal: the controller applies the reference's own impact law (001 eqs 4-6, Sec. "
                         "3.2.2), so this agreement tests MuJoCo's integration of the stance only, not its impacts"
-                        if _ideal(p) else "")),
+                        if runs.is_ideal(p) else "")),
     ]
-    return out, {"planar_headings": headings, "heading_drift_per_100_impacts_planar": drift,
-                 "heading_drift_planar_note": f"(psi_last - psi_first) per 100 impacts over the {PLANAR_IMPACTS}-"
+    return out, {"planar_headings": headings, "heading_drift_per_100_impacts_planar": t.drift_per_100,
+                 "heading_drift_planar_note": f"(psi_last - psi_first) per 100 impacts over the {runs.PLANAR_IMPACTS}-"
                                               "impact planar runs, start transient included (the fitted steady "
                                               "drift is 'heading_drift')"}
 
 
 def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     """Fit the 5-D mid-stance map from a batch of perturbed cycles; run planar cycles at several headings."""
-    w = wheel(p)
+    w = runs.wheel(p)
     mode = str(p["impact"])
     tol = at_preset(TOLERANCES[mode], RIMLESS_WHEEL_3D.name, preset)
-    why = at_preset(WHY[mode], RIMLESS_WHEEL_3D.name, preset)
-    unit = rate_unit(p)
+    why = tol.why
+    unit = runs.rate_unit(p)
     model = build(p, s)
     ref = hybrid.midstance_eigenvalues(w)
-    fit_batch, planar_batch = _batches(p, w)
-    fit_run, planar_run = _run(p, s, model, *fit_batch), _run(p, s, model, *planar_batch)
-    headings = planar_headings(p)
+    fit_batch, planar_batch = runs.batches(p, w)
+    fit_run = runs.simulate_starts(p, s, model, *fit_batch)
+    planar_run = runs.simulate_starts(p, s, model, *planar_batch)
+    headings = runs.planar_headings(p)
     report = fit_run.report.merge(planar_run.report)
     extras: dict[str, object] = {}
-    sequences = [_nondim(seq, unit) for seq in fit_run.sequences]
+    sequences = [runs.nondim(seq, unit) for seq in fit_run.sequences]
     try:
         fitted = fit_map(sequences, w.heading, hybrid.family_tangent(hybrid.midstance_fixed_point, w), seed)
     except (ValueError, np.linalg.LinAlgError) as err:  # too few samples: a diverged or stalled run
@@ -515,23 +332,17 @@ def probe(p: Values, s: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, 
     """The model and the (initial states, steps) of each rollout batch :func:`evaluate` runs (ideal mode: without
     the impact controller, a cost reference only)."""
     model = build(p, s)
-    return model, [(section_start_states(model, p, s, x0), _nstep(p, model.opt.timestep, impacts))
-                   for x0, impacts in _batches(p, wheel(p))]
+    return model, [(runs.section_start_states(model, p, s, x0), runs.steps_for(p, model.opt.timestep, impacts))
+                   for x0, impacts in runs.batches(p, runs.wheel(p))]
 
 
 def reference_bench(p: Values, rtol: float) -> dict[str, float]:
     """The exact hybrid reference (solve_ivp DOP853 at relative and absolute tolerance ``rtol``) from the same starts
     through the same fit: its error is the floor the experiment design (perturbation size, quadratic fit) sets."""
-    w = wheel(p)
+    w = runs.wheel(p)
     ref = hybrid.midstance_eigenvalues(w)
     start = time.perf_counter()
-    sequences = []
-    for x in fit_starts(w, PERTURBATION[str(p["impact"])]):
-        seq = []
-        for _ in range(FIT_IMPACTS):
-            x = hybrid.midstance_map(w, x, rtol=rtol, atol=rtol)[0]
-            seq.append(x)
-        sequences.append(np.array(seq))
+    sequences = runs.reference_sequences(w, runs.PERTURBATION[str(p["impact"])], rtol)
     fitted = fit_map(sequences, w.heading, hybrid.family_tangent(hybrid.midstance_fixed_point, w))
     wall = time.perf_counter() - start
     x_ref, point = hybrid.midstance_fixed_point(w), fitted.cycle.fixed_point
@@ -546,11 +357,11 @@ def reference_bench(p: Values, rtol: float) -> dict[str, float]:
 def soak(p: Values, s: Values, impacts: int) -> Soak:
     """``impacts`` steps from the planar cycle in one trajectory: each mid-stance pitch rate over the analytic one
     at that sample's own heading (eq 14 + the energy integral), since the neutral heading drifts under any bias."""
-    w = wheel(p)
-    run = _run(p, s, build(p, s), hybrid.midstance_fixed_point(w)[None, :], impacts)
+    w = runs.wheel(p)
+    run = runs.simulate_starts(p, s, build(p, s), hybrid.midstance_fixed_point(w)[None, :], impacts)
     seq = run.sequences[0]
-    ratio = np.array([x[4] / (theory.midstance_pitch_rate(wheel_at(w, float(x[0]))) * rate_unit(p))
-                      if abs(x[0]) < math.pi / 2 and _cycle_exists(wheel_at(w, float(x[0]))) else math.nan
+    ratio = np.array([x[4] / (theory.midstance_pitch_rate(runs.wheel_at(w, float(x[0]))) * runs.rate_unit(p))
+                      if abs(x[0]) < math.pi / 2 and runs.cycle_exists(runs.wheel_at(w, float(x[0]))) else math.nan
                       for x in seq])
     return Soak(ratio, 1.0, "mid-stance pitch rate / eq 14 at the sample's heading", run.report)
 
@@ -577,13 +388,13 @@ STRESS_CASES = (
 def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray | tuple[np.ndarray, np.ndarray]:
     """A clip from the planar cycle with a lean-rate kick (phi_dot + 0.1 sqrt(g/l)): the wobble decays while the
     wheel rolls. Ideal mode: with the impact controller, and the pivot's position per row for the mocap body."""
-    w = wheel(p)
+    w = runs.wheel(p)
     x0 = hybrid.midstance_fixed_point(w) + np.array([0.0, 0.0, 0.0, 0.1, 0.0])
-    state0 = section_start_states(model, p, s, x0[None, :])
-    if not _ideal(p):
+    state0 = runs.section_start_states(model, p, s, x0[None, :])
+    if not runs.is_ideal(p):
         return plain_clip(model, state0, nstep)
-    controller = IdealImpactController(wheel(p), float(p["leg_length"]), 1)
-    kept = event_clip([copy.copy(model)], state0, nstep, controller, _event_chunk(p, model.opt.timestep),
+    controller = IdealImpactController(runs.wheel(p), float(p["leg_length"]), 1)
+    kept = event_clip(model, state0, nstep, controller, runs.event_chunk(p, model.opt.timestep),
                       tag=lambda: controller.pivot[0].copy())
     return kept.states(nstep), kept.tagged(nstep)[:, None, :]
 

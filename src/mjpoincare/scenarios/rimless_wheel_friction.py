@@ -41,10 +41,11 @@ from mjpoincare.scenarios.base import (
     Scenario,
     Soak,
     StressCase,
+    Tolerances,
     Values,
     at_preset,
 )
-from mjpoincare.scenarios.rimless_wheel_friction_rollout import classifier, row_signals, simulate, with_friction
+from mjpoincare.scenarios.rimless_wheel_friction_rollout import classifier, row_signals, simulate
 from mjpoincare.simulate import RolloutReport, plain_clip
 
 PAPER_SLOPE = math.radians(13.0)
@@ -70,16 +71,8 @@ PRESETS: dict[str, dict[str, float | int | str]] = {
                "cone": "elliptic"},
 }
 
-TOLERANCES: dict[str, dict[str, float]] = {
-    "fast": {"midstance_rate": 5e-3, "eigenvalue": 0.02, "dx_per_step": 0.1, "slip_onset": 0.02,
-             "critical_friction": 0.02},
-    "accurate": {"midstance_rate": 2e-3, "eigenvalue": 0.02, "dx_per_step": 0.1, "slip_onset": 0.02,
-                 "critical_friction": 0.02},
-    # coarse, the region maps' preset, keeps the fast tolerances
-    "coarse": {"midstance_rate": 5e-3, "eigenvalue": 0.02, "dx_per_step": 0.1, "slip_onset": 0.02,
-               "critical_friction": 0.02},
-}
-WHY: dict[str, str] = {
+#: Why each bound is what it is (the same at every preset).
+REASONS: dict[str, str] = {
     "midstance_rate": "theta_dot at mid-stance (002 Sec. 3.3); measured 0.8-1.5e-3 (fast) and 0.2-1.3e-3 (accurate) "
                       "for A, B, C: the 0.5 mm foot's rolling alone gives +6e-4, the rest grows with the contact time "
                       "constant",
@@ -95,6 +88,16 @@ WHY: dict[str, str] = {
     "v_thr": "foot speed above which it moves: 20-75x the median creep of a stuck foot, 2-7x its 99th percentile "
              "(MuJoCo's regularised friction; the creep is independent of impratio 1-1000, noslip 0-3 and the cone, "
              "and grows with the contact time constant)",
+}
+
+TOLERANCES: dict[str, Tolerances] = {
+    "fast": Tolerances(bounds={"midstance_rate": 5e-3, "eigenvalue": 0.02, "dx_per_step": 0.1, "slip_onset": 0.02,
+                               "critical_friction": 0.02}, reasons=REASONS),
+    "accurate": Tolerances(bounds={"midstance_rate": 2e-3, "eigenvalue": 0.02, "dx_per_step": 0.1, "slip_onset": 0.02,
+                                   "critical_friction": 0.02}, reasons=REASONS),
+    # coarse, the region maps' preset, keeps the fast tolerances
+    "coarse": Tolerances(bounds={"midstance_rate": 5e-3, "eigenvalue": 0.02, "dx_per_step": 0.1, "slip_onset": 0.02,
+                                 "critical_friction": 0.02}, reasons=REASONS),
 }
 
 FIT_OFFSETS = (-0.12, -0.06, 0.0, 0.06, 0.12)  # relative offsets of theta_dot0 around the gait's post-impact state
@@ -203,9 +206,8 @@ def run_batch(p: Values, s: Values, preset: str, starts: np.ndarray, steps: int,
     trajectory its own friction) and measure them."""
     model = build(p, s)
     mu_all = np.full(len(starts), float(p["mu"])) if mus is None else np.asarray(mus, float)
-    models = [model] * len(starts) if mus is None else [with_friction(model, float(m)) for m in mu_all]
     period = period_seconds(p, mu_all)
-    rec, report = simulate(models, start_states(model, p, s, starts), steps * period + extra, s)
+    rec, report = simulate(model, mu_all, start_states(model, p, s, starts), steps * period + extra, s)
     cls = classifier(mu_all, s, preset, len(starts))
     rows = row_signals(rec, model, p, s, rate_unit(p), cls)
     table = phases.step_table(rows, cls, steps + 2, backward_rate=BACKWARD_RATE, flight_clearance=FLIGHT_CLEARANCE)
@@ -254,17 +256,17 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
         extras["fit_error"] = str(err)
     out.append(checks.relative("midstance_rate", gait.midstance_rate, mid_sim, tol["midstance_rate"], "",
                                f"fixed point of the mid-stance map vs the reference gait {gait.kind} "
-                               f"({WHY['midstance_rate']})"))
+                               f"({tol.reasons['midstance_rate']})"))
     lam_ref = complex(gait.eigenvalues[np.argmax(np.abs(gait.eigenvalues))])
     out.append(checks.absolute("eigenvalue", lam_ref.real if lam_ref.imag == 0 else lam_ref, lam_sim,
-                               tol["eigenvalue"], "", WHY["eigenvalue"]))
+                               tol["eigenvalue"], "", tol.reasons["eigenvalue"]))
     settled = phases.settled_steps(steps, main, SETTLED_STEPS)
     impact_sim = ["slipping" if steps.impact_slipping[main, j] else "sticking" for j in settled]
     out.append(checks.categorical(
         "impact_kind", gait.impact, checks.most_common(impact_sim), sum(k != gait.impact for k in impact_sim),
         len(settled), f"kind of the settled steps' impacts ({impact_sim}) vs the gait's (002 eq 44): slipping when "
         "the new foot's speed after the impact window exceeds v_thr or the impulse ratio is on the cone; "
-        f"v_thr = {cls.v_thr:g} ({WHY['v_thr']}); error = fraction that differ"))
+        f"v_thr = {cls.v_thr:g} ({tol.reasons['v_thr']}); error = fraction that differ"))
     measured = [phases.phase_sequence(steps.runs, main, int(j)) for j in settled]
     names = [" > ".join(ph[0]) for ph in measured]
     out.append(checks.categorical(
@@ -275,18 +277,18 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     if gait.kind == "B":
         onset_sim = float(np.nanmedian(steps.onset[main, settled])) if settled.size else math.nan
         out.append(checks.absolute("slip_onset", gait.phase_angles[-1], onset_sim, tol["slip_onset"], "rad",
-                                   WHY["slip_onset"]))
+                                   tol.reasons["slip_onset"]))
     if gait.kind.startswith("D"):
         dx = np.diff(steps.mid_slip[main, settled]) if settled.size > 1 else np.zeros(0)
         dx = dx[np.isfinite(dx)]
         dx_sim = float(np.mean(dx)) if dx.size else math.nan
         out.append(checks.relative("dx_per_step", gait.dx_per_step, dx_sim, tol["dx_per_step"], "",
-                                   WHY["dx_per_step"]))
+                                   tol.reasons["dx_per_step"]))
     if gait.kind == "A":
         pooled = phases.settled_rows(rows, steps, np.nonzero(fit_mask)[0], "A", SETTLED_STEPS)
         mu_c, mu_c_sim, extras["force_ratio_profile"] = reference.force_ratio_comparison(w, rows, pooled)
         out.append(checks.relative("critical_friction", mu_c, mu_c_sim, tol["critical_friction"], "",
-                                   WHY["critical_friction"]))
+                                   tol.reasons["critical_friction"]))
     extras["analytic"] = reference.gait_values(w, gait)
     extras["steps"] = phases.step_report(steps, main, refs[main].kinds, refs[main].mid_rate)
     extras["thresholds"] = {"v_thr": cls.v_thr, "saturation_eps": cls.eps, "impact_window_s": cls.impact_window,
@@ -335,7 +337,8 @@ def soak(p: Values, s: Values, impacts: int) -> Soak:
     gait = reference_gait(w)
     model = build(p, s)
     seconds = impacts * period_seconds(p, np.array([w.mu])) + 0.5
-    rec, report = simulate([model], start_states(model, p, s, np.array([gait_start(gait)])), seconds, s)
+    rec, report = simulate(model, np.array([w.mu]), start_states(model, p, s, np.array([gait_start(gait)])), seconds,
+                           s)
     cls = classifier(w.mu, s, "fast", 1)
     rows = row_signals(rec, model, p, s, rate_unit(p), cls)
     phi = math.pi / w.spokes

@@ -6,9 +6,7 @@ classification (why they are what they are: docs/scenarios/rimless-wheel-frictio
 
 from __future__ import annotations
 
-import copy
 import math
-from collections.abc import Sequence
 
 import mujoco
 import numpy as np
@@ -25,18 +23,12 @@ V_THRESHOLD: dict[str, float] = {"fast": 5e-3, "accurate": 2e-3, "coarse": 1e-2}
 IMPACT_WINDOW_TC = 5.0  # the impact window is at least this many contact time constants
 
 
-def with_friction(model: mujoco.MjModel, mu: float) -> mujoco.MjModel:
-    """A copy of ``model`` whose feet and floor have friction ``mu`` (one model per trajectory in a batch)."""
-    out = copy.copy(model)
-    out.geom_friction[:, 0] = mu
-    return out
-
-
-def simulate(models: Sequence[mujoco.MjModel], state0: np.ndarray, seconds: float, s: Values
+def simulate(model: mujoco.MjModel, mu: np.ndarray, state0: np.ndarray, seconds: float, s: Values
              ) -> tuple[Chunk, RolloutReport]:
-    """Roll every initial state out for ``seconds`` (one :func:`mujoco.rollout` batch, a model per trajectory, native
-    chunks of 0.5 s) and keep every recorded row: ``time`` (B, T), ``qpos`` and ``qvel`` (B, T, 3)."""
-    dt = models[0].opt.timestep
+    """Roll every initial state out for ``seconds`` (one :func:`mujoco.rollout` batch, trajectory b with friction
+    ``mu[b]`` on its feet and floor, native chunks of 0.5 s) and keep every recorded row: ``time`` (B, T), ``qpos``
+    and ``qvel`` (B, T, 3)."""
+    dt = model.opt.timestep
     nstep = max(1, math.ceil(seconds / dt))
     chunk = math.ceil(nstep / math.ceil(nstep / max(1, round(0.5 / dt))))  # equal chunks of <= 0.5 s: no overshoot
     parts: list[Chunk] = []
@@ -45,7 +37,11 @@ def simulate(models: Sequence[mujoco.MjModel], state0: np.ndarray, seconds: floa
         parts.append(c if not parts else Chunk(c.time[:, 1:], c.qpos[:, 1:], c.qvel[:, 1:]))
         return np.full(c.time.shape[0], chunk)
 
-    report = event_rollout(list(models), state0, nstep, keep, chunk_steps=chunk, **rollout_options(s))
+    def frictions(batch: Batch) -> None:
+        for b, value in enumerate(mu):
+            batch.set_friction(b, float(value))
+
+    report = event_rollout(model, state0, nstep, keep, chunk_steps=chunk, setup=frictions, **rollout_options(s))
     time_ = np.concatenate([c.time for c in parts], axis=1)[:, : nstep + 1]
     qpos = np.concatenate([c.qpos for c in parts], axis=1)[:, : nstep + 1]
     qvel = np.concatenate([c.qvel for c in parts], axis=1)[:, : nstep + 1]

@@ -65,7 +65,7 @@ def region_map(p: Values, s: Values, x: np.ndarray, y: np.ndarray, impacts: int 
                            np.stack([np.full_like(V, omega0), V, np.zeros_like(V)], 1))
     seconds = 1.2 * (impacts + 1) * float(delta_all.max())
     nstep = math.ceil(seconds / model.opt.timestep)
-    report = event_rollout([model] * len(V), start, nstep, controller, **rollout_options(s),
+    report = event_rollout(model, start, nstep, controller, **rollout_options(s),
                            chunk_steps=max(10, min(500, nstep // 10)))
     measured = np.full(2 * cells, np.nan)
     for b, samples in enumerate(controller.samples):
