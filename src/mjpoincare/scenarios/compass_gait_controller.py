@@ -19,6 +19,7 @@ from mjpoincare.analysis.compass_biped_stance import reference_at
 from mjpoincare.analysis.sections import level_crossings
 from mjpoincare.analysis.theory import compass_biped_friction as friction
 from mjpoincare.analysis.theory.compass_biped import CompassBiped
+from mjpoincare.scenarios.base import JointIndex
 from mjpoincare.simulate import Batch, Chunk
 
 ENABLE_AHEAD = 0.05  # swing-foot contact switches on once the foot is this far (x l) ahead of the stance foot
@@ -34,6 +35,9 @@ class GaitController:
         self.feet = [model.geom("foot0").id, model.geom("foot1").id]
         self.ankles = [model.actuator("ankle0").id, model.actuator("ankle1").id]
         self.hip = model.actuator("hip").id
+        self.hip_x, self.hip_z = JointIndex.of(model, "x"), JointIndex.of(model, "z")
+        legs = [JointIndex.of(model, "leg0"), JointIndex.of(model, "leg1")]
+        self.angle, self.rate = [leg.qpos for leg in legs], [leg.dof for leg in legs]  # the leg hinges, by leg
         self.stance = np.zeros(batch, int)
         self.swing_enabled = np.zeros(batch, bool)
         self.samples: list[list[np.ndarray]] = [[] for _ in range(batch)]
@@ -66,9 +70,9 @@ class GaitController:
 
     def _feet(self, chunk: Chunk, b: int, leg: int) -> tuple[np.ndarray, np.ndarray]:
         lever = self.bp.l - self.radius
-        q = chunk.qpos[b, :, 2 + leg]
-        x = chunk.qpos[b, :, 0] - lever * np.sin(q)
-        h = chunk.qpos[b, :, 1] - lever * np.cos(q) - self.radius
+        q = chunk.qpos[b, :, self.angle[leg]]
+        x = chunk.qpos[b, :, self.hip_x.qpos] - lever * np.sin(q)
+        h = chunk.qpos[b, :, self.hip_z.qpos] - lever * np.cos(q) - self.radius
         return x, h
 
     def __call__(self, chunk: Chunk, batch: Batch) -> np.ndarray:
@@ -122,8 +126,9 @@ class GaitController:
             self._release[b] = (t_release, h_release, lowest)
             return
         i = int(after[0])
-        q, qd = chunk.qpos[b, i, 2 + leg], chunk.qvel[b, i, 2 + leg]
-        self.release_speed.append(float(chunk.qvel[b, i, 1] + (self.bp.l - self.radius) * math.sin(q) * qd))
+        q, qd = chunk.qpos[b, i, self.angle[leg]], chunk.qvel[b, i, self.rate[leg]]
+        lever = self.bp.l - self.radius
+        self.release_speed.append(float(chunk.qvel[b, i, self.hip_z.dof] + lever * math.sin(q) * qd))
         self.release_depth.append(max(0.0, h_release - lowest))
         self._release[b] = None
 
@@ -132,8 +137,9 @@ class GaitController:
         rows = slice(0, last + 1)
         q = chunk.qpos[b, rows]
         qd = chunk.qvel[b, rows]
-        gap = (q[:, 2 + st] - q[:, 2 + sw])[None, :]
-        values = np.stack([0.5 * (q[:, 2 + st] + q[:, 2 + sw]) + self.bp.slope, qd[:, 2 + st], qd[:, 2 + sw]], 1)
+        q_st, q_sw = q[:, self.angle[st]], q[:, self.angle[sw]]
+        gap = (q_st - q_sw)[None, :]
+        values = np.stack([0.5 * (q_st + q_sw) + self.bp.slope, qd[:, self.rate[st]], qd[:, self.rate[sw]]], 1)
         found = level_crossings(chunk.time[b : b + 1, rows], gap, values[None])
         self.samples[b].extend(found.values)
         self.sample_times[b].extend(found.time.tolist())
@@ -213,13 +219,13 @@ class FrictionGaitController(GaitController):
         sw = 1 - st
         if self.pd is None:
             ta, th = self.bp.tau_ankle, self.bp.tau_hip
-            power = (ta - th) * qd[:, 2 + st] + th * qd[:, 2 + sw]
+            power = (ta - th) * qd[:, self.rate[st]] + th * qd[:, self.rate[sw]]
         else:
             kp, kd = self.pd
             q = chunk.qpos[b, :k]
             phase = chunk.time[b, :k] - self.last_strike[b]
             r1, r2, w1, w2 = reference_at(self.ref, phase)  # type: ignore[arg-type]
-            f_st = kp * (r1 - q[:, 2 + st]) + kd * (w1 - qd[:, 2 + st])
-            f_sw = kp * (-r2 - q[:, 2 + sw]) + kd * (-w2 - qd[:, 2 + sw])
-            power = f_st * qd[:, 2 + st] + f_sw * qd[:, 2 + sw]
+            f_st = kp * (r1 - q[:, self.angle[st]]) + kd * (w1 - qd[:, self.rate[st]])
+            f_sw = kp * (-r2 - q[:, self.angle[sw]]) + kd * (-w2 - qd[:, self.rate[sw]])
+            power = f_st * qd[:, self.rate[st]] + f_sw * qd[:, self.rate[sw]]
         return float(np.sum(power) * self.dt)

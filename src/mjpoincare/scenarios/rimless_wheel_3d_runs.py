@@ -17,7 +17,7 @@ from mjpoincare.analysis.start_designs import random_directions
 from mjpoincare.analysis.theory import rimless_wheel_3d as theory
 from mjpoincare.analysis.theory import rimless_wheel_3d_hybrid as hybrid
 from mjpoincare.analysis.theory.rimless_wheel_3d_section import section_state
-from mjpoincare.scenarios.base import Values
+from mjpoincare.scenarios.base import JointIndex, Values
 from mjpoincare.scenarios.rimless_wheel_3d_ideal import IdealImpactController
 from mjpoincare.settings import rollout_options
 from mjpoincare.simulate import Chunk, RolloutReport, event_rollout, initial_states, rollout_batch
@@ -86,17 +86,20 @@ def section_start_states(model: mujoco.MjModel, p: Values, s: Values, x: np.ndar
 class ContactRecorder:
     """Consumes rollout chunks: mid-stance samples and the largest clearance of the lowest foot (hops)."""
 
-    def __init__(self, p: Values, s: Values, batch: int) -> None:
+    def __init__(self, model: mujoco.MjModel, p: Values, s: Values, batch: int) -> None:
+        free = JointIndex.of(model, "free")  # hub position (3), orientation quaternion (4); velocity (3), omega (3)
+        self.hub_z, self.quat = free.qpos + 2, slice(free.qpos + 3, free.qpos + 7)
+        self.omega = slice(free.dof + 3, free.dof + 6)
         self.beta = math.pi / int(p["spokes"])
         self.length, self.radius = float(p["leg_length"]), float(s["foot_radius"])
         self.mid = Crossings.empty(5)
         self.max_clearance = np.zeros(batch)
 
     def __call__(self, chunk: Chunk) -> None:
-        theta, values = section_state(chunk.qpos[..., 3:7], chunk.qvel[..., 3:6])
+        theta, values = section_state(chunk.qpos[..., self.quat], chunk.qvel[..., self.omega])
         phase = wrap_phase(theta, self.beta)
         self.mid = self.mid.concat(level_crossings(chunk.time, phase, values, max_jump=self.beta))
-        lowest = chunk.qpos[..., 2] - (self.length - self.radius) * np.cos(values[..., 1]) * np.cos(phase)
+        lowest = chunk.qpos[..., self.hub_z] - (self.length - self.radius) * np.cos(values[..., 1]) * np.cos(phase)
         self.max_clearance = np.fmax(self.max_clearance, np.nanmax(lowest - self.radius, axis=1))
 
 
@@ -145,7 +148,7 @@ def simulate_starts(p: Values, s: Values, model: mujoco.MjModel, x0: np.ndarray,
         report = event_rollout(model, state0, nstep, controller, **options,
                                chunk_steps=event_chunk(p, dt))
         return Run(first_samples(controller.mid, len(x0), impacts, p), report, guard_error=controller.guard_error)
-    recorder = ContactRecorder(p, s, len(x0))
+    recorder = ContactRecorder(model, p, s, len(x0))
     report = rollout_batch(model, state0, nstep, recorder, **options,
                            chunk_steps=max(1, round(CHUNK_SECONDS / dt)))
     return Run(first_samples(recorder.mid, len(x0), impacts, p), report,

@@ -138,7 +138,7 @@ def _duration(p: Values, V: np.ndarray, Om: np.ndarray) -> float:
 def _simulate(p: Values, s: Values) -> tuple[PegController, object]:
     model = build(p, s)
     V, Om = initial_conditions(p)
-    controller = PegController(p, np.where(V > 0, float(p["l0"]), float(p["l0"]) + float(p["delta"])))
+    controller = PegController(model, p, np.where(V > 0, float(p["l0"]), float(p["l0"]) + float(p["delta"])))
     nstep = math.ceil(_duration(p, V, Om) / model.opt.timestep)
     report = event_rollout(model, start_states(model, p, V, Om), nstep, controller, **rollout_options(s),
                            chunk_steps=max(10, min(2000, nstep // 20)))
@@ -264,7 +264,7 @@ def _final_state_checks(p: Values, s: Values, sk: theory.SlottedSkate, tolerance
     model = build(p, s)
     start = start_states(model, p, np.array([float(p["V0"])]), np.array([float(p["Omega0"])]))
     entry = float(p["l0"]) if float(p["V0"]) > 0 else float(p["l0"]) + float(p["delta"])
-    controller = PegController(p, np.array([entry]))
+    controller = PegController(model, p, np.array([entry]))
     nstep = math.ceil((1.1 * duration + 2.0 * q.duration) * rho / v0 / model.opt.timestep)
     event_rollout(model, start, nstep, controller, threads=1, chunk_steps=max(10, min(2000, nstep // 50)))
     samples = controller.samples[0]
@@ -312,7 +312,7 @@ def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> tuple[np.nd
     """States of a clip of the first trajectory (peg-chart coordinates) and the peg's position for each row,
     to be put in ``mocap_pos`` so that the rendered skate moves across the plane."""
     V, Om = initial_conditions(p)
-    controller = PegController(p, np.array([float(p["l0"]) if V[0] > 0 else float(p["l0"]) + float(p["delta"])]))
+    controller = PegController(model, p, np.array([float(p["l0"]) if V[0] > 0 else float(p["l0"]) + float(p["delta"])]))
     kept = event_clip(model, start_states(model, p, V[:1], Om[:1]), nstep, controller, 200,
                       tag=lambda: np.array([*controller.peg[0], 0.0]))
     return kept.states(nstep), kept.tagged(nstep)[:, None, :]

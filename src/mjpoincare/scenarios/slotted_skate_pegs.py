@@ -10,9 +10,10 @@ from __future__ import annotations
 
 import math
 
+import mujoco
 import numpy as np
 
-from mjpoincare.scenarios.base import Values
+from mjpoincare.scenarios.base import JointIndex, Values
 from mjpoincare.simulate import Batch, Chunk
 
 
@@ -23,7 +24,9 @@ class PegController:
     E and H about that peg read at the stance's end (stance invariants, so the impact's duration does not
     matter), the heading and time when the peg went in."""
 
-    def __init__(self, p: Values, entry: np.ndarray, slot: tuple[np.ndarray, np.ndarray] | None = None) -> None:
+    def __init__(self, model: mujoco.MjModel, p: Values, entry: np.ndarray,
+                 slot: tuple[np.ndarray, np.ndarray] | None = None) -> None:
+        self.slide = JointIndex.of(model, "s").qpos  # the chart coordinate s along the slot
         # the slot's ends in the chart coordinate s, per trajectory (a region map gives each its own l0, delta)
         lo, hi = slot if slot is not None else (float(p["l0"]), float(p["l0"]) + float(p["delta"]))
         self.lo = np.broadcast_to(np.asarray(lo, float), (len(entry),))
@@ -47,7 +50,7 @@ class PegController:
         steps = chunk.time.shape[1] - 1
         restart = np.full(chunk.time.shape[0], steps)
         overrides: dict[int, np.ndarray] = {}
-        s = chunk.qpos[:, :, 1]
+        s = chunk.qpos[:, :, self.slide]
         outside = (s > self.hi[:, None]) | (s < self.lo[:, None])
         for b in np.nonzero(outside[:, 1:].any(axis=1))[0]:
             k = int(np.argmax(outside[b, 1:])) + 1

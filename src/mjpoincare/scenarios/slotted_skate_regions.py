@@ -60,7 +60,7 @@ def region_map(p: Values, s: Values, x: np.ndarray, y: np.ndarray, impacts: int 
     base = {**p, "rho": 1.0, "mass": 1.0, "V0": 1.0, "heading0": 0.0}
     model = skate.build(base, s)
     entry = np.where(V > 0, l0_all, l0_all + delta_all)
-    controller = PegController(base, entry, (l0_all, l0_all + delta_all))
+    controller = PegController(model, base, entry, (l0_all, l0_all + delta_all))
     start = initial_states(model, np.stack([np.zeros_like(V), entry, np.zeros_like(V)], 1),
                            np.stack([np.full_like(V, omega0), V, np.zeros_like(V)], 1))
     seconds = 1.2 * (impacts + 1) * float(delta_all.max())
