@@ -13,12 +13,12 @@ import itertools
 import math
 
 import numpy as np
+from mjpoincare.analysis.contact_modes import MERGE_PHASE, MODE_NAMES, merge_short_runs, run_starts, speed_modes
 from mjpoincare.analysis.theory import compass_biped_friction as theory
 
 IMPACT_TIMECONSTS = 3.0  # contact time constants after a heel strike at which x_dot+ is read
 RELEASE_SKIP = 5e-3  # s after heel strike excluded from force ratios and phase labels: the soft impact's transient
 V_SLIP = 5e-3  # m/s: stance foot tangential speed above which a row slips (rimless-wheel-friction's fast value)
-MERGE_PHASE_S = 2e-3  # phases shorter than this are merged into the previous one (stick-slip flicker at onsets)
 
 
 def reference_at(ref: theory.ReferenceTrajectory, phase: np.ndarray) -> tuple[np.ndarray, ...]:
@@ -95,25 +95,16 @@ def impact_slip(stance: dict[str, np.ndarray]) -> float:
 
 
 def phases(stance: dict[str, np.ndarray], dt: float) -> list[tuple[str, float]]:
-    """Stance phases (stick / slip+ / slip-) and start times from the stance foot's tangential velocity (rows
-    within RELEASE_SKIP of either heel strike dropped), flicker shorter than MERGE_PHASE_S merged."""
+    """Stance phases (stick / slip+ / slip-) and start times from the stance foot's tangential speed against V_SLIP
+    (rows within RELEASE_SKIP of either heel strike dropped), by the shared classifier
+    (:func:`mjpoincare.analysis.contact_modes.speed_modes`, runs shorter than
+    :data:`~mjpoincare.analysis.contact_modes.MERGE_PHASE` merged)."""
     t, v = stance["t"], stance["v_t"]
     keep = (t > RELEASE_SKIP) & (t < t[-1] - RELEASE_SKIP)
     t, v = t[keep], v[keep]
-    labels = np.where(v > V_SLIP, "slip+", np.where(v < -V_SLIP, "slip-", "stick"))
-    runs: list[list] = []
-    for i, lab in enumerate(labels):
-        if runs and runs[-1][0] == lab:
-            runs[-1][2] = i
-        else:
-            runs.append([lab, i, i])
-    merged: list[list] = []
-    for lab, i0, i1 in runs:
-        if merged and ((i1 - i0 + 1) * dt < MERGE_PHASE_S or merged[-1][0] == lab):
-            merged[-1][2] = i1
-        else:
-            merged.append([lab, i0, i1])
-    return [(str(lab), float(t[i0])) for lab, i0, _ in merged]
+    group = np.zeros(t.size, int)
+    mode = merge_short_runs(group, speed_modes(v, V_SLIP).astype(int), max(1, round(MERGE_PHASE / dt)))
+    return [(MODE_NAMES[int(mode[i])], float(t[i])) for i in run_starts(group, mode)]
 
 
 def classified_pattern(g: theory.Gait, dt: float) -> list[tuple[str, float]]:

@@ -26,11 +26,19 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+from mjpoincare.analysis.contact_modes import (
+    CONE_EPS,
+    EXCLUDED,
+    MERGE_PHASE,
+    MODE_NAMES,
+    STICK,
+    cone_modes,
+    merge_short_runs,
+    run_starts,
+    speed_modes,
+)
 from mjpoincare.analysis.returnmap import ReturnMapFit, fit_return_map, sample_pairs
 from mjpoincare.analysis.sections import level_crossings
-
-STICK, SLIP_POS, SLIP_NEG, EXCLUDED = 0, 1, 2, 3
-MODE_NAMES = ("stick", "slip+", "slip-")
 
 
 @dataclass(frozen=True)
@@ -46,9 +54,9 @@ class Classifier:
     mu: np.ndarray
     v_thr: float
     impact_window: float
-    eps: float = 5e-3
+    eps: float = CONE_EPS
     ratio_window: float = 1e-3
-    merge_phase: float = 1e-3
+    merge_phase: float = MERGE_PHASE
     min_phase_rows: int = 2
 
 
@@ -113,20 +121,13 @@ def stance_rows(*, time: np.ndarray, theta: np.ndarray, rate: np.ndarray, slip: 
     contact = sn > 1e-3 * weight * width
     with np.errstate(divide="ignore", invalid="ignore"):
         ratio = np.where(contact, st / sn, np.nan)
-    mu = cls.mu[:, None]
-    sat_pos = ratio <= -(1 - cls.eps) * mu
-    sat_neg = ratio >= (1 - cls.eps) * mu
     # Coulomb: a contact slips when its friction is on the cone (the direction is the one friction opposes)
-    mode = np.full(theta.shape, STICK, np.int8)
-    mode[sat_pos] = SLIP_POS
-    mode[sat_neg] = SLIP_NEG
+    mode = cone_modes(ratio, cls.mu[:, None], cls.eps)
     # off contact (the foot in the air: a hop, or a sliding foot lifted by a soft contact) a row is neither
     off = impact | ~contact | ~np.isfinite(theta)
     mode[off] = EXCLUDED
     # the velocity-only classification, for comparison: the foot's speed against v_thr
-    vmode = np.full(theta.shape, STICK, np.int8)
-    vmode[slip > cls.v_thr] = SLIP_POS
-    vmode[slip < -cls.v_thr] = SLIP_NEG
+    vmode = speed_modes(slip, cls.v_thr)
     vmode[off] = EXCLUDED
     return Rows(time=time, theta=theta, rate=rate, slip=slip, clearance=clearance, ratio=ratio, force_t=force_t,
                 force_n=force_n, stance=stance, since=since, wrap=forward, mode=mode, vmode=vmode)
@@ -144,36 +145,14 @@ class Runs:
     theta: np.ndarray
 
 
-def _run_starts(traj: np.ndarray, stance: np.ndarray, mode: np.ndarray) -> np.ndarray:
-    new = np.ones(traj.size, bool)
-    new[1:] = (traj[1:] != traj[:-1]) | (stance[1:] != stance[:-1]) | (mode[1:] != mode[:-1])
-    return np.nonzero(new)[0]
-
-
 def phase_runs(rows: Rows, valid: np.ndarray, dt: float, merge_phase: float) -> Runs:
     """The phases of every stance over the ``valid`` (B, T) rows: runs shorter than ``merge_phase`` (s) absorbed
-    into the phase before them (into the next one at the start of a stance); vectorised, two merging passes."""
+    into the phase before them (into the next one at the start of a stance), :func:`merge_short_runs`."""
     tr, kr = np.nonzero(valid & (rows.mode != EXCLUDED))
     stance, mode = rows.stance[tr, kr], rows.mode[tr, kr].astype(int)
-    shortest = max(1, round(merge_phase / dt))
-    for _ in range(2):
-        if tr.size == 0:
-            break
-        starts = _run_starts(tr, stance, mode)
-        lengths = np.diff(np.append(starts, tr.size))
-        run_mode = mode[starts]
-        same_prev = np.zeros(starts.size, bool)
-        same_prev[1:] = (tr[starts[1:]] == tr[starts[:-1]]) & (stance[starts[1:]] == stance[starts[:-1]])
-        same_next = np.append(same_prev[1:], False)
-        short = lengths < shortest
-        new_mode = run_mode.copy()
-        prev_mode = np.roll(run_mode, 1)
-        next_mode = np.roll(run_mode, -1)
-        new_mode[short & same_prev] = prev_mode[short & same_prev]
-        first_short = short & ~same_prev & same_next
-        new_mode[first_short] = next_mode[first_short]
-        mode = np.repeat(new_mode, lengths)
-    starts = _run_starts(tr, stance, mode) if tr.size else np.zeros(0, int)
+    group = tr.astype(np.int64) * (int(stance.max(initial=0)) + 1) + stance  # one group per trajectory and stance
+    mode = merge_short_runs(group, mode, max(1, round(merge_phase / dt)))
+    starts = run_starts(group, mode) if tr.size else np.zeros(0, int)
     return Runs(traj=tr[starts], stance=stance[starts], mode=mode[starts], first=kr[starts],
                 theta=rows.theta[tr[starts], kr[starts]])
 

@@ -7,7 +7,8 @@ from collections.abc import Callable
 import numpy as np
 import pytest
 from mjpoincare.analysis import stick_slip_phases as phases
-from mjpoincare.analysis.stick_slip_phases import EXCLUDED, SLIP_NEG, SLIP_POS, STICK, Classifier, Rows, Runs, Steps
+from mjpoincare.analysis.contact_modes import EXCLUDED, SLIP_NEG, SLIP_POS, STICK
+from mjpoincare.analysis.stick_slip_phases import Classifier, Rows, Runs, Steps
 
 PHI, DT, N = 0.3, 1e-4, 400  # half step angle (rad), row spacing (s), rows per stance
 MU, V_THR = 0.5, 0.01
