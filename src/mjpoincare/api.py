@@ -11,13 +11,16 @@ from mjpoincare.result import Result
 from mjpoincare.validation import run_validation
 
 
-def validate(scenario: str, preset: str | None = None, seed: int = 0, **values: Value) -> Result:
+def validate(scenario: str, preset: str | None = None, seed: int = 0, *, peer: str | None = None,
+             **values: Value) -> Result:
     """Run ``scenario``'s validation and check it against the analytic results.
 
     Args:
         scenario: a registered name (``mjpoincare list``), e.g. ``"rimless-wheel"``.
         preset: simulator preset (``"fast"``, ``"accurate"``, ...); None is the scenario's default.
         seed: seed of the experiment design's random parts (same seed, same result on any thread count).
+        peer: an outside simulator (``"drake"``, for rimless-wheel and compass-biped; the extra
+            ``mjpoincare[peers]``) whose value of each check the result's ``extras["peer"]`` carries.
         **values: physical parameters and simulator settings, typed (``spokes=8``, ``timestep=2e-4``,
             ``integrator="rk4"``); text as on the command line is accepted too.
 
@@ -31,4 +34,4 @@ def validate(scenario: str, preset: str | None = None, seed: int = 0, **values: 
     """
     if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
         raise ParameterError(f"seed must be an integer >= 0 (got {seed!r})")
-    return run_validation(scenario, values, preset, seed)
+    return run_validation(scenario, values, preset, seed, peer=peer)

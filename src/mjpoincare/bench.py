@@ -9,6 +9,8 @@ sets two reference figures beside it:
   (one call, no chunking, no sampling), to show what the pipeline costs on top;
 * the exact event-driven ``solve_ivp`` reference at several tolerances, with its own error, to
   compare its cost at equal accuracy.
+* for the rimless wheel and the compass gait, Drake's hybrid simulation (:mod:`mjpoincare.peers`, the extra
+  ``peers``) at three accuracies: the row a user wanting the exact cycle would pick instead.
 """
 
 from __future__ import annotations
@@ -28,6 +30,7 @@ from mujoco import rollout as mj_rollout
 from mjpoincare import scenarios
 from mjpoincare.analysis.checks import jsonable
 from mjpoincare.params import Value
+from mjpoincare.peers.compare import bench_block
 from mjpoincare.result import write_json
 from mjpoincare.validation import resolve_inputs, run_validation
 
@@ -118,12 +121,13 @@ def run_bench(name: str, assignments: Mapping[str, str], output: str, json_path:
     raw = raw_rollout_rate(name, assignments)
     _, _, params, _ = resolve_inputs(name, assignments, None)
     reference = [scenario.reference_bench(params, rtol) for rtol in ([1e-3, 1e-7] if quick else REFERENCE_RTOLS)]
-    print(format_table(rows, accuracy, raw, reference))
-    _plot(rows, reference, key, output.format(scenario=name), name)
+    peer_text, peer = bench_block(name, params)
+    print(format_table(rows, accuracy, raw, reference) + peer_text)
+    _plot(rows, reference, key, output.format(scenario=name), name, peer)
     if json_path:
         json_path = json_path.format(scenario=name)
         write_json(jsonable({"scenario": name, "mujoco_version": mujoco.__version__, "rows": rows,
-                             "raw_rollout": raw, "reference": reference}), json_path)
+                             "raw_rollout": raw, "reference": reference, "peer": peer}), json_path)
     return 0
 
 
@@ -192,7 +196,8 @@ def _progress(message: str) -> None:
         print(message, file=sys.stderr)
 
 
-def _plot(rows: list[dict[str, Any]], reference: list[dict[str, float]], key: str, path: str, name: str) -> None:
+def _plot(rows: list[dict[str, Any]], reference: list[dict[str, float]], key: str, path: str, name: str,
+          peer: dict[str, Any] | None) -> None:
     from matplotlib.figure import Figure
 
     fig = Figure(figsize=(7, 4.5))
@@ -207,6 +212,9 @@ def _plot(rows: list[dict[str, Any]], reference: list[dict[str, float]], key: st
     ax.plot(walls[front][order], errors[front][order], "r--", lw=1, label="MuJoCo Pareto front")
     ref_key = key if key in reference[0] else next(k for k in reference[0] if k.endswith("_error"))
     ax.plot([r["wall_s"] for r in reference], [r[ref_key] for r in reference], "ks-", label="solve_ivp reference")
+    if peer:
+        ax.plot([r["wall_s"] for r in peer["rows"]], [r[ref_key] for r in peer["rows"]], "g^-",
+                label=f"Drake {peer['version']} ({peer['scheme']})")
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("wall time of one validation, s (2 threads)")

@@ -34,9 +34,14 @@ def stability_check(diverged: int, warnings: int) -> Check:
 
 
 def run_validation(name: str, assignments: Mapping[str, str] | None = None, preset: str | None = None,
-                   seed: int = 0) -> Result:
-    """Validate scenario ``name`` with ``--set``-style ``assignments`` under ``preset``."""
+                   seed: int = 0, peer: str | None = None) -> Result:
+    """Validate scenario ``name`` with ``--set``-style ``assignments`` under ``preset``; with ``peer``, add that
+    simulator's value of each check (:func:`mjpoincare.peers.compare.compare`) as ``extras["peer"]``."""
     scenario, preset_name, params, settings = resolve_inputs(name, assignments or {}, preset)
+    if peer:
+        from mjpoincare.peers.compare import check_peer
+
+        check_peer(peer, scenario.name, params)
     start = time.perf_counter()
     evaluation = scenario.evaluate(params, settings, preset_name, seed)
     wall = time.perf_counter() - start
@@ -50,6 +55,10 @@ def run_validation(name: str, assignments: Mapping[str, str] | None = None, pres
         extras["diagnostics"] = {"max_penetration_m": max(0.0, -float(report.sensor_min[0])),
                                  "max_kinetic_energy_J": float(report.sensor_max[1]),
                                  "initial_kinetic_energy_J": float(report.sensor_first[1])}
+    if peer:
+        from mjpoincare.peers.compare import compare
+
+        extras["peer"] = compare(scenario.name, params, checks)
     return Result(scenario=scenario.name, preset=preset_name, seed=seed, params=params,
                   settings=sim_settings.as_json(settings), mujoco_version=mujoco.__version__, checks=checks,
                   timing=timing, warnings=report.warnings, diverged=diverged, extras=extras)
