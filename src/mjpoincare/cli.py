@@ -45,15 +45,23 @@ def _cmd_validate(args: argparse.Namespace) -> int:
     names = args.scenario or list(scenarios.DEFAULT_SCENARIOS)
     assignments = parse_assignments(args.set)
     for name in names:  # refuse bad input before any simulation or file
-        resolve_inputs(name, assignments, args.preset)
+        _, _, params, _ = resolve_inputs(name, assignments, args.preset)
+        if args.peer:
+            from mjpoincare.peers.compare import check_peer
+
+            check_peer(args.peer, name, params)
     check_output_path(args.json, "--json")
     check_output_path(args.report, "--report", directory=True)
     if args.report:
         _require_viz("--report", "matplotlib")
-    results = [validate(name, args.preset, args.seed, **assignments) for name in names]
+    results = [validate(name, args.preset, args.seed, peer=args.peer, **assignments) for name in names]
     if args.json != "-":
         for result in results:
             print(result.table())
+            if "peer" in result.extras:
+                from mjpoincare.peers.compare import format_peer
+
+                print(format_peer(result.extras["peer"]))
             print()
     if args.json:
         payload = results[0].to_dict() if len(results) == 1 else [r.to_dict() for r in results]
@@ -195,6 +203,8 @@ def build_parser() -> argparse.ArgumentParser:
     val.add_argument("--json", metavar="PATH|-", help="write the result as JSON (- for stdout)")
     val.add_argument("--seed", type=int, default=0, help="seed of the bootstrap (same seed, same result)")
     val.add_argument("--report", metavar="DIR", help="write a self-contained HTML report per scenario into DIR")
+    val.add_argument("--peer", choices=("drake",), help="add an outside simulator's value of each check (drake: "
+                     "rimless-wheel and compass-biped; pip install 'mjpoincare[peers]')")
     val.set_defaults(func=_cmd_validate)
 
     bench = sub.add_parser("bench", help="run time against error over timestep, integrator and contact settings")
