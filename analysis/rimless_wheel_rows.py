@@ -6,6 +6,7 @@ contact force per unit mass a_hub - g (the spokes are massless), classified by
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 from mjpoincare.analysis.sections import wrap_phase
@@ -37,3 +38,39 @@ def wheel_rows(*, time: np.ndarray, pitch: np.ndarray, pitch_rate: np.ndarray, h
     return stance_rows(time=time, theta=theta, rate=pitch_rate / rate_unit, slip=slip, clearance=clearance,
                        force_t=f_t, force_n=f_n, half_step=phi, timestep=timestep, weight=abs(float(gravity[2])),
                        cls=cls)
+
+
+@dataclass(frozen=True)
+class StanceContact:
+    """The stance foot's contact in MuJoCo's contact frame (slope normal n, slope tangent t), every row (B, T), SI:
+    distance ``dist`` (m, < 0: penetration), velocity J qvel (``v_n``, ``v_t``), the step's constrained acceleration
+    J qacc (``a_n``, ``a_t``; NaN in the last row) and the normal contact force ``f_n`` (N)."""
+
+    dist: np.ndarray
+    v_n: np.ndarray
+    v_t: np.ndarray
+    a_n: np.ndarray
+    a_t: np.ndarray
+    f_n: np.ndarray
+
+
+def stance_contact(*, pitch: np.ndarray, pitch_rate: np.ndarray, hub_x_dot: np.ndarray, hub_z: np.ndarray,
+                   hub_z_dot: np.ndarray, gravity: np.ndarray, spokes: int, leg_length: float, foot_radius: float,
+                   timestep: float, mass: float) -> StanceContact:
+    """:class:`StanceContact` of the recorded rows (as :func:`wheel_rows`; ``mass`` the wheel's, kg, all at the hub).
+
+    MuJoCo puts a sphere-plane contact midway between the surfaces, r + dist/2 below the foot's centre, so the
+    tangential lever of the pitch rate is (l - r) cos theta + r + dist/2 and the normal one (l - r) sin theta; the
+    accelerations are the rows' forward differences, J qacc exactly for Euler and implicitfast (no J_dot term:
+    MuJoCo's solver works on J qacc). The normal force is the hub's momentum rate m (z_ddot - g_n)."""
+    l, r, dt = leg_length, foot_radius, timestep
+    theta = wrap_phase(pitch, math.pi / spokes)
+    dist = hub_z - (l - r) * np.cos(theta) - r
+    normal_lever, tangent_lever = (l - r) * np.sin(theta), (l - r) * np.cos(theta) + r + 0.5 * dist
+    tail = np.full((pitch.shape[0], 1), np.nan)
+    z_ddot = np.concatenate([np.diff(hub_z_dot, axis=1) / dt, tail], axis=1)
+    x_ddot = np.concatenate([np.diff(hub_x_dot, axis=1) / dt, tail], axis=1)
+    theta_ddot = np.concatenate([np.diff(pitch_rate, axis=1) / dt, tail], axis=1)
+    return StanceContact(dist=dist, v_n=hub_z_dot + normal_lever * pitch_rate,
+                         v_t=hub_x_dot - tangent_lever * pitch_rate, a_n=z_ddot + normal_lever * theta_ddot,
+                         a_t=x_ddot - tangent_lever * theta_ddot, f_n=mass * (z_ddot - float(gravity[2])))

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
+from dataclasses import asdict, dataclass
 from typing import Any
 
 import mujoco
@@ -45,8 +46,8 @@ from mjpoincare.scenarios.base import (
     Values,
     at_preset,
 )
-from mjpoincare.scenarios.rimless_wheel_friction_rollout import classifier, row_signals, simulate
-from mjpoincare.simulate import RolloutReport, plain_clip
+from mjpoincare.scenarios.rimless_wheel_friction_rollout import classifier, row_signals, simulate, sliding_contact
+from mjpoincare.simulate import Chunk, RolloutReport, plain_clip
 
 PAPER_SLOPE = math.radians(13.0)
 
@@ -85,6 +86,12 @@ REASONS: dict[str, str] = {
                   "0.02 rad, 3 % of the stance's 2 phi (paper set)",
     "critical_friction": "max |f_t/f_n| along the settled A stances of the fitting starts (impulses binned by 2 mrad "
                          "of theta, the ends extrapolated to -+phi) against mu_c (002 eq 23); relative, 2 %",
+    "sliding_contact_law": "largest relative residual, over the stance foot's sliding rows (MuJoCo's elliptic-cone "
+                           "middle zone, outside impact windows), of MuJoCo's documented contact law for a sliding "
+                           "step (analysis/soft_contact, eq 1: its reference acceleration, regulariser and cone) "
+                           "evaluated on the rows' distance, velocities, accelerations and force; it holds to the "
+                           "solver's tolerance (1e-10) and the rows' rounding, so 1e-6 leaves room for both and "
+                           "is far below the 1e-2 to 1e-1 the law explains in the lift ratio",
     "v_thr": "foot speed above which it moves: 20-75x the median creep of a stuck foot, 2-7x its 99th percentile "
              "(MuJoCo's regularised friction; the creep is independent of impratio 1-1000, noslip 0-3 and the cone, "
              "and grows with the contact time constant)",
@@ -92,12 +99,12 @@ REASONS: dict[str, str] = {
 
 TOLERANCES: dict[str, Tolerances] = {
     "fast": Tolerances(bounds={"midstance_rate": 5e-3, "eigenvalue": 0.02, "dx_per_step": 0.1, "slip_onset": 0.02,
-                               "critical_friction": 0.02}, reasons=REASONS),
+                               "critical_friction": 0.02, "sliding_contact_law": 1e-6}, reasons=REASONS),
     "accurate": Tolerances(bounds={"midstance_rate": 2e-3, "eigenvalue": 0.02, "dx_per_step": 0.1, "slip_onset": 0.02,
-                                   "critical_friction": 0.02}, reasons=REASONS),
+                                   "critical_friction": 0.02, "sliding_contact_law": 1e-6}, reasons=REASONS),
     # coarse, the region maps' preset, keeps the fast tolerances
     "coarse": Tolerances(bounds={"midstance_rate": 5e-3, "eigenvalue": 0.02, "dx_per_step": 0.1, "slip_onset": 0.02,
-                                 "critical_friction": 0.02}, reasons=REASONS),
+                                 "critical_friction": 0.02, "sliding_contact_law": 1e-6}, reasons=REASONS),
 }
 
 FIT_OFFSETS = (-0.12, -0.06, 0.0, 0.06, 0.12)  # relative offsets of theta_dot0 around the gait's post-impact state
@@ -200,8 +207,21 @@ def fit_starts(gait: theory.Gait, w: theory.FrictionWheel) -> tuple[np.ndarray, 
     return starts, np.arange(len(starts)) < len(fit)
 
 
+@dataclass(frozen=True)
+class FrictionRun:
+    """One batch's recorded rows (``rec``, on ``model``), their stick/slip signals and step table, the thresholds and
+    the rollout report."""
+
+    rec: Chunk
+    model: mujoco.MjModel
+    rows: Rows
+    steps: Steps
+    cls: Classifier
+    report: RolloutReport
+
+
 def run_batch(p: Values, s: Values, preset: str, starts: np.ndarray, steps: int,
-              mus: np.ndarray | None = None, extra: float = 0.0) -> tuple[Rows, Steps, Classifier, RolloutReport]:
+              mus: np.ndarray | None = None, extra: float = 0.0) -> FrictionRun:
     """Simulate ``starts`` for ``steps`` gait periods plus ``extra`` seconds (one rollout; ``mus`` gives each
     trajectory its own friction) and measure them."""
     model = build(p, s)
@@ -211,7 +231,7 @@ def run_batch(p: Values, s: Values, preset: str, starts: np.ndarray, steps: int,
     cls = classifier(mu_all, s, preset, len(starts))
     rows = row_signals(rec, model, p, s, rate_unit(p), cls)
     table = phases.step_table(rows, cls, steps + 2, backward_rate=BACKWARD_RATE, flight_clearance=FLIGHT_CLEARANCE)
-    return rows, table, cls, report
+    return FrictionRun(rec=rec, model=model, rows=rows, steps=table, cls=cls, report=report)
 
 
 def period_seconds(p: Values, mus: np.ndarray) -> float:
@@ -230,7 +250,8 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     tol = at_preset(TOLERANCES, RIMLESS_WHEEL_FRICTION.name, preset)
     starts, fit_mask = fit_starts(gait, w)
     nsteps = D_SIM_STEPS if gait.kind.startswith("D") else SIM_STEPS
-    rows, steps, cls, report = run_batch(p, s, preset, starts, nsteps)
+    run = run_batch(p, s, preset, starts, nsteps)
+    rows, steps, cls, report = run.rows, run.steps, run.cls, run.report
     refs = [reference.reference_run(w, tuple(z), nsteps) for z in starts]
     out: list[checks.Check] = []
     sim_types = [phases.outcome(steps, b) for b in range(len(starts))]
@@ -274,6 +295,17 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
         sum(ph[0] != gait.phases for ph in measured), len(settled),
         f"stick/slip phases of the settled steps ({names}) vs the gait's (002 eq 35): a row slips when its friction "
         "is on the cone (force ratio of the hub's recorded acceleration over 1 ms); error = fraction that differ"))
+    if gait.kind != "A":  # the gait slips (002 Sec. 3.3): its sliding rows against MuJoCo's contact law
+        sliding = sliding_contact(run.rec, run.model, p, s, rows, cls)
+        out.append(checks.absolute("sliding_contact_law", 0.0, sliding.residual, tol["sliding_contact_law"], "",
+                                   f"{tol.reasons['sliding_contact_law']} ({sliding.rows} sliding rows)"))
+        extras["sliding_contact"] = asdict(sliding)
+        extras["reported"] = {"sliding_lift_ratio": {
+            "value": sliding.lift_ratio[1], "unit": "",
+            "note": f"median over {sliding.lift_offs} lift-offs of the normal velocity a sliding step leaves with / "
+                    f"(mu |v_t|), 5-95 % {sliding.lift_ratio[0]:.3f}-{sliding.lift_ratio[2]:.3f}; eq 2 of "
+                    f"analysis/soft_contact: |v_t + a_t/b| / |v_t| = {sliding.decelerating[1]:.3f} of it is the "
+                    "foot's deceleration within the contact's response time 1/b, the rest its spring"}}
     if gait.kind == "B":
         onset_sim = float(np.nanmedian(steps.onset[main, settled])) if settled.size else math.nan
         out.append(checks.absolute("slip_onset", gait.phase_angles[-1], onset_sim, tol["slip_onset"], "rad",

@@ -68,7 +68,8 @@ def simulate_starts(p: Values, s: Values, preset: str, starts: np.ndarray, nstep
         idx = order[k : k + BASIN_CHUNK]
         part = starts[idx]
         extra = _first_step_seconds({**p, "mu": mu}, part)
-        _rows, steps, _cls, report = run_batch({**p, "mu": mu}, s, preset, part, nsteps, extra=extra)
+        run = run_batch({**p, "mu": mu}, s, preset, part, nsteps, extra=extra)
+        steps, report = run.steps, run.report
         total = report if not total.steps else total.merge(report)
         for b, i in enumerate(idx):
             label = outcome(steps, b)

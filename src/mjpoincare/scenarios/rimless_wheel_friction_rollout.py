@@ -7,11 +7,15 @@ classification (why they are what they are: docs/scenarios/rimless-wheel-frictio
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import mujoco
 import numpy as np
 
-from mjpoincare.analysis.rimless_wheel_rows import impact_window, wheel_rows
+from mjpoincare import settings as sim_settings
+from mjpoincare.analysis.contact_modes import EXCLUDED
+from mjpoincare.analysis.rimless_wheel_rows import impact_window, stance_contact, wheel_rows
+from mjpoincare.analysis.soft_contact import SoftContact
 from mjpoincare.analysis.stick_slip_phases import Classifier, Rows
 from mjpoincare.scenarios.base import JointIndex, Values
 from mjpoincare.settings import rollout_options
@@ -66,3 +70,82 @@ def classifier(mu: np.ndarray | float, s: Values, preset: str, batch: int) -> Cl
                            IMPACT_WINDOW_TC)
     return Classifier(mu=np.broadcast_to(np.asarray(mu, float), (batch,)).copy(),
                       v_thr=V_THRESHOLD.get(preset, V_THRESHOLD["fast"]), impact_window=window)
+
+
+#: Sliding rows needed for the contact-law check (fewer: no sliding to check, e.g. Type A).
+MIN_SLIDING_ROWS = 20
+
+
+@dataclass(frozen=True)
+class SlidingContact:
+    """The stance foot's sliding rows (MuJoCo's cone zone, outside impact windows) against MuJoCo's contact law
+    (:mod:`mjpoincare.analysis.soft_contact`, eq 2).
+
+    Attributes:
+        rows: how many sliding rows were read (touching outside impact windows, in MuJoCo's cone zone, the foot
+            faster than the classifier's v_thr).
+        residual: the largest relative residual of the law (eq 1, :meth:`SoftContact.sliding_law_residual`) over
+            them (NaN with fewer than MIN_SLIDING_ROWS).
+        lift_ratio: at each lift-off of a sliding foot (its next row off the surface), the normal velocity the step
+            leaves with over mu |v_t|: (5th, 50th, 95th) percentiles (NaN without lift-offs).
+        decelerating: the same percentiles of |v_t + a_t / b| / |v_t|, the part of the lift ratio eq 2 attributes to
+            the foot's tangential deceleration within the contact's response time 1/b.
+        lift_offs: how many lift-offs.
+    """
+
+    rows: int
+    residual: float
+    lift_ratio: tuple[float, float, float]
+    decelerating: tuple[float, float, float]
+    lift_offs: int
+
+
+def _percentiles(x: np.ndarray) -> tuple[float, float, float]:
+    if not x.size:
+        return math.nan, math.nan, math.nan
+    low, mid, high = np.percentile(x, [5, 50, 95])
+    return float(low), float(mid), float(high)
+
+
+def sliding_contact(rec: Chunk, model: mujoco.MjModel, p: Values, s: Values, rows: Rows, cls: Classifier
+                    ) -> SlidingContact:
+    """:class:`SlidingContact` of the recorded rows ``rec`` of ``model`` (their signals ``rows``, thresholds ``cls``:
+    each trajectory's friction, and the foot speed above which a lift-off counts as a slide's); MuJoCo's
+    ``efc_diagA`` of a foot's normal row is read once from ``model`` at the first recorded state."""
+    mu, cls_v_thr = cls.mu, cls.v_thr
+    x, z, pitch = (JointIndex.of(model, name) for name in ("x", "z", "pitch"))
+    con = stance_contact(pitch=rec.qpos[:, :, pitch.qpos], pitch_rate=rec.qvel[:, :, pitch.dof],
+                         hub_x_dot=rec.qvel[:, :, x.dof], hub_z=rec.qpos[:, :, z.qpos], hub_z_dot=rec.qvel[:, :, z.dof],
+                         gravity=np.asarray(model.opt.gravity), spokes=int(p["spokes"]),
+                         leg_length=float(p["leg_length"]), foot_radius=float(s["foot_radius"]),
+                         timestep=float(s["timestep"]), mass=float(model.body_subtreemass[0]))
+    law = SoftContact(timestep=float(s["timestep"]), timeconst=float(s["solref_timeconst"]),
+                      dampratio=float(s["solref_dampratio"]), solimp=sim_settings.solimp(s),
+                      impratio=float(s["impratio"]), mu=np.asarray(mu, float)[:, None],
+                      diag_inverse_inertia=_normal_diag_inverse_inertia(model, rec))
+    # sliding: touching outside an impact window, in the cone's middle zone and moving faster than v_thr (at the
+    # cone's apex, a_t + b v_t ~ 0, the zone a row is in cannot be told from the recorded rows)
+    touching = (rows.mode != EXCLUDED) & np.isfinite(con.a_n) & (con.dist < 0) & (np.abs(rows.slip) > cls_v_thr)
+    sliding = touching & law.in_cone_zone(dist=con.dist, v_n=con.v_n, v_t=con.v_t, a_n=con.a_n, a_t=con.a_t)
+    residual = law.sliding_law_residual(dist=con.dist, v_n=con.v_n, v_t=con.v_t, a_n=con.a_n, a_t=con.a_t,
+                                        f_n=con.f_n)[sliding]
+    lifted = sliding & (np.concatenate([con.dist[:, 1:], np.full((con.dist.shape[0], 1), -1.0)], axis=1) >= 0)
+    scale = law.mu * np.abs(con.v_t)
+    v_after = np.concatenate([con.v_n[:, 1:], np.full((con.v_n.shape[0], 1), np.nan)], axis=1)
+    decel = np.abs(con.v_t + con.a_t / law.damping) / np.abs(con.v_t)
+    return SlidingContact(rows=int(sliding.sum()),
+                          residual=float(residual.max()) if residual.size >= MIN_SLIDING_ROWS else math.nan,
+                          lift_ratio=_percentiles((v_after / scale)[lifted]), decelerating=_percentiles(decel[lifted]),
+                          lift_offs=int(lifted.sum()))
+
+
+def _normal_diag_inverse_inertia(model: mujoco.MjModel, rec: Chunk) -> float:
+    """MuJoCo's diagonal approximation of the inverse inertia in a foot's contact normal (``efc_diagA`` of the first
+    contact's normal row; the same for every foot of the one wheel body), from one forward call at the first row."""
+    data = mujoco.MjData(model)
+    data.qpos[:] = rec.qpos[0, 0]
+    data.qvel[:] = rec.qvel[0, 0]
+    mujoco.mj_forward(model, data)
+    if data.ncon == 0:
+        return math.nan
+    return float(data.efc_diagA[data.contact[0].efc_address])
