@@ -37,6 +37,7 @@ def _cmd_list(_: argparse.Namespace) -> int:
 
 
 def _cmd_validate(args: argparse.Namespace) -> int:
+    no_gl = _select_still_backend() if args.report else None  # before MuJoCo is imported
     from mjpoincare import scenarios
     from mjpoincare.api import validate
     from mjpoincare.result import check_output_path, write_json
@@ -67,13 +68,37 @@ def _cmd_validate(args: argparse.Namespace) -> int:
         payload = results[0].to_dict() if len(results) == 1 else [r.to_dict() for r in results]
         write_json(payload, args.json)
     if args.report:
-        from mjpoincare.report import write_report
+        from mjpoincare.report import write_index, write_report
 
-        for result in results:
-            path = write_report(result.to_dict(), args.report)
-            if args.json != "-":
-                print(f"report: {path}")
+        pages = [r.to_dict() for r in results]
+        paths = [write_report(page, args.report, no_gl or _report_still(page["scenario"], assignments, args.preset))
+                 for page in pages]
+        if len(pages) > 1:
+            paths.insert(0, write_index(pages, args.report))
+        if args.json != "-":
+            print("\n".join(f"report: {path}" for path in paths))
     return EXIT_PASS if all(r.passed for r in results) else EXIT_FAIL
+
+
+def _select_still_backend() -> str | None:
+    """Choose the OpenGL backend of the report's stills (before MuJoCo is imported); None, or why none works."""
+    from mjpoincare.render import RenderError, select_gl_backend
+
+    try:
+        select_gl_backend()
+    except RenderError as err:
+        return str(err)
+    return None
+
+
+def _report_still(name: str, assignments: dict[str, str], preset: str | None) -> bytes | str:
+    """The report's still of scenario ``name`` (PNG bytes), or why it could not be rendered."""
+    from mjpoincare.render import RenderError, render_still
+
+    try:
+        return render_still(name, assignments, preset)
+    except RenderError as err:
+        return str(err)
 
 
 def _cmd_bench(args: argparse.Namespace) -> int:
