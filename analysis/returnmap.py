@@ -24,12 +24,13 @@ import numpy as np
 from mjpoincare.analysis.eigenvalues import match_eigenvalues, sort_eigenvalues
 
 __all__ = ["DriftingCycleFit", "ReturnMapFit", "convergence_ratio", "fit_drifting_cycle", "fit_return_map",
-           "regress_at", "sample_pairs"]
+           "regress_at", "replicate_list", "sample_pairs"]
 
 _SUPPORTED_DEGREES = (1, 2, 3)
 _NEWTON_MAX_ITER = 60
 _NEWTON_STEP_TOL = 1e-12
 _GRAM_RTOL = 1e-12  # bootstrap replicates with cond(regression matrix) > 1e6 are skipped
+_REPLICATE_DIGITS = 7  # significant digits of the bootstrap eigenvalues in JSON (float32 precision: a plot's cloud)
 
 
 @dataclass(frozen=True)
@@ -51,6 +52,8 @@ class ReturnMapFit:
         n_pairs: number of pairs used.
         degree: total polynomial degree of the fit (1 affine, 2 quadratic, 3 cubic).
         condition: condition number of the centred and scaled regression matrix.
+        eigenvalue_replicates: ``(n, d)`` complex: each kept bootstrap replicate's multipliers, matched to
+            ``eigenvalues`` (the samples ``eigenvalue_std`` is the spread of).
 
     The standard deviations are NaN when fewer than two bootstrap replicates were available.
     """
@@ -65,12 +68,13 @@ class ReturnMapFit:
     n_pairs: int
     degree: int
     condition: float
+    eigenvalue_replicates: np.ndarray
 
     def to_dict(self) -> dict[str, Any]:
         """Return a JSON-ready dict: arrays as (nested) lists, complex numbers as ``[re, im]``.
 
         Non-finite floats (e.g. NaN standard deviations) become ``None`` so that the output is
-        strict JSON.
+        strict JSON. The replicates' multipliers are rounded to float32 precision (:func:`replicate_list`).
         """
         return {
             "fixed_point": _real_list(self.fixed_point),
@@ -83,6 +87,7 @@ class ReturnMapFit:
             "n_pairs": int(self.n_pairs),
             "degree": int(self.degree),
             "condition": _json_float(self.condition),
+            "eigenvalue_replicates": replicate_list(self.eigenvalue_replicates),
         }
 
 
@@ -103,6 +108,13 @@ def _real_list(array: np.ndarray) -> list[Any]:
 def _complex_list(array: np.ndarray) -> list[list[float | None]]:
     """Convert a 1-D complex array to a list of ``[re, im]`` pairs."""
     return [[_json_float(z.real), _json_float(z.imag)] for z in np.asarray(array, dtype=complex)]
+
+
+def replicate_list(samples: np.ndarray) -> list[list[list[float | None]]]:
+    """Bootstrap multipliers ``(n, d)`` complex as JSON: per replicate a list of ``[re, im]``, each rounded to
+    float32 precision (7 significant digits; enough to draw the cloud, half the text of full precision)."""
+    return [[[_json_float(float(f"{v:.{_REPLICATE_DIGITS}g}")) for v in (z.real, z.imag)] for z in row]
+            for row in np.asarray(samples, dtype=complex)]
 
 
 def sample_pairs(sequences: Sequence[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
@@ -376,6 +388,7 @@ def fit_return_map(
         n_pairs=n_pairs,
         degree=degree,
         condition=condition,
+        eigenvalue_replicates=np.array(boot_eigenvalues, dtype=complex).reshape(-1, dim),
     )
 
 
@@ -396,6 +409,8 @@ class DriftingCycleFit:
         n_pairs: number of pairs used.
         degree: degree of the fit used (1 when the requested one had no cycle near the samples).
         replicates: number of bootstrap replicates kept.
+        eigenvalue_replicates: ``(replicates, d)`` complex: each kept replicate's multipliers, matched to
+            ``eigenvalues``.
 
     The standard deviations are NaN when fewer than two replicates were kept.
     """
@@ -412,6 +427,7 @@ class DriftingCycleFit:
     n_pairs: int
     degree: int
     replicates: int
+    eigenvalue_replicates: np.ndarray
 
 
 def _drifting_cycle(coef: np.ndarray, terms: list[tuple[int, ...]], center: np.ndarray, scale: np.ndarray,
@@ -536,6 +552,7 @@ def fit_drifting_cycle(
         n_pairs=n_pairs,
         degree=degree,
         replicates=len(replicates),
+        eigenvalue_replicates=np.array(spectra, dtype=complex).reshape(-1, dim),
     )
 
 

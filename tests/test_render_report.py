@@ -14,11 +14,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 from mjpoincare.analysis.checks import jsonable
+from mjpoincare.analysis.returnmap import fit_drifting_cycle, fit_return_map
 
+from mjpoincare import report
 from mjpoincare.cli import main
 from mjpoincare.params import ParameterError
 from mjpoincare.render import parse_size
-from mjpoincare.report import eigenvalue_figure, return_map_figure
+from mjpoincare.report import eigenvalue_figure, return_map_figure, write_index, write_report
 from mjpoincare.scenarios.base import ReturnMapPlot
 
 pytestmark = pytest.mark.mujoco
@@ -120,3 +122,124 @@ def test_return_map_plot_is_the_json_the_report_draws() -> None:
     fit = {"eigenvalues": [[0.5, 0.0], [0.1, 0.2]], "eigenvalue_std": [[0.01, 0.0], [0.02, 0.02]]}
     for png in (return_map_figure(data), eigenvalue_figure(fit, data["analytic_eigenvalues"])):
         assert base64.b64decode(png)[:4] == b"\x89PNG"
+
+
+def _result(name: str, verdicts: dict[str, bool], **extras: object) -> dict[str, object]:
+    """A small synthetic result dict of the JSON's shape."""
+    checks = [{"name": n, "analytic": 1.0, "simulated": 1.0, "error": 0.0 if ok else 1.0, "tolerance": 0.1,
+               "passed": ok, "why": "synthetic"} for n, ok in verdicts.items()]
+    return {"scenario": name, "preset": "fast", "passed": all(verdicts.values()), "params": {"slope": 0.1},
+            "mujoco_version": "test", "timing": {"wall_s": 1.0, "steps_per_s": 1e5}, "warnings": [],
+            "checks": checks, **extras}
+
+
+def _figures_drawn(monkeypatch: pytest.MonkeyPatch) -> list[object]:
+    """The report's figures, kept as they are encoded (``report._png`` is replaced)."""
+    drawn: list[object] = []
+    monkeypatch.setattr(report, "_png", lambda fig: drawn.append(fig) or base64.b64encode(b"\x89PNG").decode())
+    return drawn
+
+
+def _legend_texts(fig: object) -> list[str]:
+    """The entries of every legend of ``fig`` (its axes' and its own)."""
+    legends = [ax.get_legend() for ax in fig.axes] + list(fig.legends)  # type: ignore[attr-defined]
+    return [t.get_text() for legend in legends if legend for t in legend.get_texts()]
+
+
+def test_index_lists_every_scenario_and_verdict(tmp_path: Path) -> None:
+    results = [_result("wheel", {"eigenvalue": True, "stable": True}),
+               _result("biped", {"fixed_point": False, "stable": True})]
+    page = write_index(results, str(tmp_path)).read_text()
+    rows = re.findall(r"<tr class=(pass|fail)><td><a href='([^']+)'>([^<]+)</a></td><td>(PASS|FAIL)</td>(.*?)</tr>",
+                      page)
+    assert [(cls, href, name, verdict) for cls, href, name, verdict, _ in rows] == [
+        ("pass", "wheel.html", "wheel", "PASS"), ("fail", "biped.html", "biped", "FAIL")]
+    for (*_, cells), result in zip(rows, results, strict=True):
+        chips = re.findall(r"<span class='v (pass|fail)'[^>]*>([^<]+)</span>", cells)
+        assert chips == [("pass" if c["passed"] else "fail", c["name"]) for c in result["checks"]]
+    assert "1 of 2 scenarios FAILED" in page
+
+
+def test_still_is_embedded_or_its_absence_said(tmp_path: Path) -> None:
+    png = b"\x89PNG\r\n\x1a\nstill"
+    page = write_report(_result("wheel", {"stable": True}), str(tmp_path / "a"), png).read_text()
+    encoded = base64.b64encode(png).decode()
+    assert f"<img class=still alt='still of wheel' src='data:image/png;base64,{encoded}'>" in page
+    page = write_report(_result("wheel", {"stable": True}), str(tmp_path / "b"), "no OpenGL here").read_text()
+    assert "<img class=still" not in page
+    assert [line for line in page.splitlines() if "class=still" in line] == [
+        "wall 1.00 s, 1e+05 steps/s</p><p class=still>No still of the model: no OpenGL here</p>"]
+
+
+def test_fit_json_holds_the_bootstrap_eigenvalues() -> None:
+    """Every kept replicate's multipliers, matched to the fit's and rounded to float32 precision: their spread is the
+    reported std."""
+    rng = np.random.default_rng(3)
+    x = rng.normal(size=(60, 2))
+    x_next = x @ np.array([[0.5, 0.2], [-0.3, 0.4]]) + 0.01 * rng.normal(size=(60, 2))
+    fit = fit_return_map(x, x_next, bootstrap=50)
+    cloud = np.array(json.loads(json.dumps(fit.to_dict()))["eigenvalue_replicates"])
+    assert cloud.shape == (50, 2, 2)
+    assert np.allclose(cloud[..., 0].std(axis=0, ddof=1), fit.eigenvalue_std.real, rtol=1e-4)
+    assert np.allclose(cloud[..., 1].std(axis=0, ddof=1), fit.eigenvalue_std.imag, rtol=1e-4)
+    drifting = fit_drifting_cycle(x, x_next, np.array([1.0, 0.0]), 0.0, degree=1, bootstrap=20)
+    assert drifting.eigenvalue_replicates.shape == (drifting.replicates, 2)
+
+
+def test_eigenvalue_cloud_is_drawn_from_the_replicates(monkeypatch: pytest.MonkeyPatch) -> None:
+    drawn = _figures_drawn(monkeypatch)
+    replicates = [[[0.55, 0.1], [0.55, -0.1]], [[0.45, 0.12], [0.45, -0.12]], [[0.5, 0.08], [0.5, -0.08]]]
+    fit = {"eigenvalues": [[0.5, 0.1], [0.5, -0.1]], "eigenvalue_std": [[0.05, 0.02], [0.05, 0.02]],
+           "eigenvalue_replicates": replicates}
+    eigenvalue_figure(fit, [[0.52, 0.11], [0.52, -0.11]])
+    main = drawn[0].axes[0]  # type: ignore[attr-defined]
+    lines = {line.get_label(): line for line in main.get_lines()}
+    cloud = lines["bootstrap replicates (3)"]
+    assert list(cloud.get_xdata()) == [v[0] for row in replicates for v in row]
+    assert list(cloud.get_ydata()) == [v[1] for row in replicates for v in row]
+    assert cloud.get_alpha() < 0.5 and cloud.get_zorder() < lines["MuJoCo fit"].get_zorder()
+    assert list(lines["analytic"].get_xdata()) == [0.52, 0.52]
+    assert len(drawn[0].axes) == 2  # type: ignore[attr-defined]  # the plane and one zoom (one of the pair)
+    eigenvalue_figure({k: v for k, v in fit.items() if k != "eigenvalue_replicates"}, [])
+    assert _legend_texts(drawn[1]) == ["MuJoCo fit"]  # no cloud, no analytic values: neither in the legend
+
+
+def test_biped_panel_is_section_convergence_without_analytic_map(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A return map with no 1-D analytic map: per section coordinate, |x_k - x*| against k on a log scale."""
+    drawn = _figures_drawn(monkeypatch)
+    star = [0.2, 1.0, -0.5]
+    sequences = [[[0.3, 1.2, -0.4], [0.25, 1.1, -0.45], [0.22, 1.04, -0.48]], [[0.1, 0.9, -0.6], [0.15, 0.95, -0.55]]]
+    fit = {"eigenvalues": [[0.5, 0.0]], "eigenvalue_std": [[0.0, 0.0]], "fixed_point": [0.2001, 1.001, -0.5002]}
+    result = _result("compass-biped", {"stable": True}, fit=fit,
+                     return_map={"label": "theta", "x": [0.3], "x_next": [0.25], "analytic_x": [0.1, 0.3],
+                                 "analytic_y": [None, None], "analytic_eigenvalues": [0.5]},
+                     section_convergence={"labels": ["a", "b", "c"], "fixed_point": star, "sequences": sequences})
+    titles = [title for title, _ in report._figures(result)]
+    assert titles[0] == "Convergence toward the analytic fixed point, per section coordinate"
+    assert "Empirical return map" not in titles
+    panels = drawn[0].axes  # type: ignore[attr-defined]
+    assert len(panels) == 3 and all(ax.get_yscale() == "log" for ax in panels)
+    for i, ax in enumerate(panels):
+        traces = [line for line in ax.get_lines() if line.get_alpha() == 0.35]
+        for line, seq in zip(traces, sequences, strict=True):
+            assert np.allclose(line.get_ydata(), [abs(row[i] - star[i]) for row in seq])
+    assert _legend_texts(drawn[0]) == ["MuJoCo trajectories", "|fitted fixed point - x*|",
+                                       "analytic rate |lambda|max^k = 0.5^k"]
+    assert all("analytic map" not in text for fig in drawn for text in _legend_texts(fig))
+    return_map_figure(result["return_map"])  # type: ignore[arg-type]
+    assert _legend_texts(drawn[-1]) == ["x_k+1 = x_k", "MuJoCo samples"]
+
+
+def test_report_of_several_scenarios_has_index_and_stills(tmp_path: Path) -> None:
+    """The CLI in a fresh process: the backend is chosen for the stills, each page embeds its still (a PNG of the
+    model), and the index links every page."""
+    done = _cli("validate", "slotted-skate", "rimless-wheel-friction", "--report", "rep", cwd=tmp_path)
+    assert done.returncode in (0, 1), done.stderr[-2000:]
+    index = (tmp_path / "rep" / "index.html").read_text()
+    for name in ("slotted-skate", "rimless-wheel-friction"):
+        page = (tmp_path / "rep" / f"{name}.html").read_text()
+        verdict = "PASS" if "all checks passed" in page else "FAIL"
+        assert f"<a href='{name}.html'>{name}</a></td><td>{verdict}" in index
+        still = re.search(r"<img class=still alt='still of [^']+' src='data:image/png;base64,([^']+)'>", page)
+        assert still is not None and base64.b64decode(still.group(1))[:4] == b"\x89PNG"
+        assert "<h2>Eigenvalues of the fitted return map</h2>" in page

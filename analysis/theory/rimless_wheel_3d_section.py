@@ -14,7 +14,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from mjpoincare.analysis.returnmap import DriftingCycleFit, fit_drifting_cycle, sample_pairs
+from mjpoincare.analysis.returnmap import DriftingCycleFit, fit_drifting_cycle, replicate_list, sample_pairs
 from mjpoincare.analysis.rigid_body_kinematics import euler_state
 from mjpoincare.analysis.theory.rimless_wheel_3d import RimlessWheel3D, midstance_pitch_rate, planar_bank
 from mjpoincare.analysis.theory.rimless_wheel_3d_hybrid import Eigen3D, identify_eigenvalues
@@ -68,6 +68,7 @@ def fit_map(sequences: list[np.ndarray], heading: float, tangent: np.ndarray, se
         "named_eigenvalue_std": {name: cycle.label_std.get(name, math.nan) for name in Eigen3D.NAMES},
         "residual_rms": cycle.residual_rms, "n_pairs": cycle.n_pairs, "degree": cycle.degree,
         "bootstrap_replicas": cycle.replicates,
+        "eigenvalue_replicates": replicate_list(cycle.eigenvalue_replicates),
         "note": "state (psi, phi, psi_dot, phi_dot, theta_dot) at mid-stance, rates in sqrt(g/l); fixed_point is the "
                 "fitted map's cycle at psi = heading, drifting along the family of planar cycles by drift_per_impact",
     }

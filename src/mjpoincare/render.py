@@ -112,6 +112,28 @@ def render_frames(name: str, assignments: Mapping[str, str], preset: str | None,
                     "ms_per_frame": 1e3 * render_wall / nframes}
 
 
+def render_still(name: str, assignments: Mapping[str, str], preset: str | None, size: tuple[int, int] = (480, 360),
+                 seconds: float = 0.7) -> bytes:
+    """The frame of the scenario's clip nearest ``seconds`` (of those at 10 frames/s), as PNG bytes (the report's
+    still).
+
+    Raises :class:`RenderError` when no OpenGL context opens (choose the backend with :func:`select_gl_backend`
+    before MuJoCo is imported).
+    """
+    import io
+
+    import mujoco
+    from matplotlib.image import imsave
+
+    try:
+        frames, _ = render_frames(name, assignments, preset, seconds, 10, size)
+    except mujoco.FatalError as err:
+        raise RenderError(f"MUJOCO_GL={os.environ.get('MUJOCO_GL', '')}: {err}; {INSTALL_HINT}") from None
+    buffer = io.BytesIO()
+    imsave(buffer, frames[-1], format="png")
+    return buffer.getvalue()
+
+
 def write_media(path: str, frames: np.ndarray, fps: int) -> None:
     """Write a video (``.mp4``/``.gif``) or, for ``.png``, the last frame; whole or not at all."""
     import mediapy

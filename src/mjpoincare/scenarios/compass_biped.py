@@ -285,12 +285,15 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     extras["trailing_foot"] = {"analytic_liftoff_velocity": theory.step(bp, x_star).liftoff_velocity,
                                "measured_vertical_speed_20ms": float(np.mean(controller.release_speed))
                                if controller.release_speed else math.nan, "releases": len(controller.release_depth)}
-    extras["analytic"] = {"fixed_point": x_star, "eigenvalues": lam, "legs_parallel_fixed_point":
-                          theory.legs_parallel_state(bp, x_star)[0], "step": _step_summary(bp, x_star)}
+    y_star_th = theory.legs_parallel_state(bp, x_star)[0]
+    extras["analytic"] = {"fixed_point": x_star, "eigenvalues": lam, "legs_parallel_fixed_point": y_star_th,
+                          "step": _step_summary(bp, x_star)}
     grid = np.linspace(float(x[:, 0].min()), float(x[:, 0].max()), 2)
     extras["return_map"] = ReturnMapPlot(label="legs-parallel angle theta (rad)", x=x[:, 0], x_next=x_next[:, 0],
                                          analytic_x=grid, analytic_y=np.full_like(grid, np.nan),
                                          analytic_eigenvalues=lam).to_dict()
+    extras["section_convergence"] = {"labels": ["theta (rad)", "dtheta_st (rad/s)", "dtheta_sw (rad/s)"],
+                                     "fixed_point": y_star_th, "sequences": sequences}
     return Evaluation(out, report, extras)
 
 

@@ -271,8 +271,9 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     extras: dict[str, object] = {"gait": name, "mu": friction(p), "analytic_pattern": theory.describe(g.record)}
     y_star_th, _ = theory.legs_parallel(g)
     lam = g.eigenvalues[:3]  # sorted by modulus, descending
+    sequences = [np.array(v) for v in c.samples]
     try:
-        x, x_next = sample_pairs([np.array(v) for v in c.samples])
+        x, x_next = sample_pairs(sequences)
         fit = fit_return_map(x, x_next, degree=degree, seed=seed)
     except ValueError as err:
         out.append(checks.absolute("fixed_point", y_star_th, math.nan, tol["fixed_point"], "rad, rad/s",
@@ -319,6 +320,8 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     extras["return_map"] = ReturnMapPlot(label="legs-parallel angle theta1 (rad)", x=x[:, 0], x_next=x_next[:, 0],
                                          analytic_x=grid, analytic_y=np.full_like(grid, np.nan),
                                          analytic_eigenvalues=lam).to_dict()
+    extras["section_convergence"] = {"labels": ["theta1 (rad)", "theta1_dot (rad/s)", "-theta2_dot (rad/s)"],
+                                     "fixed_point": y_star_th, "sequences": sequences}
     return Evaluation(out, report, extras)
 
 
