@@ -12,7 +12,7 @@ from collections.abc import Mapping
 
 import mujoco
 
-from mjpoincare.params import Param, Value
+from mjpoincare.params import Param, ParameterError, Value
 
 INTEGRATORS = {
     "euler": mujoco.mjtIntegrator.mjINT_EULER,
@@ -28,6 +28,9 @@ JACOBIANS = {"auto": mujoco.mjtJacobian.mjJAC_AUTO, "dense": mujoco.mjtJacobian.
 #: Sensors the ``diagnostics`` setting adds (rollouts record their min and max): the smallest contact distance
 #: (negative = penetration) over all contacts, and the kinetic energy.
 DIAGNOSTIC_SENSORS = ("min_contact_distance", "kinetic_energy")
+BACKENDS = ("mujoco", "mjx", "warp")
+#: The precisions each backend runs in (MuJoCo C: double only; MuJoCo Warp: single only).
+BACKEND_PRECISIONS = {"mujoco": ("float64",), "mjx": ("float64", "float32"), "warp": ("float32",)}
 _CONTACT_DIST, _REDUCE_MINDIST = 8, 1  # MuJoCo contact-sensor data bit "dist" and reduce mode "mindist"
 
 SETTINGS: tuple[Param, ...] = (
@@ -54,6 +57,11 @@ SETTINGS: tuple[Param, ...] = (
     Param("unskip", "none", "undo one of the scene's skips, to measure it (bench --skips): collisions = every geom "
           "collides with every other (no filtering to the feet and the ground), contact = contact detection on where "
           "only equality constraints act", str, choices=("none", "collisions", "contact")),
+    Param("backend", "mujoco", "simulator the rollouts run on: MuJoCo C, MJX (JAX; extra mjpoincare[mjx]) or MuJoCo "
+          "Warp (extra mjpoincare[warp]); same models, experiment designs, checks and tolerances", str,
+          choices=BACKENDS),
+    Param("precision", "float64", "floating point of the rollouts: float64 (MuJoCo C, MJX), float32 (MJX as RL "
+          "setups run it; MuJoCo Warp's only precision)", str, choices=("float64", "float32")),
     Param("diagnostics", 0, "1: record the deepest penetration and the largest kinetic energy (adds 2 sensors "
           "and the energy computation; off unless asked, as nothing else reads them)", int, 0, 1),
 )
@@ -99,9 +107,22 @@ def apply_unskip(spec: mujoco.MjSpec, settings: Mapping[str, Value]) -> None:
         spec.option.disableflags &= ~int(mujoco.mjtDisableBit.mjDSBL_CONTACT)
 
 
-def rollout_options(settings: Mapping[str, Value]) -> dict[str, float | int]:
-    """The keyword arguments every batched rollout takes from the settings (threads, start perturbation)."""
-    return {"threads": int(settings["threads"]), "start_perturbation": float(settings["start_perturbation"])}
+def check_backend(settings: Mapping[str, Value]) -> None:
+    """Refuse a backend and precision that do not go together (:data:`BACKEND_PRECISIONS`), naming both."""
+    backend, precision = str(settings["backend"]), str(settings["precision"])
+    allowed = BACKEND_PRECISIONS[backend]
+    if precision not in allowed:
+        raise ParameterError(f"precision must be {' or '.join(allowed)} with backend={backend} (got {precision})")
+    from mjpoincare.backends import check_installed
+
+    check_installed(backend)
+
+
+def rollout_options(settings: Mapping[str, Value]) -> dict[str, float | int | str]:
+    """The keyword arguments every batched rollout takes from the settings (threads, start perturbation, backend,
+    precision)."""
+    return {"threads": int(settings["threads"]), "start_perturbation": float(settings["start_perturbation"]),
+            "backend": str(settings["backend"]), "precision": str(settings["precision"])}
 
 
 def as_json(settings: Mapping[str, Value]) -> dict[str, object]:

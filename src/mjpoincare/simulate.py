@@ -166,6 +166,15 @@ class Batch(Protocol):
     #: The timestep of every trajectory, s.
     timestep: float
 
+    def __enter__(self) -> Batch:
+        """The batch, ready to run (a backend may compile here)."""
+        ...
+
+    def __exit__(self, kind: type[BaseException] | None, error: BaseException | None,
+                 trace: TracebackType | None) -> None:
+        """Release the batch; ``report`` then holds the final states and the backend's warnings."""
+        ...
+
     def run_chunk(self, nstep: int, control: np.ndarray | None = None) -> np.ndarray:
         """Step every trajectory ``nstep`` steps from its current state (``control`` (B, nstep, nu): the ctrl of each
         step); the recorded states (B, nstep + 1, nstate), row 0 the start, NaN from a divergence on (flagged in
@@ -290,6 +299,17 @@ class MujocoBatch:
         return out
 
 
+def open_batch(model: mujoco.MjModel, state0: np.ndarray, *, threads: int, backend: str = "mujoco",
+               precision: str = "float64") -> Batch:
+    """The :class:`Batch` of ``backend`` (``mujoco``: :class:`MujocoBatch`; ``mjx``, ``warp``: their optional
+    packages, :mod:`mjpoincare.backends`) over ``model`` and the starts ``state0`` (B, nstate), as a context manager."""
+    if backend == "mujoco":
+        return MujocoBatch(model, state0, threads)
+    from mjpoincare.backends import open_backend_batch
+
+    return open_backend_batch(backend, model, state0, precision=precision)
+
+
 def _chunk_of(full: np.ndarray, nq: int, nv: int) -> Chunk:
     return Chunk(time=full[:, :, 0], qpos=full[:, :, 1 : 1 + nq], qvel=full[:, :, 1 + nq : 1 + nq + nv])
 
@@ -303,6 +323,8 @@ def rollout_batch(
     threads: int = 2,
     chunk_steps: int = 20000,
     start_perturbation: float = 0.0,
+    backend: str = "mujoco",
+    precision: str = "float64",
 ) -> RolloutReport:
     """Step every initial state in ``state0`` (B, nstate) for ``nstep`` steps, in native chunks.
 
@@ -314,7 +336,7 @@ def rollout_batch(
     """
     start = perturbed_starts(state0, model.nq, model.nv, start_perturbation)
     with captured_mujoco_log() as log:
-        with MujocoBatch(model, start, threads) as batch:
+        with open_batch(model, start, threads=threads, backend=backend, precision=precision) as batch:
             done = 0
             while done < nstep:
                 n = min(chunk_steps, nstep - done)
@@ -335,6 +357,8 @@ def event_rollout(
     control: Callable[[np.ndarray], np.ndarray] | None = None,
     start_perturbation: float = 0.0,
     setup: Callable[[Batch], None] | None = None,
+    backend: str = "mujoco",
+    precision: str = "float64",
 ) -> RolloutReport:
     """Batched rollout with a controller that acts at events, without Python between steps.
 
@@ -361,7 +385,8 @@ def event_rollout(
     nq, nv = model.nq, model.nv
     kept = np.zeros(batch_size, int)
     with captured_mujoco_log() as log:
-        with MujocoBatch(model, perturbed_starts(state0, nq, nv, start_perturbation), threads) as batch:
+        with open_batch(model, perturbed_starts(state0, nq, nv, start_perturbation), threads=threads,
+                        backend=backend, precision=precision) as batch:
             if setup is not None:
                 setup(batch)
             while (kept < nstep).any():

@@ -22,6 +22,7 @@ def resolve_inputs(name: str, assignments: Mapping[str, str], preset: str | None
     preset_name, overrides = scenario.preset(preset)
     params = resolve(scenario.params, {p.name: p.default for p in scenario.params}, assignments)
     settings = resolve(sim_settings.SETTINGS, {**sim_settings.DEFAULTS, **overrides}, assignments)
+    sim_settings.check_backend(settings)
     scenario.check_params(params)
     return scenario, preset_name, params, settings
 
