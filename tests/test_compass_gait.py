@@ -103,11 +103,12 @@ def test_phases_merge_flicker_and_skip_the_impact_windows() -> None:
     v = np.zeros(3000)
     v[:40] = 1.0  # inside the first RELEASE_SKIP: not seen
     v[1000:2000] = 0.02  # slip+ from 0.1 s
-    v[1500:1510] = 0.0  # 1 ms of flicker: merged away
+    v[1500:1505] = 0.0  # 0.5 ms of flicker, shorter than the shared MERGE_PHASE (1 ms): merged away
+    v[1700:1710] = 0.0  # 1 ms, as long as MERGE_PHASE: a phase of its own
     v[2500:] = -0.02  # slip- up to the end
     labels = st.phases(_stance(v, dt), dt)
-    assert [lab for lab, _ in labels] == ["stick", "slip+", "stick", "slip-"]
-    assert [t for _, t in labels[1:]] == pytest.approx([0.1001, 0.2001, 0.2501])
+    assert [lab for lab, _ in labels] == ["stick", "slip+", "stick", "slip+", "stick", "slip-"]
+    assert [t for _, t in labels[1:]] == pytest.approx([0.1001, 0.1701, 0.1711, 0.2001, 0.2501])
 
 
 def test_impact_velocity_is_read_after_the_contact_relaxes() -> None:

@@ -63,7 +63,7 @@ def test_gait_values() -> None:
 def test_generic_bench_agrees_with_the_fast_method() -> None:
     gait = b_gait()
     starts = np.array([[gait.fixed_point[0] * (1 + d), 0.0] for d in (-0.1, 0.0, 0.1)])
-    bench = reference.generic_bench(WHEEL, gait, starts, 6)
+    bench = reference.generic_bench(WHEEL, gait, starts, 6, 1e-11)
     assert bench["rtol"] == theory.RTOL and bench["wall_s"] > 0
     assert bench["midstance_rate_error"] < 1e-5 and bench["eigenvalue_error"] < 1e-4  # measured 8e-7 and 1.1e-5
 

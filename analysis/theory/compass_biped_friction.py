@@ -596,16 +596,19 @@ def _late_model(bp: FrictionBiped, actuation: Actuation) -> ss.ContactModel:
     return replace(_model(bp, actuation), impact_guard=lambda q, _qd: heel_strike_after_scuff(q))
 
 
-def _stance(bp: FrictionBiped, act: Actuation, q0: Vector, qd0: Vector, t_max: float) -> tuple[ss.StanceResult, bool]:
+def _stance(bp: FrictionBiped, act: Actuation, q0: Vector, qd0: Vector, t_max: float, rtol: float = ss.RTOL
+            ) -> tuple[ss.StanceResult, bool]:
     """integrate_stance (002 eqs 2, 31-35) to the heel strike theta1 = theta2 > 0, continued once through a late
-    legs-parallel crossing (:func:`heel_strike_after_scuff`). Returns (stance, continued); a continued stance has the
-    phases of both parts (a phase split at the crossing appears twice)."""
-    first = ss.integrate_stance(_model(bp, act), q0, qd0, bp.mu, t_max=t_max)
+    legs-parallel crossing (:func:`heel_strike_after_scuff`), at relative tolerance ``rtol`` (absolute rtol x
+    ATOL/RTOL). Returns (stance, continued); a continued stance has the phases of both parts (a phase split at the
+    crossing appears twice)."""
+    tol = {"rtol": rtol, "atol": rtol * ss.ATOL / ss.RTOL}
+    first = ss.integrate_stance(_model(bp, act), q0, qd0, bp.mu, t_max=t_max, **tol)
     q = first.q_end
     if not (first.impacted and q[1] - q[0] < -1e-8 and q[0] > 0.0):
         return first, False
     rest = ss.integrate_stance(_late_model(bp, act), q, first.qd_end, bp.mu, t0=first.t_end, t_max=t_max,
-                               mode=first.phases[-1].mode)
+                               mode=first.phases[-1].mode, **tol)
     merged = ss.StanceResult(first.phases + rest.phases, rest.outcome, rest.t_end, rest.q_end, rest.qd_end,
                              min(first.min_normal_force, rest.min_normal_force), {**rest.sections, **first.sections})
     return merged, True
@@ -697,13 +700,14 @@ def _diagnostics(bp: FrictionBiped, model: ss.ContactModel, stance: ss.StanceRes
 
 
 def step(bp: FrictionBiped, z: ArrayLike, actuation: Actuation | None = None, *, forces: bool = False,
-         t_max: float = T_MAX) -> StepRecord:
+         t_max: float = T_MAX, rtol: float = ss.RTOL) -> StepRecord:
     """One step of the (actuated) biped from the post-impact section state z = (theta*, theta1_dot+, theta2_dot+)
     or (..., x_dot+) (002 Secs. 4-5): the stance by :func:`.stick_slip.integrate_stance` (002 eqs 2,
     31-35) until the heel strike theta1 = theta2 > 0 (the swing foot's passages below the ground line are ignored,
     002 Sec. 4.1), the frictional impact :func:`.stick_slip.impact` (002 eqs 37-40, corrected) and
     the relabelling theta1 <-> -theta2, theta1_dot <-> -theta2_dot (002 Sec. 4).
     ``forces``: also compute max |f_t/f_n| and the lowest swing-foot height (re-integrates the phases; slower).
+    ``rtol``: the stance integration's relative tolerance (:func:`_stance`).
     """
     act = PASSIVE if actuation is None else actuation
     model = _model(bp, act)
@@ -712,7 +716,7 @@ def step(bp: FrictionBiped, z: ArrayLike, actuation: Actuation | None = None, *,
     z0[: zz.size] = zz
     q0, qd0 = section_state(z0)
     mu = bp.mu
-    stance, late = _stance(bp, act, q0, qd0, t_max)
+    stance, late = _stance(bp, act, q0, qd0, t_max, rtol)
     phases, times = _collapse(stance.phases)
     q, qd = stance.q_end, stance.qd_end
     if not stance.impacted:
@@ -756,12 +760,13 @@ def step(bp: FrictionBiped, z: ArrayLike, actuation: Actuation | None = None, *,
     )
 
 
-def return_map(bp: FrictionBiped, z: ArrayLike, actuation: Actuation | None = None) -> Vector:
+def return_map(bp: FrictionBiped, z: ArrayLike, actuation: Actuation | None = None, rtol: float = ss.RTOL
+               ) -> Vector:
     """Poincaré map on the post-impact section (002 Sec. 4.2): z -> z' with z = (theta*, theta1_dot+,
     theta2_dot+) (3-D, x_dot+ = 0: Gaits A, B) or (..., x_dot+) (4-D: Gait C); the output has the input's length.
-    NaN on a failed step."""
+    NaN on a failed step. ``rtol``: as :func:`step`'s."""
     zz = np.asarray(z, dtype=float)
-    return step(bp, zz, actuation).z[: zz.size]
+    return step(bp, zz, actuation, rtol=rtol).z[: zz.size]
 
 
 def classify(record: StepRecord) -> str:

@@ -694,14 +694,15 @@ def _step_fast(w: FrictionWheel, theta_dot0: float, x_dot0: float, max_step: flo
                    None, th)
 
 
-def _step_generic(w: FrictionWheel, theta_dot0: float, x_dot0: float, max_step: float, max_phases: int) -> StepRecord:
+def _step_generic(w: FrictionWheel, theta_dot0: float, x_dot0: float, max_step: float, max_phases: int,
+                  rtol: float) -> StepRecord:
     model = contact_model(w)
     p = w.phi
     b = _Builder()
     nan2 = (math.nan, math.nan)
     q0 = np.array([0.0, 0.0, -p])
     qd0 = np.array([0.0 if abs(x_dot0) <= X_TOL else x_dot0, 0.0, theta_dot0])
-    res = ss.integrate_stance(model, q0, qd0, w.mu, rtol=RTOL, atol=ATOL, slip_max_step=max_step,
+    res = ss.integrate_stance(model, q0, qd0, w.mu, rtol=rtol, atol=rtol * ATOL / RTOL, slip_max_step=max_step,
                               max_phases=max_phases, v_tol=X_TOL)
     for ph in res.phases:
         b.phases.append(ph.mode)
@@ -729,6 +730,7 @@ def step(
     method: str = "fast",
     max_step: float | None = None,
     max_phases: int = 40,
+    rtol: float = RTOL,
 ) -> StepRecord:
     """One step of the hybrid stick-slip dynamics (002 Sec. 3.3, Appendix A) from the post-impact state
     ``state`` = (theta_dot, x_dot) at theta = -phi: stance phases with the mode logic of 002 eq 35, then the
@@ -737,13 +739,15 @@ def step(
     ``method``: "fast" (theta-domain, closed-form sticking phases) or "generic"
     (:func:`mjpoincare.analysis.theory.stick_slip.integrate_stance` on the matrix model of :func:`contact_model`).
     ``max_step``: largest step while slipping (theta in rad for "fast", default 0.05; time for "generic",
-    default 1e-2). No validation of ``w`` here (see :func:`validate`).
+    default 1e-2). ``rtol``: the generic method's relative tolerance (absolute: rtol x ATOL/RTOL); the fast method
+    runs at RTOL. No validation of ``w`` here (see :func:`validate`).
     """
     theta_dot0, x_dot0 = float(state[0]), float(state[1])
     if method == "fast":
         return _step_fast(w, theta_dot0, x_dot0, SLIP_MAX_STEP if max_step is None else max_step, max_phases)
     if method == "generic":
-        return _step_generic(w, theta_dot0, x_dot0, ss.SLIP_MAX_STEP if max_step is None else max_step, max_phases)
+        return _step_generic(w, theta_dot0, x_dot0, ss.SLIP_MAX_STEP if max_step is None else max_step, max_phases,
+                             rtol)
     raise ValueError(f"method must be 'fast' or 'generic' (got {method!r})")
 
 
