@@ -26,7 +26,6 @@ rad/s and compared with the paper's nondimensional rates times sqrt(g/l); eigenv
 from __future__ import annotations
 
 import math
-import time
 
 import mujoco
 import numpy as np
@@ -295,7 +294,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
             "note": "fitted cycle's drift along the neutral heading family; reported, not judged"}}
         extras["return_map"] = _return_map_plot(w, sequences, unit, ref).to_dict()
         try:
-            floor: dict[str, object] = dict(reference_bench(p, hybrid.RTOL))
+            floor: dict[str, object] = dict(runs.reference_bench(p, hybrid.RTOL))
         except RuntimeError as err:  # the exact reference itself left the cycle from these starts: say so
             floor = {"failed": str(err)}
         extras["reference_fit"] = {**floor, "note": (
@@ -334,24 +333,6 @@ def probe(p: Values, s: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, 
     model = build(p, s)
     return model, [(runs.section_start_states(model, p, s, x0), runs.steps_for(p, model.opt.timestep, impacts))
                    for x0, impacts in runs.batches(p, runs.wheel(p))]
-
-
-def reference_bench(p: Values, rtol: float) -> dict[str, float]:
-    """The exact hybrid reference (solve_ivp DOP853 at relative and absolute tolerance ``rtol``) from the same starts
-    through the same fit: its error is the floor the experiment design (perturbation size, quadratic fit) sets."""
-    w = runs.wheel(p)
-    ref = hybrid.midstance_eigenvalues(w)
-    start = time.perf_counter()
-    sequences = runs.reference_sequences(w, runs.PERTURBATION[str(p["impact"])], rtol)
-    fitted = fit_map(sequences, w.heading, hybrid.family_tangent(hybrid.midstance_fixed_point, w))
-    wall = time.perf_counter() - start
-    x_ref, point = hybrid.midstance_fixed_point(w), fitted.cycle.fixed_point
-    out: dict[str, float] = {"rtol": rtol, "wall_s": wall, "pitch_rate_error": abs(point[4] - x_ref[4]) / x_ref[4],
-                             "bank_error": abs(point[1] - x_ref[1])}
-    simulated = fitted.eigen.named() if fitted.eigen is not None else {}
-    for name, value in ref.named().items():
-        out[f"{name}_error"] = abs(simulated.get(name, math.nan) - value)
-    return out
 
 
 def soak(p: Values, s: Values, impacts: int) -> Soak:
@@ -410,7 +391,7 @@ RIMLESS_WHEEL_3D = Scenario(
     evaluate=evaluate,
     accuracy_checks=("pitch_rate", "wobble_modulus", "lambda2", "wobble_angle", "lambda5", "bank"),
     probe=probe,
-    reference_bench=reference_bench,
+    reference_bench=runs.reference_bench,
     clip=clip,
     track_body="wheel",
     frame_tilt="slope",

@@ -6,6 +6,7 @@ docs/scenarios/rimless-wheel-3d.md."""
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass
 
 import mujoco
@@ -16,7 +17,7 @@ from mjpoincare.analysis.sections import Crossings, level_crossings, wrap_phase
 from mjpoincare.analysis.start_designs import random_directions
 from mjpoincare.analysis.theory import rimless_wheel_3d as theory
 from mjpoincare.analysis.theory import rimless_wheel_3d_hybrid as hybrid
-from mjpoincare.analysis.theory.rimless_wheel_3d_section import section_state
+from mjpoincare.analysis.theory.rimless_wheel_3d_section import fit_map, section_state
 from mjpoincare.scenarios.base import JointIndex, Values
 from mjpoincare.scenarios.rimless_wheel_3d_ideal import IdealImpactController
 from mjpoincare.settings import rollout_options
@@ -207,3 +208,21 @@ def reference_sequences(w: theory.RimlessWheel3D, size: float, rtol: float) -> l
             seq.append(x)
         sequences.append(np.array(seq))
     return sequences
+
+
+def reference_bench(p: Values, rtol: float) -> dict[str, float]:
+    """The exact hybrid reference (solve_ivp DOP853 at relative and absolute tolerance ``rtol``) from the same starts
+    through the same fit: its error is the floor the experiment design (perturbation size, quadratic fit) sets."""
+    w = wheel(p)
+    ref = hybrid.midstance_eigenvalues(w)
+    start = time.perf_counter()
+    sequences = reference_sequences(w, PERTURBATION[str(p["impact"])], rtol)
+    fitted = fit_map(sequences, w.heading, hybrid.family_tangent(hybrid.midstance_fixed_point, w))
+    wall = time.perf_counter() - start
+    x_ref, point = hybrid.midstance_fixed_point(w), fitted.cycle.fixed_point
+    out: dict[str, float] = {"rtol": rtol, "wall_s": wall, "pitch_rate_error": abs(point[4] - x_ref[4]) / x_ref[4],
+                             "bank_error": abs(point[1] - x_ref[1])}
+    simulated = fitted.eigen.named() if fitted.eigen is not None else {}
+    for name, value in ref.named().items():
+        out[f"{name}_error"] = abs(simulated.get(name, math.nan) - value)
+    return out

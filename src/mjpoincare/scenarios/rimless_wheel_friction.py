@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import asdict, dataclass
+from dataclasses import asdict
 from typing import Any
 
 import mujoco
@@ -31,7 +31,6 @@ from mjpoincare.analysis import checks
 from mjpoincare.analysis import stick_slip_phases as phases
 from mjpoincare.analysis import stick_slip_reference as reference
 from mjpoincare.analysis.sections import level_crossings
-from mjpoincare.analysis.stick_slip_phases import Classifier, Rows, Steps
 from mjpoincare.analysis.theory import rimless_wheel_friction as theory
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios import rimless_wheel as rw
@@ -46,8 +45,18 @@ from mjpoincare.scenarios.base import (
     Values,
     at_preset,
 )
-from mjpoincare.scenarios.rimless_wheel_friction_rollout import classifier, row_signals, simulate, sliding_contact
-from mjpoincare.simulate import Chunk, RolloutReport, plain_clip
+from mjpoincare.scenarios.rimless_wheel_friction_rollout import (
+    FIT_OFFSETS,
+    FrictionRun,
+    classifier,
+    fit_starts,
+    gait_start,
+    reference_gait,
+    row_signals,
+    simulate,
+    sliding_contact,
+)
+from mjpoincare.simulate import plain_clip
 
 PAPER_SLOPE = math.radians(13.0)
 
@@ -97,21 +106,16 @@ REASONS: dict[str, str] = {
              "and grows with the contact time constant)",
 }
 
+_FAST_BOUNDS = {"midstance_rate": 5e-3, "eigenvalue": 0.02, "dx_per_step": 0.1, "slip_onset": 0.02,
+                "critical_friction": 0.02, "sliding_contact_law": 1e-6}
 TOLERANCES: dict[str, Tolerances] = {
-    "fast": Tolerances(bounds={"midstance_rate": 5e-3, "eigenvalue": 0.02, "dx_per_step": 0.1, "slip_onset": 0.02,
-                               "critical_friction": 0.02, "sliding_contact_law": 1e-6}, reasons=REASONS),
-    "accurate": Tolerances(bounds={"midstance_rate": 2e-3, "eigenvalue": 0.02, "dx_per_step": 0.1, "slip_onset": 0.02,
-                                   "critical_friction": 0.02, "sliding_contact_law": 1e-6}, reasons=REASONS),
-    # coarse, the region maps' preset, keeps the fast tolerances
-    "coarse": Tolerances(bounds={"midstance_rate": 5e-3, "eigenvalue": 0.02, "dx_per_step": 0.1, "slip_onset": 0.02,
-                                 "critical_friction": 0.02, "sliding_contact_law": 1e-6}, reasons=REASONS),
+    "fast": Tolerances(bounds=_FAST_BOUNDS, reasons=REASONS),
+    "accurate": Tolerances(bounds={**_FAST_BOUNDS, "midstance_rate": 2e-3}, reasons=REASONS),
+    "coarse": Tolerances(bounds=_FAST_BOUNDS, reasons=REASONS),  # the region maps' preset keeps the fast tolerances
 }
 
-FIT_OFFSETS = (-0.12, -0.06, 0.0, 0.06, 0.12)  # relative offsets of theta_dot0 around the gait's post-impact state
 FIT_PAIRS = 12  # mid-stance pairs per fitting trajectory (beta^24 of the offset remains: near the fixed point)
 SIM_STEPS = 30  # steps simulated per trajectory (the slowest reference transient settles to 1e-3 within ~25)
-SLIP_START = 0.05  # x_dot0 of the slipping start checked for its settled type (a D- transient at mu = 0.3)
-D_START_SLIP = 0.02  # x_dot0 of starts on a Type D gait (its theta_dot map does not depend on x_dot > 0)
 D_SIM_STEPS = 12  # D gaits: theta_dot converges within ~5 steps (lambda ~ 0.34) and the slip speed keeps growing
 SETTLED_STEPS = 5  # the last steps of a run compared with the reference gait
 BACKWARD_RATE = -0.01  # nondimensional theta_dot below which the wheel rolls back
@@ -172,52 +176,6 @@ def start_states(model: mujoco.MjModel, p: Values, s: Values, starts: np.ndarray
 
 
 # --- the experiment -----------------------------------------------------------------------------------------------
-
-
-def reference_gait(w: theory.FrictionWheel) -> theory.Gait:
-    """The stable gait this mu settles on (002 Sec. 3.3; at most one of A, B, C, D+ per mu for the paper set)."""
-    gaits = theory.attractors(w)
-    if not gaits:
-        raise ParameterError(f"mu={w.mu:g} has no stable gait of types A-D+")
-    return gaits[0]
-
-
-def gait_start(gait: theory.Gait) -> tuple[float, float]:
-    """Post-impact (theta_dot, x_dot) on ``gait``; a D gait starts at x_dot = D_START_SLIP (its map is neutral in
-    x_dot > 0)."""
-    if gait.kind.startswith("D"):
-        return float(gait.fixed_point[0]), D_START_SLIP
-    if gait.kind == "C":
-        return float(gait.fixed_point[0]), float(gait.fixed_point[1])
-    return float(gait.fixed_point[0]), 0.0
-
-
-def fit_starts(gait: theory.Gait, w: theory.FrictionWheel) -> tuple[np.ndarray, np.ndarray]:
-    """Starts (B, 2): the gait's post-impact state with theta_dot0 offsets FIT_OFFSETS (the fit), and one slipping
-    start (theta_dot*, SLIP_START) when the reference settles from it on a gait (not for D, nor where a slipping
-    start is a Painleve case); returns (starts, fit mask)."""
-    th, xd = gait_start(gait)
-    fit = [(th * (1 + d), xd) for d in FIT_OFFSETS]
-    extra = []
-    if not gait.kind.startswith("D"):
-        settled = theory.settle(w, (th, SLIP_START), max_steps=80, tol=1e-6)
-        if settled.outcome in ("A", "B", "C", "D+", "unsettled"):
-            extra.append((th, SLIP_START))
-    starts = np.array(fit + extra, float)
-    return starts, np.arange(len(starts)) < len(fit)
-
-
-@dataclass(frozen=True)
-class FrictionRun:
-    """One batch's recorded rows (``rec``, on ``model``), their stick/slip signals and step table, the thresholds and
-    the rollout report."""
-
-    rec: Chunk
-    model: mujoco.MjModel
-    rows: Rows
-    steps: Steps
-    cls: Classifier
-    report: RolloutReport
 
 
 def run_batch(p: Values, s: Values, preset: str, starts: np.ndarray, steps: int,
@@ -300,12 +258,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
         out.append(checks.absolute("sliding_contact_law", 0.0, sliding.residual, tol["sliding_contact_law"], "",
                                    f"{tol.reasons['sliding_contact_law']} ({sliding.rows} sliding rows)"))
         extras["sliding_contact"] = asdict(sliding)
-        extras["reported"] = {"sliding_lift_ratio": {
-            "value": sliding.lift_ratio[1], "unit": "",
-            "note": f"median over {sliding.lift_offs} lift-offs of the normal velocity a sliding step leaves with / "
-                    f"(mu |v_t|), 5-95 % {sliding.lift_ratio[0]:.3f}-{sliding.lift_ratio[2]:.3f}; eq 2 of "
-                    f"analysis/soft_contact: |v_t + a_t/b| / |v_t| = {sliding.decelerating[1]:.3f} of it is the "
-                    "foot's deceleration within the contact's response time 1/b, the rest its spring"}}
+        extras["reported"] = {"sliding_lift_ratio": sliding.reported()}
     if gait.kind == "B":
         onset_sim = float(np.nanmedian(steps.onset[main, settled])) if settled.size else math.nan
         out.append(checks.absolute("slip_onset", gait.phase_angles[-1], onset_sim, tol["slip_onset"], "rad",

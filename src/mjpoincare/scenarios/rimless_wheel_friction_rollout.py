@@ -1,8 +1,9 @@
-"""The friction wheel's MuJoCo runs and their measurement (Gamus & Or 2015, Sec. 3): a batch rolled out with every
-recorded row kept, 002's variables of each row read from the wheel's joints
-(:func:`mjpoincare.analysis.rimless_wheel_rows.wheel_rows`), and the per-preset thresholds of the stick/slip
-classification (why they are what they are: docs/scenarios/rimless-wheel-friction.md). Used by
-:mod:`mjpoincare.scenarios.rimless_wheel_friction` and, through it, its friction sweep and region maps."""
+"""The friction wheel's experiment design and MuJoCo runs (Gamus & Or 2015, Sec. 3): the reference gait and the starts
+around it, a batch rolled out with every recorded row kept, 002's variables of each row read from the wheel's joints
+(:func:`mjpoincare.analysis.rimless_wheel_rows.wheel_rows`), the per-preset thresholds of the stick/slip
+classification, and the stance foot's sliding rows against MuJoCo's contact law (why each number is what it is:
+docs/scenarios/rimless-wheel-friction.md). Used by :mod:`mjpoincare.scenarios.rimless_wheel_friction` and, through
+it, its friction sweep and region maps."""
 
 from __future__ import annotations
 
@@ -16,15 +17,53 @@ from mjpoincare import settings as sim_settings
 from mjpoincare.analysis.contact_modes import EXCLUDED
 from mjpoincare.analysis.rimless_wheel_rows import impact_window, stance_contact, wheel_rows
 from mjpoincare.analysis.soft_contact import SoftContact
-from mjpoincare.analysis.stick_slip_phases import Classifier, Rows
+from mjpoincare.analysis.stick_slip_phases import Classifier, Rows, Steps
+from mjpoincare.analysis.theory import rimless_wheel_friction as theory
+from mjpoincare.params import ParameterError
 from mjpoincare.scenarios.base import JointIndex, Values
 from mjpoincare.settings import rollout_options
 from mjpoincare.simulate import Batch, Chunk, RolloutReport, event_rollout
 
+FIT_OFFSETS = (-0.12, -0.06, 0.0, 0.06, 0.12)  # relative offsets of theta_dot0 around the gait's post-impact state
+SLIP_START = 0.05  # x_dot0 of the slipping start checked for its settled type (a D- transient at mu = 0.3)
+D_START_SLIP = 0.02  # x_dot0 of starts on a Type D gait (its theta_dot map does not depend on x_dot > 0)
 #: Speed (nondimensional, units l omega_c) above which the stance foot moves: impacts and the velocity-only
 #: classification.
 V_THRESHOLD: dict[str, float] = {"fast": 5e-3, "accurate": 2e-3, "coarse": 1e-2}
 IMPACT_WINDOW_TC = 5.0  # the impact window is at least this many contact time constants
+
+
+def reference_gait(w: theory.FrictionWheel) -> theory.Gait:
+    """The stable gait this mu settles on (002 Sec. 3.3; at most one of A, B, C, D+ per mu for the paper set)."""
+    gaits = theory.attractors(w)
+    if not gaits:
+        raise ParameterError(f"mu={w.mu:g} has no stable gait of types A-D+")
+    return gaits[0]
+
+
+def gait_start(gait: theory.Gait) -> tuple[float, float]:
+    """Post-impact (theta_dot, x_dot) on ``gait``; a D gait starts at x_dot = D_START_SLIP (its map is neutral in
+    x_dot > 0)."""
+    if gait.kind.startswith("D"):
+        return float(gait.fixed_point[0]), D_START_SLIP
+    if gait.kind == "C":
+        return float(gait.fixed_point[0]), float(gait.fixed_point[1])
+    return float(gait.fixed_point[0]), 0.0
+
+
+def fit_starts(gait: theory.Gait, w: theory.FrictionWheel) -> tuple[np.ndarray, np.ndarray]:
+    """Starts (B, 2): the gait's post-impact state with theta_dot0 offsets FIT_OFFSETS (the fit), and one slipping
+    start (theta_dot*, SLIP_START) when the reference settles from it on a gait (not for D, nor where a slipping
+    start is a Painleve case); returns (starts, fit mask)."""
+    th, xd = gait_start(gait)
+    fit = [(th * (1 + d), xd) for d in FIT_OFFSETS]
+    extra = []
+    if not gait.kind.startswith("D"):
+        settled = theory.settle(w, (th, SLIP_START), max_steps=80, tol=1e-6)
+        if settled.outcome in ("A", "B", "C", "D+", "unsettled"):
+            extra.append((th, SLIP_START))
+    starts = np.array(fit + extra, float)
+    return starts, np.arange(len(starts)) < len(fit)
 
 
 def simulate(model: mujoco.MjModel, mu: np.ndarray, state0: np.ndarray, seconds: float, s: Values
@@ -72,6 +111,19 @@ def classifier(mu: np.ndarray | float, s: Values, preset: str, batch: int) -> Cl
                       v_thr=V_THRESHOLD.get(preset, V_THRESHOLD["fast"]), impact_window=window)
 
 
+@dataclass(frozen=True)
+class FrictionRun:
+    """One batch's recorded rows (``rec``, on ``model``), their stick/slip signals and step table, the thresholds and
+    the rollout report."""
+
+    rec: Chunk
+    model: mujoco.MjModel
+    rows: Rows
+    steps: Steps
+    cls: Classifier
+    report: RolloutReport
+
+
 #: Sliding rows needed for the contact-law check (fewer: no sliding to check, e.g. Type A).
 MIN_SLIDING_ROWS = 20
 
@@ -98,6 +150,15 @@ class SlidingContact:
     lift_ratio: tuple[float, float, float]
     decelerating: tuple[float, float, float]
     lift_offs: int
+
+    def reported(self) -> dict[str, object]:
+        """The lift ratio as the validation's ``reported`` entry (value, unit, note)."""
+        low, mid, high = self.lift_ratio
+        return {"value": mid, "unit": "", "note": (
+            f"median over {self.lift_offs} lift-offs of the normal velocity a sliding step leaves with / (mu |v_t|), "
+            f"5-95 % {low:.3f}-{high:.3f}; eq 2 of analysis/soft_contact: |v_t + a_t/b| / |v_t| = "
+            f"{self.decelerating[1]:.3f} of it is the foot's deceleration within the contact's response time 1/b, "
+            "the rest its spring")}
 
 
 def _percentiles(x: np.ndarray) -> tuple[float, float, float]:
