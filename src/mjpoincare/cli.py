@@ -1,4 +1,4 @@
-"""``mjpoincare list | validate | bench | sweep | stress | margins | render``: the command line."""
+"""``mjpoincare list | validate | bench | sweep | converge | stress | margins | render``: the command line."""
 
 from __future__ import annotations
 
@@ -153,6 +153,20 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
                      resume=args.resume)
 
 
+def _cmd_converge(args: argparse.Namespace) -> int:
+    from mjpoincare.converge import DEFAULT_AXES, run_converge
+    from mjpoincare.result import check_output_path
+
+    check_output_path(args.json, "--json")
+    check_output_path(args.report, "--report", directory=True)
+    if args.report:
+        _require_viz("--report", "matplotlib")
+    return run_converge(args.scenario, parse_assignments(args.set), args.preset, json_path=args.json,
+                        report=args.report, axes=args.axis or DEFAULT_AXES, points=args.points, ratio=args.ratio,
+                        seed=args.seed, workers=args.workers, engine=args.engine, scheduler=args.scheduler,
+                        resume=args.resume)
+
+
 def _cmd_stress(args: argparse.Namespace) -> int:
     from mjpoincare.result import check_output_path
     from mjpoincare.stress import run_stress
@@ -270,6 +284,25 @@ def build_parser() -> argparse.ArgumentParser:
                        "of --workers processes)")
     sweep.add_argument("--resume", action="store_true", help="skip the values the --json results file already holds")
     sweep.set_defaults(func=_cmd_sweep)
+
+    conv = sub.add_parser("converge", help="observed order, Richardson value, GCI band and verdict of every scalar "
+                          "check over timestep and contact-setting ladders")
+    conv.add_argument("scenario", help="scenario name")
+    conv.add_argument("--set", action="append", default=[], metavar="NAME=VALUE")
+    conv.add_argument("--preset", default=None, help="start values of the ladders (default: the scenario's)")
+    conv.add_argument("--axis", action="append", metavar="AXIS", help="timestep, solref_timeconst, "
+                      "solref_dampratio or foot_radius (repeatable; default timestep and solref_timeconst)")
+    conv.add_argument("--points", type=int, default=4, help="rungs per ladder (>= 3; 4+ gives the order's "
+                      "uncertainty)")
+    conv.add_argument("--ratio", type=float, default=2.0, help="refinement ratio between rungs")
+    conv.add_argument("--seed", type=int, default=0, help="seed of the validation's bootstrap")
+    conv.add_argument("--json", metavar="PATH|-", help="write rungs and analysis as JSON")
+    conv.add_argument("--report", metavar="DIR", help="write a log-log convergence plot per check into DIR")
+    conv.add_argument("--workers", type=int, default=1, help="rungs run at once (processes)")
+    conv.add_argument("--engine", default="local", help="local (process pool) or dask")
+    conv.add_argument("--scheduler", metavar="ADDRESS", help="Dask scheduler address")
+    conv.add_argument("--resume", action="store_true", help="skip the rungs the --json file already holds")
+    conv.set_defaults(func=_cmd_converge)
 
     stress = sub.add_parser("stress", help="push settings and parameters to the edges: stable or not, largest "
                             "stable timestep, soak drift")
