@@ -51,11 +51,21 @@ def _cmd_validate(args: argparse.Namespace) -> int:
             from mjpoincare.peers.compare import check_peer
 
             check_peer(args.peer, name, params)
+        if args.extrapolate:
+            from mjpoincare.extrapolate import coarse_grids
+
+            coarse_grids(name, assignments, args.preset)
     check_output_path(args.json, "--json")
     check_output_path(args.report, "--report", directory=True)
     if args.report:
         _require_viz("--report", "matplotlib")
     results = [validate(name, args.preset, args.seed, peer=args.peer, **assignments) for name in names]
+    if args.extrapolate:
+        from mjpoincare.extrapolate import extrapolate
+
+        for result in results:
+            result.extras["extrapolated"] = extrapolate(result.scenario, assignments, args.preset, args.seed,
+                                                        result.checks, result.timing["wall_s"])
     if args.json != "-":
         for result in results:
             print(result.table())
@@ -63,6 +73,10 @@ def _cmd_validate(args: argparse.Namespace) -> int:
                 from mjpoincare.peers.compare import format_peer
 
                 print(format_peer(result.extras["peer"]))
+            if "extrapolated" in result.extras:
+                from mjpoincare.extrapolate import table
+
+                print(table(result.extras["extrapolated"]))
             print()
     if args.json:
         payload = results[0].to_dict() if len(results) == 1 else [r.to_dict() for r in results]
@@ -242,6 +256,8 @@ def build_parser() -> argparse.ArgumentParser:
     val.add_argument("--json", metavar="PATH|-", help="write the result as JSON (- for stdout)")
     val.add_argument("--seed", type=int, default=0, help="seed of the bootstrap (same seed, same result)")
     val.add_argument("--report", metavar="DIR", help="write a self-contained HTML report per scenario into DIR")
+    val.add_argument("--extrapolate", action="store_true", help="also run the timestep grids 2h and 4h and report "
+                     "each scalar check's Richardson value and GCI band where its order is clean (not judged)")
     val.add_argument("--peer", choices=("drake",), help="add an outside simulator's value of each check (drake: "
                      "rimless-wheel and compass-biped; pip install 'mjpoincare[peers]')")
     val.set_defaults(func=_cmd_validate)
