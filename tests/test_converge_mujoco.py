@@ -81,3 +81,18 @@ def test_components_split_vectors_and_complex_values_and_skip_categories() -> No
     assert values["eigenvalues[1].im"][0] == -0.5
     assert math.isnan(values["eigenvalues[0].re"][1])  # a missing simulated component is NaN, never dropped
     assert skipped == ["gait_type", "stable"]
+
+
+def test_a_check_whose_analytic_value_moves_with_the_run_is_analysed_by_its_error() -> None:
+    """An analytic value evaluated on each run's own state (e.g. at its measured heading) differs between rungs:
+    the error simulated - analytic is what converges, to 0, not the simulated value to the first rung's analytic."""
+    from mjpoincare.converge import _analyse_axis, rung_key
+
+    rungs = [{"timestep": str(h)} for h in (4e-4, 2e-4, 1e-4)]
+    rows = {rung_key(o): {"failed": None, "diverged": 0, "warnings": 0,
+                          "components": {"x": [1.0 + 10 * h, 1.0 + 10 * h + 3 * h]}}
+            for o, h in zip(rungs, (4e-4, 2e-4, 1e-4), strict=True)}
+    entry = _analyse_axis("timestep", rungs, rows)["components"]["x"]
+    assert entry["analysed"] == "error" and entry["analytic"] == 0.0
+    assert entry["three_grid"]["observed_order"] == pytest.approx(1.0)
+    assert entry["verdict"] == "converges to analytic"

@@ -36,7 +36,7 @@ from typing import Any
 import numpy as np
 
 from mjpoincare.analysis.checks import Check, jsonable
-from mjpoincare.analysis.convergence import Verdict, analyze
+from mjpoincare.analysis.convergence import ANALYTIC_FLOOR, SANE_ORDER, Verdict, analyze
 from mjpoincare.parallel import check_engine, run_jobs
 from mjpoincare.params import ParameterError
 from mjpoincare.result import write_json
@@ -171,9 +171,16 @@ def _analyse_axis(axis: str, rungs: list[dict[str, str]], rows: Mapping[str, dic
     out: dict[str, Any] = {"h": h, "bad_rungs": bad, "components": {}}
     for n in names:
         sims = [_finite(r["components"].get(n, [None, None])[1]) for r in ladder]
-        analytic = _finite(next(r["components"][n][0] for r in ladder if n in r["components"]))
+        analytics = [_finite(r["components"].get(n, [None, None])[0]) for r in ladder]
+        known = [a for a in analytics if a is not None]
+        # a check whose analytic value comes from the run itself (e.g. evaluated at the run's own heading or time
+        # grid) changes along the ladder: then the error simulated - analytic is what converges, to 0
+        varies = len(known) > 1 and max(known) - min(known) > ANALYTIC_FLOOR * max(1.0, *map(abs, known))
+        if varies:
+            sims = [None if v is None or a is None else v - a for v, a in zip(sims, analytics, strict=True)]
+        analytic = 0.0 if varies else (known[0] if known else None)
         good = [(x, v) for x, v in zip(h, sims, strict=True) if v is not None]
-        entry: dict[str, Any] = {"ladder_values": sims}
+        entry: dict[str, Any] = {"ladder_values": sims, "analysed": "error" if varies else "value"}
         if analytic is None:
             entry["verdict"] = "no finite analytic value"
         elif len(good) < 3:
@@ -243,6 +250,14 @@ def _verdict_text(entry: Mapping[str, Any]) -> str:
     return f"{entry['verdict']} (noise floor {_num(entry['noise_floor'], '.2g')}{scaling})"
 
 
+def _fit_is_sound(fit: Mapping[str, Any]) -> bool:
+    """The least-squares order is one (inside SANE_ORDER, its sigma below it), not a fit run off to p -> 0 or
+    p -> infinity because the increments are not geometric."""
+    order, sigma = fit["order"], fit["order_stderr"]
+    return (order is not None and SANE_ORDER[0] <= order <= SANE_ORDER[1]
+            and sigma is not None and sigma < order)
+
+
 def table(payload: Mapping[str, Any]) -> str:
     """Markdown tables, one per axis: order (three-grid; least squares ± 1 sigma), Richardson value, GCI band,
     analytic value, bias and verdict per component."""
@@ -259,11 +274,16 @@ def table(payload: Mapping[str, Any]) -> str:
             tg, fit = e["three_grid"], e["fit"]
             order = _num(tg["observed_order"], ".3g") + ("" if tg["safety_factor"] in (None, 1.25) else " *")
             fitted = "—" if fit["order"] is None else f"{fit['order']:.3g} ± {_num(fit['order_stderr'], '.2g')}"
-            lines.append(f"| {n} | {order} | {fitted} | "
+            if fit["order"] is not None and not _fit_is_sound(fit):
+                fitted += " †"
+            name = f"{n} (error)" if e.get("analysed") == "error" else n
+            lines.append(f"| {name} | {order} | {fitted} | "
                          f"{_num(tg['extrapolated'], '.7g')} | {_num(e['band'], '.2g')} | {_num(e['analytic'], '.7g')}"
                          f" | {_num(e['bias'], '.2g')} | {_verdict_text(e)} |")
         lines += [f"FAILED rung {b}" for b in res["bad_rungs"]]
     lines += ["", "* order outside [0.5, 4]: band with Fs = 3 at the formal order (analysis/convergence.py)",
+              "† least-squares fit degenerate (order outside [0.5, 4] or its sigma above the order): not an order",
+              "(error): the analytic value changes along the ladder (computed from each run): the error is analysed",
               f"not applicable (counts, fractions, categories): {', '.join(payload['not_applicable']) or 'none'}",
               f"{payload['rungs_run']} rungs run ({payload['rungs_resumed']} resumed) in {payload['wall_s']:.1f} s "
               f"wall, {payload['workers']} worker(s), {payload['engine']} engine"]
