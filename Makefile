@@ -24,7 +24,7 @@ $(STAMP): pyproject.toml $(LOCK)
 	@$(PYTHON) -c 'import sys; sys.exit(0 if sys.version_info >= (3, 10) else "mjpoincare needs Python >= 3.10")'
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet --constraint $(LOCK) -e ".[dev,peers]"
+	$(BIN)/python -m pip install --quiet --constraint $(LOCK) -e ".[dev,peers,mjx,warp]"
 	touch $(STAMP)
 
 validate: $(STAMP)
@@ -56,7 +56,7 @@ results-render: $(STAMP)
 
 lock: $(STAMP)
 	$(BIN)/python -m pip install --quiet uv
-	$(BIN)/uv pip compile pyproject.toml --extra dev --extra peers --universal --python-version 3.10 --quiet -o $(LOCK)
+	$(BIN)/uv pip compile pyproject.toml --extra dev --extra peers --extra mjx --extra warp --universal --python-version 3.10 --quiet -o $(LOCK)
 
 bench: $(STAMP)
 	$(BIN)/mjpoincare bench rimless-wheel

@@ -54,7 +54,10 @@ class Result:
 
     def table(self) -> str:
         """The check table a person reads: analytic, simulated, error, tolerance, verdict."""
-        head = (f"{self.scenario}  preset={self.preset}  MuJoCo {self.mujoco_version}  "
+        backend = self.settings.get("backend", "mujoco")
+        engine = (f"MuJoCo {self.mujoco_version}" if backend == "mujoco"
+                  else f"MuJoCo {self.mujoco_version} models on {backend} ({self.settings.get('precision')})")
+        head = (f"{self.scenario}  preset={self.preset}  {engine}  "
                 + " ".join(f"{k}={v}" for k, v in self.params.items()))
         rows = [("check", "analytic", "simulated", "error", "tolerance", "verdict")]
         for c in self.checks:

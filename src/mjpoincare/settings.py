@@ -60,8 +60,9 @@ SETTINGS: tuple[Param, ...] = (
     Param("backend", "mujoco", "simulator the rollouts run on: MuJoCo C, MJX (JAX; extra mjpoincare[mjx]) or MuJoCo "
           "Warp (extra mjpoincare[warp]); same models, experiment designs, checks and tolerances", str,
           choices=BACKENDS),
-    Param("precision", "float64", "floating point of the rollouts: float64 (MuJoCo C, MJX), float32 (MJX as RL "
-          "setups run it; MuJoCo Warp's only precision)", str, choices=("float64", "float32")),
+    Param("precision", "auto", "floating point of the rollouts: auto (the backend's first: float64 for MuJoCo C and "
+          "MJX, float32 for MuJoCo Warp), float64, or float32 (MJX as RL setups run it; MuJoCo Warp's only one)", str,
+          choices=("auto", "float64", "float32")),
     Param("diagnostics", 0, "1: record the deepest penetration and the largest kinetic energy (adds 2 sensors "
           "and the energy computation; off unless asked, as nothing else reads them)", int, 0, 1),
 )
@@ -107,15 +108,21 @@ def apply_unskip(spec: mujoco.MjSpec, settings: Mapping[str, Value]) -> None:
         spec.option.disableflags &= ~int(mujoco.mjtDisableBit.mjDSBL_CONTACT)
 
 
-def check_backend(settings: Mapping[str, Value]) -> None:
-    """Refuse a backend and precision that do not go together (:data:`BACKEND_PRECISIONS`), naming both."""
-    backend, precision = str(settings["backend"]), str(settings["precision"])
+def check_backend(settings: dict[str, Value]) -> None:
+    """Resolve ``precision=auto`` to the backend's first precision (in place), and refuse a backend and precision
+    that do not go together (:data:`BACKEND_PRECISIONS`), a backend whose packages are missing, or a setting the
+    backend cannot honour, each in one line naming them."""
+    backend = str(settings["backend"])
     allowed = BACKEND_PRECISIONS[backend]
-    if precision not in allowed:
-        raise ParameterError(f"precision must be {' or '.join(allowed)} with backend={backend} (got {precision})")
-    from mjpoincare.backends import check_installed
+    if settings["precision"] == "auto":
+        settings["precision"] = allowed[0]
+    if settings["precision"] not in allowed:
+        raise ParameterError(f"precision must be {' or '.join(allowed)} with backend={backend} "
+                             f"(got {settings['precision']})")
+    from mjpoincare.backends import check_installed, check_settings
 
     check_installed(backend)
+    check_settings(settings)
 
 
 def rollout_options(settings: Mapping[str, Value]) -> dict[str, float | int | str]:
