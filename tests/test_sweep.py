@@ -109,3 +109,18 @@ def test_the_scenario_facets_are_dispatched(monkeypatch: pytest.MonkeyPatch) -> 
     assert main(["sweep", "rimless-wheel-friction", "--param", "mu", "--values", "0.3,1.1", "--workers", "3"]) == 0
     assert calls.pop() == (["0.3", "1.1"], {}, None, None, {"resume": False, "workers": 3})
 
+
+
+def test_workers_are_spawned_once_a_threaded_library_is_loaded(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Forking a process that holds JAX's or Warp's native threads can deadlock the child: then spawn."""
+    import sys
+    import types
+
+    from mjpoincare import parallel
+
+    monkeypatch.delitem(sys.modules, "jax", raising=False)
+    monkeypatch.delitem(sys.modules, "jaxlib", raising=False)
+    monkeypatch.delitem(sys.modules, "warp", raising=False)
+    assert parallel.start_method() == ("fork" if sys.platform.startswith("linux") else "spawn")
+    monkeypatch.setitem(sys.modules, "jax", types.ModuleType("jax"))
+    assert parallel.start_method() == "spawn"

@@ -5,7 +5,9 @@ side by side, for work a single rollout cannot batch (different models, Python e
 Local jobs run in worker processes: ``fork``-ed on Linux, so that a worker starts with the parent's modules
 already imported (``spawn`` re-imports numpy, scipy, mujoco in every worker: 1-2 s each, measured), which is
 safe because the rollout thread pools live only inside ``with Rollout(...)`` blocks, never across a call to
-:func:`run_jobs`; ``spawn``-ed elsewhere (macOS and Windows cannot fork safely). With
+:func:`run_jobs`; ``spawn``-ed elsewhere (macOS and Windows cannot fork safely), and on Linux too once a library
+that keeps native threads of its own is loaded (JAX, Warp: the MJX and Warp backends), since forking a
+multithreaded process can deadlock the child. With
 ``engine="dask"`` they go to a Dask cluster: ``scheduler`` names a running one, or a local cluster of
 ``workers`` processes is started for the call. Results are yielded as jobs finish.
 """
@@ -21,7 +23,14 @@ from typing import Any
 from mjpoincare.params import ParameterError
 
 ENGINES = ("local", "dask")
-START_METHOD = "fork" if sys.platform.startswith("linux") else "spawn"
+#: Modules that start native threads when imported: a process holding them is not forked.
+THREADED_MODULES = ("jax", "jaxlib", "warp")
+
+
+def start_method() -> str:
+    """``fork`` on Linux while no :data:`THREADED_MODULES` is loaded in this process, ``spawn`` otherwise."""
+    threaded = any(name in sys.modules for name in THREADED_MODULES)
+    return "fork" if sys.platform.startswith("linux") and not threaded else "spawn"
 
 
 def check_engine(workers: int, engine: str) -> None:
@@ -41,7 +50,7 @@ def run_jobs(fn: Callable[..., Any], jobs: Sequence[tuple[Any, ...]], *, workers
         for job in jobs:
             yield fn(*job)
     else:
-        with ProcessPoolExecutor(max_workers=min(workers, len(jobs)), mp_context=get_context(START_METHOD)) as pool:
+        with ProcessPoolExecutor(max_workers=min(workers, len(jobs)), mp_context=get_context(start_method())) as pool:
             futures = [pool.submit(fn, *job) for job in jobs]
             for future in as_completed(futures):
                 yield future.result()
