@@ -158,6 +158,19 @@ def _native_chunk(pool: mj_rollout.Rollout, model: mujoco.MjModel | list[mujoco.
 RELEASED_MARGIN = -1e6
 
 
+def switch_contact(released: dict[tuple[int, int], float], margins: np.ndarray, index: int, geom: int, on: bool
+                   ) -> None:
+    """:meth:`Batch.set_contact` on any backend: trajectory ``index``'s geom margins ``margins`` (a writable view of
+    its own, (ngeom,)) get :data:`RELEASED_MARGIN` at ``geom`` when its contact is switched off, and the margin kept in
+    ``released`` back when it is switched on again (switching twice either way changes nothing)."""
+    if on:
+        if (index, geom) in released:
+            margins[geom] = released.pop((index, geom))
+    elif (index, geom) not in released:
+        released[index, geom] = float(margins[geom])
+        margins[geom] = RELEASED_MARGIN
+
+
 class Batch(Protocol):
     """B trajectories stepped in native chunks, with per-trajectory events between chunks: the seam a backend
     implements. States are full-physics vectors (nstate,) (MuJoCo docs, "State": ``mjSTATE_FULLPHYSICS``)."""
@@ -264,13 +277,7 @@ class MujocoBatch:
         self._current[np.asarray(indices, int)] = states
 
     def set_contact(self, index: int, geom: int, on: bool) -> None:
-        model = self._model(index)
-        if on:
-            if (index, geom) in self._released:
-                model.geom_margin[geom] = self._released.pop((index, geom))
-        elif (index, geom) not in self._released:
-            self._released[index, geom] = float(model.geom_margin[geom])
-            model.geom_margin[geom] = RELEASED_MARGIN
+        switch_contact(self._released, self._model(index).geom_margin, index, geom, on)
 
     def set_eq_active(self, index: int, eq: int, on: bool) -> None:
         self._model(index).eq_active0[eq] = on

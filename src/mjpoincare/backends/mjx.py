@@ -30,7 +30,7 @@ from mujoco import mjx
 
 from mjpoincare.backends import flag_divergence, state_layout
 from mjpoincare.params import ParameterError
-from mjpoincare.simulate import RELEASED_MARGIN, RolloutReport
+from mjpoincare.simulate import RolloutReport, switch_contact
 
 #: Compiled chunks and fractional steps, by (kind, model structure, argument shapes): shared by every batch.
 _COMPILED: dict[tuple, Any] = {}
@@ -171,12 +171,7 @@ class MjxBatch:
         self._current[np.asarray(indices, int)] = states
 
     def set_contact(self, index: int, geom: int, on: bool) -> None:
-        if on:
-            if (index, geom) in self._released:
-                self._margin[index, geom] = self._released.pop((index, geom))
-        elif (index, geom) not in self._released:
-            self._released[index, geom] = float(self._margin[index, geom])
-            self._margin[index, geom] = RELEASED_MARGIN
+        switch_contact(self._released, self._margin[index], index, geom, on)
 
     def set_eq_active(self, index: int, eq: int, on: bool) -> None:
         self._eq[index, eq] = on

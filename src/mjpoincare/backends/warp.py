@@ -25,7 +25,7 @@ import warp as wp
 
 from mjpoincare.backends import flag_divergence, state_layout
 from mjpoincare.params import ParameterError
-from mjpoincare.simulate import RELEASED_MARGIN, RolloutReport
+from mjpoincare.simulate import RolloutReport, switch_contact
 
 #: The per-trajectory model fields, batched over the worlds.
 BATCHED = ("geom_margin", "geom_friction", "actuator_biasprm", "actuator_gear")
@@ -215,13 +215,7 @@ class WarpBatch:
         self._current[np.asarray(indices, int)] = states
 
     def set_contact(self, index: int, geom: int, on: bool) -> None:
-        margin = self._fields["geom_margin"]
-        if on:
-            if (index, geom) in self._released:
-                margin[index, geom] = self._released.pop((index, geom))
-        elif (index, geom) not in self._released:
-            self._released[index, geom] = float(margin[index, geom])
-            margin[index, geom] = RELEASED_MARGIN
+        switch_contact(self._released, self._fields["geom_margin"][index], index, geom, on)
 
     def set_eq_active(self, index: int, eq: int, on: bool) -> None:
         self._eq[index, eq] = on
