@@ -81,3 +81,26 @@ def flag_divergence(current: np.ndarray, states: np.ndarray, report: RolloutRepo
     if sensordata.shape[-1]:
         report.record_sensors(np.where(bad[:, 1:, None], np.nan, sensordata))
     return full
+
+
+class ArrayBatch:
+    """What the array backends' batches share (:class:`mjpoincare.simulate.Batch`): the current states ``_current``
+    (B, nstate) and the bookkeeping of a finished chunk."""
+
+    _current: np.ndarray
+    report: RolloutReport
+
+    def states(self) -> np.ndarray:
+        return self._current.copy()
+
+    def set_states(self, indices: np.ndarray, states: np.ndarray) -> None:
+        self._current[np.asarray(indices, int)] = states
+
+    def _finish_chunk(self, states: np.ndarray, sensordata: np.ndarray, nstep: int, seconds: float) -> np.ndarray:
+        """Count the chunk's ``nstep`` steps and ``seconds``, flag divergences (:func:`flag_divergence`) and continue
+        from its last states (B, nstep, nstate); the recorded chunk (B, nstep + 1, nstate)."""
+        self.report.wall_s += seconds
+        self.report.steps += self._current.shape[0] * nstep
+        full = flag_divergence(self._current, states, self.report, sensordata)
+        self._current = states[:, -1, :].copy()
+        return full

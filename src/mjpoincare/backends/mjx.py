@@ -28,7 +28,7 @@ import mujoco
 import numpy as np
 from mujoco import mjx
 
-from mjpoincare.backends import flag_divergence, state_layout
+from mjpoincare.backends import ArrayBatch, state_layout
 from mjpoincare.params import ParameterError
 from mjpoincare.simulate import RolloutReport, switch_contact
 
@@ -110,7 +110,7 @@ def _compiled(kind: str, function: Callable[..., Any], *args: Any) -> Any:
     return _COMPILED[key]
 
 
-class MjxBatch:
+class MjxBatch(ArrayBatch):
     """:class:`mjpoincare.simulate.Batch` on MJX: B trajectories of ``model`` from the starts ``state0``
     (B, nstate) in ``precision`` (``float64`` or ``float32``). The caller's model is never changed; every
     trajectory's event-changed fields live in this batch's arrays."""
@@ -158,17 +158,7 @@ class MjxBatch:
             start = time.perf_counter()
             self._data, rows, sensors = jax.block_until_ready(chunk(*args))
             states, sensordata = np.asarray(rows, float), np.asarray(sensors, float)
-        self.report.wall_s += time.perf_counter() - start
-        self.report.steps += batch * nstep
-        full = flag_divergence(self._current, states, self.report, sensordata)
-        self._current = states[:, -1, :].copy()
-        return full
-
-    def states(self) -> np.ndarray:
-        return self._current.copy()
-
-    def set_states(self, indices: np.ndarray, states: np.ndarray) -> None:
-        self._current[np.asarray(indices, int)] = states
+        return self._finish_chunk(states, sensordata, nstep, time.perf_counter() - start)
 
     def set_contact(self, index: int, geom: int, on: bool) -> None:
         switch_contact(self._released, self._margin[index], index, geom, on)

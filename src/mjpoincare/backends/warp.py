@@ -23,7 +23,7 @@ import mujoco_warp as mjw
 import numpy as np
 import warp as wp
 
-from mjpoincare.backends import flag_divergence, state_layout
+from mjpoincare.backends import ArrayBatch, state_layout
 from mjpoincare.params import ParameterError
 from mjpoincare.simulate import RolloutReport, switch_contact
 
@@ -111,7 +111,7 @@ def _overflow_lines(overflow: np.ndarray) -> list[str]:
     return lines
 
 
-class WarpBatch:
+class WarpBatch(ArrayBatch):
     """:class:`mjpoincare.simulate.Batch` on MuJoCo Warp: B worlds of ``model`` from the starts ``state0``
     (B, nstate), on Warp's default device. The caller's model is never changed."""
 
@@ -202,17 +202,7 @@ class WarpBatch:
                 wp.capture_launch(graph)
             wp.synchronize_device(self._device)
             states, sensordata = rows.numpy().astype(float), sensors.numpy().astype(float)
-        self.report.wall_s += time.perf_counter() - start
-        self.report.steps += batch * nstep
-        full = flag_divergence(self._current, states, self.report, sensordata)
-        self._current = states[:, -1, :].copy()
-        return full
-
-    def states(self) -> np.ndarray:
-        return self._current.copy()
-
-    def set_states(self, indices: np.ndarray, states: np.ndarray) -> None:
-        self._current[np.asarray(indices, int)] = states
+        return self._finish_chunk(states, sensordata, nstep, time.perf_counter() - start)
 
     def set_contact(self, index: int, geom: int, on: bool) -> None:
         switch_contact(self._released, self._fields["geom_margin"][index], index, geom, on)
