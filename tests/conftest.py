@@ -17,3 +17,10 @@ def _in_tmp_dir(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[Pat
     monkeypatch.chdir(tmp_path)
     yield tmp_path
     assert not (tmp_path / "MUJOCO_LOG.TXT").exists(), "MuJoCo wrote MUJOCO_LOG.TXT into the working directory"
+
+
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    """The backend tests run last: they load JAX and Warp, whose native threads make every later process pool spawn
+    its workers instead of forking them (:func:`mjpoincare.parallel.start_method`), which costs the sweeps and
+    convergence ladders after them their start-up time."""
+    items.sort(key=lambda item: item.nodeid.startswith("tests/test_backends.py"))
