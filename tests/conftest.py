@@ -1,8 +1,13 @@
-"""Shared fixtures: every test runs in a temporary working directory (MUJOCO_LOG.TXT would show there)."""
+"""Shared fixtures: every test runs in a temporary working directory (MUJOCO_LOG.TXT would show there); the backend
+tests run last, and the MJX scenario validation runs in a process of its own beside the rest of the suite."""
 
 from __future__ import annotations
 
 import os
+import shutil
+import subprocess
+import sys
+import tempfile
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -10,6 +15,13 @@ import pytest
 
 # dm_control (the environments' tests) opens a GLFW context at import unless told otherwise; off-screen EGL works here
 os.environ.setdefault("MUJOCO_GL", "egl")
+
+#: The MJX validation of the rimless wheel (a minute on 2 CPU cores, in one XLA thread) that
+#: ``tests/test_backends.py::test_rimless_wheel_on_mjx_passes_its_fast_checks`` reads: started when that test is
+#: collected, so that it runs while the rest of the suite does.
+MJX_RUN = ("rimless-wheel", "mjx", "float64", "fast")
+MJX_TEST = "tests/test_backends.py::test_rimless_wheel_on_mjx_passes_its_fast_checks"
+mjx_run_key = pytest.StashKey[tuple[subprocess.Popen[bytes], Path]]()
 
 
 @pytest.fixture(autouse=True)
@@ -19,8 +31,35 @@ def _in_tmp_dir(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[Pat
     assert not (tmp_path / "MUJOCO_LOG.TXT").exists(), "MuJoCo wrote MUJOCO_LOG.TXT into the working directory"
 
 
-def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
     """The backend tests run last: they load JAX and Warp, whose native threads make every later process pool spawn
     its workers instead of forking them (:func:`mjpoincare.parallel.start_method`), which costs the sweeps and
-    convergence ladders after them their start-up time."""
+    convergence ladders after them their start-up time. The MJX validation starts now, in a process of its own, when
+    its test is selected and MJX is installed (its test reports a missing MJX)."""
     items.sort(key=lambda item: item.nodeid.startswith("tests/test_backends.py"))
+    from mjpoincare.backends import check_installed
+    from mjpoincare.params import ParameterError
+
+    if not any(item.nodeid == MJX_TEST for item in items):
+        return
+    try:
+        check_installed("mjx")
+    except ParameterError:
+        return
+    out = Path(tempfile.mkdtemp(prefix="mjpoincare-mjx-"))
+    scenario, backend, precision, preset = MJX_RUN
+    env = {**os.environ, "XLA_FLAGS": "--xla_cpu_multi_thread_eigen=false intra_op_parallelism_threads=1"}
+    process = subprocess.Popen([sys.executable, "-m", "mjpoincare.backends.findings", "run", scenario, backend,
+                                precision, "--preset", preset, "--out", str(out)], cwd=out, env=env,
+                               stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+    config.stash[mjx_run_key] = (process, out)
+
+
+def pytest_unconfigure(config: pytest.Config) -> None:
+    """Stop the MJX validation if its test did not wait for it, and remove its directory."""
+    if mjx_run_key in config.stash:
+        process, out = config.stash[mjx_run_key]
+        if process.poll() is None:
+            process.kill()
+            process.wait()
+        shutil.rmtree(out, ignore_errors=True)

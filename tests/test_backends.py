@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import copy
 import itertools
+import json
 import os
 import sys
 
@@ -106,6 +107,24 @@ def test_chunk_restarts_continue_and_agree_with_c(backend: tuple[str, str], whic
     assert np.abs(got - _c_rollout(m, start, STEPS)).max() <= BACKENDS[backend]
     np.testing.assert_array_equal(batch.report.final_state, got[:, -1])
     assert batch.report.steps == 2 * STEPS and not batch.report.diverged.any()
+
+
+def test_padding_is_never_seen_and_shares_the_compile(backend: tuple[str, str], free: mujoco.MjModel) -> None:
+    """One start padded to a batch of 2 (the ``batch`` setting): its chunk, states, flags, step count and last state
+    are its own, equal to the same start's in an unpadded batch of 2; on MJX the padded batch reuses that batch's
+    compiled chunk (no compile of its own)."""
+    start = _states(free, swing=0.7)
+    with _open(backend, free, start) as whole:
+        both = whole.run_chunk(CHUNK)
+    with open_backend_batch(backend[0], free, start[:1], precision=backend[1], size=2) as padded:
+        one = padded.run_chunk(CHUNK)
+        assert padded.states().shape == (1, start.shape[1])
+    assert one.shape == (1, CHUNK + 1, start.shape[1])
+    assert np.abs(one[0] - both[0]).max() <= BACKENDS[backend]
+    report = padded.report
+    assert report.steps == CHUNK and report.diverged.shape == (1,) and report.final_state.shape == (1, start.shape[1])
+    if backend[0] == "mjx":
+        assert report.compile_s == 0.0
 
 
 def test_set_states_rewrites_the_chosen_trajectories_only(backend: tuple[str, str], model: mujoco.MjModel) -> None:
@@ -224,6 +243,25 @@ def test_findings_table_puts_each_backend_beside_mujoco_c() -> None:
     lines = findings.table(runs).splitlines()
     assert "| toy | fast | eigenvalue | 0.02 | 0.0001 |  | 0.25 ✗ |  |" in lines
     assert "| toy | fast | compile s | | 0 | not run | 12 | refused: no sensor |" in lines
+
+
+def test_rimless_wheel_on_mjx_passes_its_fast_checks(request: pytest.FixtureRequest) -> None:
+    """The rimless wheel's fast-preset validation on MJX (x64), run by the findings command in a process of its own
+    (``conftest.MJX_RUN``, started at collection): every check passes against MuJoCo C's tolerances, and the record
+    carries MJX's compile seconds."""
+    _require("mjx")
+    from conftest import MJX_RUN, mjx_run_key
+
+    process, out = request.config.stash[mjx_run_key]
+    output, _ = process.communicate(timeout=1800)
+    assert process.returncode == 0, output.decode()
+    scenario, backend, precision, preset = MJX_RUN
+    record = json.loads((out / f"{scenario}-{preset}-{backend}-{precision}.json").read_text())
+    table = "\n".join(f"{c['name']}: {c['error']:.3g} (tolerance {c['tolerance']:.3g})" for c in record["checks"])
+    assert record["passed"] and all(c["passed"] for c in record["checks"]), table
+    assert {c["name"] for c in record["checks"]} >= {"omega_post_impact", "eigenvalue", "basins", "stable"}
+    assert record["settings"]["backend"] == "mjx" and record["settings"]["precision"] == "float64"
+    assert record["compile_s"] > 0
 
 
 def test_rimless_wheel_on_warp_as_measured() -> None:

@@ -63,6 +63,9 @@ SETTINGS: tuple[Param, ...] = (
     Param("precision", "auto", "floating point of the rollouts: auto (the backend's first: float64 for MuJoCo C and "
           "MJX, float32 for MuJoCo Warp), float64, or float32 (MJX as RL setups run it; MuJoCo Warp's only one)", str,
           choices=("auto", "float64", "float32")),
+    Param("batch", 0, "trajectories per rollout: region maps (sweep --grid) and mu sweeps are split into rollouts of "
+          "this many starts, and MJX and Warp pad every smaller rollout to it (padding never seen), so that a run "
+          "compiles once; thousands on a GPU. 0: the scenarios' own split and no padding", int, 0, 1_000_000),
     Param("diagnostics", 0, "1: record the deepest penetration and the largest kinetic energy (adds 2 sensors "
           "and the energy computation; off unless asked, as nothing else reads them)", int, 0, 1),
 )
@@ -127,9 +130,10 @@ def check_backend(settings: dict[str, Value]) -> None:
 
 def rollout_options(settings: Mapping[str, Value]) -> dict[str, float | int | str]:
     """The keyword arguments every batched rollout takes from the settings (threads, start perturbation, backend,
-    precision)."""
+    precision, batch)."""
     return {"threads": int(settings["threads"]), "start_perturbation": float(settings["start_perturbation"]),
-            "backend": str(settings["backend"]), "precision": str(settings["precision"])}
+            "backend": str(settings["backend"]), "precision": str(settings["precision"]),
+            "batch": int(settings["batch"])}
 
 
 def as_json(settings: Mapping[str, Value]) -> dict[str, object]:

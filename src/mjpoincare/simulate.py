@@ -48,7 +48,8 @@ class Chunk:
 
 @dataclass
 class RolloutReport:
-    """What a batch rollout did: ``steps`` simulated, ``wall_s`` spent in MuJoCo, divergence, warnings."""
+    """What a batch rollout did: ``steps`` simulated, ``wall_s`` spent stepping, ``compile_s`` spent compiling
+    (MJX and Warp; 0 on MuJoCo C), divergence, warnings."""
 
     steps: int = 0
     wall_s: float = 0.0
@@ -61,15 +62,18 @@ class RolloutReport:
     #: Each sensor's largest value over the batch in the first two recorded steps (the scale of the initial states;
     #: two because MuJoCo's energy sensors lag the state by one step).
     sensor_first: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    compile_s: float = 0.0
 
     def merge(self, other: RolloutReport) -> RolloutReport:
         """One report for two batches run one after the other."""
-        return RolloutReport(self.steps + other.steps, self.wall_s + other.wall_s,
-                             np.concatenate([self.diverged, other.diverged]), self.warnings + other.warnings,
-                             self.final_state, *_sensor_extremes(self, other.sensor_min, other.sensor_max),
-                             np.fmax(self.sensor_first, other.sensor_first)
-                             if self.sensor_first.size and other.sensor_first.size
-                             else (self.sensor_first if self.sensor_first.size else other.sensor_first))
+        low, high = _sensor_extremes(self, other.sensor_min, other.sensor_max)
+        first = (np.fmax(self.sensor_first, other.sensor_first) if self.sensor_first.size and other.sensor_first.size
+                 else (self.sensor_first if self.sensor_first.size else other.sensor_first))
+        return RolloutReport(steps=self.steps + other.steps, wall_s=self.wall_s + other.wall_s,
+                             diverged=np.concatenate([self.diverged, other.diverged]),
+                             warnings=self.warnings + other.warnings, final_state=self.final_state,
+                             sensor_min=low, sensor_max=high, sensor_first=first,
+                             compile_s=self.compile_s + other.compile_s)
 
     def record_sensors(self, sensordata: np.ndarray) -> None:
         """Fold a chunk's sensor readings (..., nsensordata) into the extremes (NaN rows ignored)."""
@@ -307,14 +311,16 @@ class MujocoBatch:
 
 
 def open_batch(model: mujoco.MjModel, state0: np.ndarray, *, threads: int, backend: str = "mujoco",
-               precision: str = "float64") -> Batch:
+               precision: str = "float64", batch: int = 0) -> Batch:
     """The :class:`Batch` of ``backend`` (``mujoco``: :class:`MujocoBatch`; ``mjx``, ``warp``: their optional
-    packages, :mod:`mjpoincare.backends`) over ``model`` and the starts ``state0`` (B, nstate), as a context manager."""
+    packages, :mod:`mjpoincare.backends`) over ``model`` and the starts ``state0`` (B, nstate), as a context manager.
+    ``batch``: MJX and Warp step max(B, ``batch``) trajectories, the rest padding that is never seen, so that every
+    rollout of a run has one shape and compiles once (MuJoCo C compiles nothing and ignores it)."""
     if backend == "mujoco":
         return MujocoBatch(model, state0, threads)
     from mjpoincare.backends import open_backend_batch
 
-    return open_backend_batch(backend, model, state0, precision=precision)
+    return open_backend_batch(backend, model, state0, precision=precision, size=batch)
 
 
 def _chunk_of(full: np.ndarray, nq: int, nv: int) -> Chunk:
@@ -332,6 +338,7 @@ def rollout_batch(
     start_perturbation: float = 0.0,
     backend: str = "mujoco",
     precision: str = "float64",
+    batch: int = 0,
 ) -> RolloutReport:
     """Step every initial state in ``state0`` (B, nstate) for ``nstep`` steps, in native chunks.
 
@@ -339,18 +346,19 @@ def rollout_batch(
     ``1 + start_perturbation`` (a rounding-sized change for measuring a verdict's sensitivity; 0 leaves them).
     Trajectories whose time does not advance by exactly one timestep per step (MuJoCo reset them after an
     instability) or that contain NaN/inf are flagged in ``diverged``; their rows after the divergence are set to NaN
-    before ``consume`` sees them, so no sample is taken from a reset state.
+    before ``consume`` sees them, so no sample is taken from a reset state. ``batch``: the trajectories MJX and
+    Warp step (:func:`open_batch`).
     """
     start = perturbed_starts(state0, model.nq, model.nv, start_perturbation)
     with captured_mujoco_log() as log:
-        with open_batch(model, start, threads=threads, backend=backend, precision=precision) as batch:
+        with open_batch(model, start, threads=threads, backend=backend, precision=precision, batch=batch) as rollout:
             done = 0
             while done < nstep:
                 n = min(chunk_steps, nstep - done)
-                consume(_chunk_of(batch.run_chunk(n), model.nq, model.nv))
+                consume(_chunk_of(rollout.run_chunk(n), model.nq, model.nv))
                 done += n
-        batch.report.warnings += log
-    return batch.report
+        rollout.report.warnings += log
+    return rollout.report
 
 
 def event_rollout(
@@ -366,6 +374,7 @@ def event_rollout(
     setup: Callable[[Batch], None] | None = None,
     backend: str = "mujoco",
     precision: str = "float64",
+    batch: int = 0,
 ) -> RolloutReport:
     """Batched rollout with a controller that acts at events, without Python between steps.
 
@@ -386,35 +395,35 @@ def event_rollout(
     acts on the step from recorded row k to k + 1). A time-varying feedforward (e.g. a reference trajectory in
     the phase since the last event, which the controller tracks) thus needs no Python between steps; rows
     after an event are discarded and the next chunk's control starts from the restart row.
-    ``start_perturbation``: as in :func:`rollout_batch`.
+    ``start_perturbation``, ``batch``: as in :func:`rollout_batch`.
     """
     batch_size = state0.shape[0]
     nq, nv = model.nq, model.nv
     kept = np.zeros(batch_size, int)
     with captured_mujoco_log() as log:
         with open_batch(model, perturbed_starts(state0, nq, nv, start_perturbation), threads=threads,
-                        backend=backend, precision=precision) as batch:
+                        backend=backend, precision=precision, batch=batch) as rollout:
             if setup is not None:
-                setup(batch)
+                setup(rollout)
             while (kept < nstep).any():
-                before = batch.states()
+                before = rollout.states()
                 ctrl = None if control is None else np.ascontiguousarray(control(before[:, 0]), dtype=float)
-                full = batch.run_chunk(chunk_steps, ctrl)
+                full = rollout.run_chunk(chunk_steps, ctrl)
                 done = kept >= nstep
                 full[done, 1:] = np.nan  # finished trajectories idle; nothing is sampled from them
-                answer = on_chunk(_chunk_of(full, nq, nv), batch)
+                answer = on_chunk(_chunk_of(full, nq, nv), rollout)
                 rows_out, overrides = answer if isinstance(answer, tuple) else (answer, {})
                 restart = np.clip(np.asarray(rows_out, int), 1, chunk_steps)
-                restart[batch.report.diverged | done] = chunk_steps
+                restart[rollout.report.diverged | done] = chunk_steps
                 early = np.nonzero(restart < chunk_steps)[0]
-                batch.set_states(early, full[early, restart[early]])
+                rollout.set_states(early, full[early, restart[early]])
                 for b, state in overrides.items():
-                    if not (batch.report.diverged[b] or done[b]):
-                        batch.set_states(np.array([b]), state[None, :])
-                batch.set_states(np.nonzero(done)[0], before[done])
+                    if not (rollout.report.diverged[b] or done[b]):
+                        rollout.set_states(np.array([b]), state[None, :])
+                rollout.set_states(np.nonzero(done)[0], before[done])
                 kept += np.where(done, 0, restart)
-        batch.report.warnings += log
-    return batch.report
+        rollout.report.warnings += log
+    return rollout.report
 
 
 def fractional_step(model: mujoco.MjModel, data: mujoco.MjData, seconds: float) -> None:

@@ -50,7 +50,8 @@ def run_validation(name: str, assignments: Mapping[str, str] | None = None, pres
     diverged = [int(i) for i in report.diverged.nonzero()[0]]
     checks = [*evaluation.checks, stability_check(len(diverged), len(report.warnings))]
     timing = {"wall_s": wall, "rollout_wall_s": report.wall_s, "steps": float(report.steps),
-              "steps_per_s": report.steps / wall, "rollout_steps_per_s": report.steps_per_s}
+              "steps_per_s": report.steps / wall, "rollout_steps_per_s": report.steps_per_s,
+              "compile_s": report.compile_s}
     extras = dict(evaluation.extras)
     if int(settings["diagnostics"]) and report.sensor_min.size >= len(sim_settings.DIAGNOSTIC_SENSORS):
         extras["diagnostics"] = {"max_penetration_m": max(0.0, -float(report.sensor_min[0])),

@@ -10,7 +10,6 @@ every run in ``DIR``. One process per run, so that each compile time is a first 
 from __future__ import annotations
 
 import argparse
-import importlib
 import json
 import sys
 import time
@@ -22,12 +21,6 @@ from mjpoincare.params import ParameterError
 
 #: The columns of the table, in order: (backend, precision).
 COLUMNS = (("mujoco", "float64"), ("mjx", "float64"), ("mjx", "float32"), ("warp", "float32"))
-
-
-def _compile_seconds(backend: str) -> float:
-    if backend == "mujoco":
-        return 0.0
-    return float(importlib.import_module(f"mjpoincare.backends.{backend}").COMPILE_SECONDS[0])
 
 
 def run(scenario: str, backend: str, precision: str, preset: str) -> dict[str, Any]:
@@ -42,7 +35,7 @@ def run(scenario: str, backend: str, precision: str, preset: str) -> dict[str, A
         return {"scenario": scenario, "preset": preset, "backend": backend, "precision": precision,
                 "refused": str(refusal)}
     return {"scenario": scenario, "preset": preset, "backend": backend, "precision": precision,
-            "wall_s": time.perf_counter() - start, "compile_s": _compile_seconds(backend), **result.to_dict()}
+            "wall_s": time.perf_counter() - start, "compile_s": result.timing["compile_s"], **result.to_dict()}
 
 
 def _error(check: dict[str, Any] | None) -> str:

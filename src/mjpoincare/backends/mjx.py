@@ -30,12 +30,10 @@ from mujoco import mjx
 
 from mjpoincare.backends import ArrayBatch, state_layout
 from mjpoincare.params import ParameterError
-from mjpoincare.simulate import RolloutReport, switch_contact
+from mjpoincare.simulate import switch_contact
 
 #: Compiled chunks and fractional steps, by (kind, model structure, argument shapes): shared by every batch.
 _COMPILED: dict[tuple, Any] = {}
-#: Seconds spent compiling in this process (read by the findings table).
-COMPILE_SECONDS = [0.0]
 
 
 @contextmanager
@@ -99,29 +97,28 @@ def _fraction(mx: mjx.Model, fields: tuple[jax.Array, ...], d: mjx.Data, state: 
     return _state_of(_one_step(mx.replace(opt=mx.opt.replace(timestep=seconds)), fields, d))
 
 
-def _compiled(kind: str, function: Callable[..., Any], *args: Any) -> Any:
-    """``function`` compiled ahead of time for ``args`` (cached by ``kind`` and the arguments' structure)."""
+def _compiled(kind: str, function: Callable[..., Any], *args: Any) -> tuple[Any, float]:
+    """``function`` compiled ahead of time for ``args`` (cached by ``kind`` and the arguments' structure), and the
+    seconds spent compiling it now (0 when cached)."""
     leaves, tree = jax.tree.flatten(args)
     key = (kind, tree, tuple((np.shape(leaf), str(getattr(leaf, "dtype", type(leaf).__name__))) for leaf in leaves))
-    if key not in _COMPILED:
-        start = time.perf_counter()
-        _COMPILED[key] = jax.jit(function).lower(*args).compile()
-        COMPILE_SECONDS[0] += time.perf_counter() - start
-    return _COMPILED[key]
+    if key in _COMPILED:
+        return _COMPILED[key], 0.0
+    start = time.perf_counter()
+    _COMPILED[key] = jax.jit(function).lower(*args).compile()
+    return _COMPILED[key], time.perf_counter() - start
 
 
 class MjxBatch(ArrayBatch):
     """:class:`mjpoincare.simulate.Batch` on MJX: B trajectories of ``model`` from the starts ``state0``
-    (B, nstate) in ``precision`` (``float64`` or ``float32``). The caller's model is never changed; every
-    trajectory's event-changed fields live in this batch's arrays."""
+    (B, nstate) in ``precision`` (``float64`` or ``float32``), padded to ``size`` (:class:`ArrayBatch`). The
+    caller's model is never changed; every trajectory's event-changed fields live in this batch's arrays."""
 
-    def __init__(self, model: mujoco.MjModel, state0: np.ndarray, precision: str = "float64") -> None:
+    def __init__(self, model: mujoco.MjModel, state0: np.ndarray, precision: str = "float64", size: int = 0) -> None:
         state_layout(model, "mjx")
         self._model, self._precision = model, precision
-        self._current = np.array(state0, dtype=float)
-        batch = self._current.shape[0]
+        batch = self._start(np.asarray(state0, float), size)
         self.timestep = model.opt.timestep
-        self.report = RolloutReport(diverged=np.zeros(batch, bool))
         self._margin = np.tile(model.geom_margin, (batch, 1))
         self._friction = np.tile(model.geom_friction, (batch, 1, 1))
         self._biasprm = np.tile(model.actuator_biasprm, (batch, 1, 1))
@@ -142,19 +139,19 @@ class MjxBatch(ArrayBatch):
 
     def __exit__(self, kind: type[BaseException] | None, error: BaseException | None,
                  trace: TracebackType | None) -> None:
-        self.report.final_state = self._current
+        self._finish()
 
     def _fields(self, rows: slice | int = slice(None)) -> tuple[jax.Array, ...]:
         return tuple(jnp.asarray(a[rows], self._dtype) for a in (self._margin, self._friction, self._biasprm,
                                                                   self._gear))
 
     def run_chunk(self, nstep: int, control: np.ndarray | None = None) -> np.ndarray:
-        batch = self._current.shape[0]
-        ctrl = np.zeros((batch, nstep, self._model.nu)) if control is None else control
+        ctrl = self._controls(control, nstep, self._model.nu)
         with self._scope():
             args = (self._mx, self._fields(), self._data, jnp.asarray(self._current, self._dtype),
                     jnp.asarray(self._eq), jnp.asarray(ctrl, self._dtype))
-            chunk = _compiled("chunk", _chunk, *args)
+            chunk, seconds = _compiled("chunk", _chunk, *args)
+            self.report.compile_s += seconds
             start = time.perf_counter()
             self._data, rows, sensors = jax.block_until_ready(chunk(*args))
             states, sensordata = np.asarray(rows, float), np.asarray(sensors, float)
@@ -181,9 +178,11 @@ class MjxBatch(ArrayBatch):
         with self._scope():
             args = (self._mx, self._fields(index), self._single, jnp.asarray(state, self._dtype),
                     jnp.asarray(self._eq[index]), jnp.asarray(seconds, self._dtype))
-            return np.asarray(_compiled("fraction", _fraction, *args)(*args), float)
+            fraction, seconds = _compiled("fraction", _fraction, *args)
+            self.report.compile_s += seconds
+            return np.asarray(fraction(*args), float)
 
 
-def open_batch(model: mujoco.MjModel, state0: np.ndarray, *, precision: str) -> MjxBatch:
-    """:class:`MjxBatch` over ``model`` from ``state0`` (B, nstate) in ``precision``."""
-    return MjxBatch(model, state0, precision)
+def open_batch(model: mujoco.MjModel, state0: np.ndarray, *, precision: str, size: int = 0) -> MjxBatch:
+    """:class:`MjxBatch` over ``model`` from ``state0`` (B, nstate) in ``precision``, padded to ``size``."""
+    return MjxBatch(model, state0, precision, size)

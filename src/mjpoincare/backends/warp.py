@@ -25,7 +25,7 @@ import warp as wp
 
 from mjpoincare.backends import ArrayBatch, state_layout
 from mjpoincare.params import ParameterError
-from mjpoincare.simulate import RolloutReport, switch_contact
+from mjpoincare.simulate import switch_contact
 
 #: The per-trajectory model fields, batched over the worlds.
 BATCHED = ("geom_margin", "geom_friction", "actuator_biasprm", "actuator_gear")
@@ -34,7 +34,6 @@ BATCHED = ("geom_margin", "geom_friction", "actuator_biasprm", "actuator_gear")
 BLOCK = 50
 #: Seconds spent in first steps (Warp's kernel compiling or loading) and graph captures in this process (read by
 #: the findings table).
-COMPILE_SECONDS = [0.0]
 
 
 def quiet() -> wp.ScopedLogLevel:
@@ -113,15 +112,14 @@ def _overflow_lines(overflow: np.ndarray) -> list[str]:
 
 class WarpBatch(ArrayBatch):
     """:class:`mjpoincare.simulate.Batch` on MuJoCo Warp: B worlds of ``model`` from the starts ``state0``
-    (B, nstate), on Warp's default device. The caller's model is never changed."""
+    (B, nstate), padded to ``size`` (:class:`ArrayBatch`), on Warp's default device. The caller's model is never
+    changed."""
 
-    def __init__(self, model: mujoco.MjModel, state0: np.ndarray) -> None:
+    def __init__(self, model: mujoco.MjModel, state0: np.ndarray, size: int = 0) -> None:
         state_layout(model, "warp")
         self._model = model
-        self._current = np.array(state0, dtype=float)
-        batch = self._current.shape[0]
+        batch = self._start(np.asarray(state0, float), size)
         self.timestep = model.opt.timestep
-        self.report = RolloutReport(diverged=np.zeros(batch, bool))
         self._fields = {name: np.tile(getattr(model, name), (batch, 1, 1)) for name in BATCHED}
         self._fields["geom_margin"] = np.tile(model.geom_margin, (batch, 1))
         self._eq = np.tile(model.eq_active0.astype(bool), (batch, 1))
@@ -143,7 +141,7 @@ class WarpBatch(ArrayBatch):
 
     def __exit__(self, kind: type[BaseException] | None, error: BaseException | None,
                  trace: TracebackType | None) -> None:
-        self.report.final_state = self._current
+        self._finish()
         self.report.warnings += _overflow_lines(self._data.overflow.numpy())
 
     def _load(self, model: Any, data: Any, rows: slice, state: np.ndarray) -> None:
@@ -172,7 +170,7 @@ class WarpBatch(ArrayBatch):
             data = mjw.put_data(self._model, mujoco.MjData(self._model), nworld=self._data.nworld)
             mjw.step(self._mw, data)
             wp.synchronize_device(self._device)
-        COMPILE_SECONDS[0] += time.perf_counter() - start
+        self.report.compile_s += time.perf_counter() - start
         self._warm = True
 
     def run_chunk(self, nstep: int, control: np.ndarray | None = None) -> np.ndarray:
@@ -185,8 +183,7 @@ class WarpBatch(ArrayBatch):
                                     wp.zeros((batch, nstep, model.nsensordata), dtype=float), None)
         controls, rows, sensors, graph = self._buffers[nstep]
         block = _block(nstep)
-        controls.assign(np.zeros((batch, nstep, model.nu), np.float32) if control is None
-                        else np.asarray(control, np.float32))
+        controls.assign(self._controls(control, nstep, model.nu).astype(np.float32))
         with quiet():
             if graph is None:
                 start = time.perf_counter()
@@ -194,7 +191,7 @@ class WarpBatch(ArrayBatch):
                     self._steps(block, controls, rows, sensors)
                 graph = capture.graph
                 self._buffers[nstep] = (controls, rows, sensors, graph)
-                COMPILE_SECONDS[0] += time.perf_counter() - start
+                self.report.compile_s += time.perf_counter() - start
             self._load(self._mw, self._data, slice(None), self._current)
             start = time.perf_counter()
             self._step.zero_()
@@ -232,8 +229,9 @@ class WarpBatch(ArrayBatch):
         return out.astype(float)
 
 
-def open_batch(model: mujoco.MjModel, state0: np.ndarray, *, precision: str) -> WarpBatch:
-    """:class:`WarpBatch` over ``model`` from ``state0`` (B, nstate); ``precision`` must be ``float32``."""
+def open_batch(model: mujoco.MjModel, state0: np.ndarray, *, precision: str, size: int = 0) -> WarpBatch:
+    """:class:`WarpBatch` over ``model`` from ``state0`` (B, nstate), padded to ``size``; ``precision`` must be
+    ``float32``."""
     if precision != "float32":
         raise ParameterError(f"backend=warp runs in float32 only (got precision={precision})")
-    return WarpBatch(model, state0)
+    return WarpBatch(model, state0, size)

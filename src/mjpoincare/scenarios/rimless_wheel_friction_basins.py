@@ -34,7 +34,7 @@ from mjpoincare.simulate import RolloutReport
 BASIN_STEPS = 4  # steps per trajectory of the 2-D map: label = a failure, else the type of the last complete step
 CONVERGE_STEPS = 30  # steps along the theta_dot0 lines, for the convergence counts
 CONVERGE_TOL = 0.01  # converged: mid-stance theta_dot within 1 % of its last value and every step of the final type
-BASIN_CHUNK = 250  # trajectories per rollout (every row of a rollout is kept for the analysis)
+BASIN_CHUNK = 250  # trajectories per rollout (every row of a rollout is kept); the batch setting overrides it
 REFERENCE_STRIDE = 4  # the reference map is evaluated on every 4th grid point in each direction
 FAILURES = ("backward", "detached", "painleve", "impact", "chatter", "unsettled", "")
 
@@ -56,16 +56,17 @@ def _basin_reference_job(p: dict[str, Any], mu: float, theta_dot0: list[float], 
 
 def simulate_starts(p: Values, s: Values, preset: str, starts: np.ndarray, nsteps: int, mu: float
                     ) -> tuple[list[str], list[int], list[np.ndarray], RolloutReport]:
-    """Simulate ``starts`` in rollouts of BASIN_CHUNK trajectories (sorted by theta_dot0, so that only the slowest
-    chunk waits for a slow first step); per start: the label (failure, else the type of the last complete step), the
-    steps to converge (CONVERGE_TOL) and the mid-stance rates."""
+    """Simulate ``starts`` in rollouts of BASIN_CHUNK trajectories, or of the ``batch`` setting's (sorted by
+    theta_dot0, so that only the slowest chunk waits for a slow first step); per start: the label (failure, else the
+    type of the last complete step), the steps to converge (CONVERGE_TOL) and the mid-stance rates."""
     order = np.argsort(starts[:, 0], kind="stable")
     labels: list[str] = [""] * len(starts)
     conv: list[int] = [-1] * len(starts)
     mids: list[np.ndarray] = [np.zeros(0)] * len(starts)
     total = RolloutReport()
-    for k in range(0, len(starts), BASIN_CHUNK):
-        idx = order[k : k + BASIN_CHUNK]
+    per_rollout = int(s["batch"]) or BASIN_CHUNK
+    for k in range(0, len(starts), per_rollout):
+        idx = order[k : k + per_rollout]
         part = starts[idx]
         extra = _first_step_seconds({**p, "mu": mu}, part)
         run = run_batch({**p, "mu": mu}, s, preset, part, nsteps, extra=extra)

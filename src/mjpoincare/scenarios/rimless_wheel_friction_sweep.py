@@ -33,7 +33,14 @@ from mjpoincare.scenarios.rimless_wheel_friction import (
 
 SWEEP_OFFSETS = FIT_OFFSETS  # theta_dot0 offsets per mu: the middle start classifies, all fit lambda
 SWEEP_STEPS = 20
-SWEEP_BATCH = 12  # mu values per rollout (memory: every row of the batch is kept)
+SWEEP_BATCH = 12  # mu values per rollout (memory: every row of the batch is kept); the batch setting overrides it
+
+
+def mu_per_rollout(s: Values) -> int:
+    """Mu values per rollout: as many as fill the ``batch`` setting's trajectories (SWEEP_OFFSETS starts each; at
+    least one), else SWEEP_BATCH."""
+    batch = int(s["batch"])
+    return max(1, batch // len(SWEEP_OFFSETS)) if batch else SWEEP_BATCH
 
 
 def sweep_reference(p: Values, mu: float) -> dict[str, Any]:
@@ -155,10 +162,10 @@ def sweep_summary(rows: list[dict[str, Any]], boundaries: theory.GaitBoundaries)
 def run_mu_sweep(values: Sequence[str], assignments: Mapping[str, str], preset: str | None, json_path: str | None,
                  *, resume: bool = False, workers: int = 2) -> int:
     """``mjpoincare sweep rimless-wheel-friction --param mu --values START:STOP:COUNT``: the settled gait type over mu,
-    batched (SWEEP_BATCH mu values per rollout, a model per trajectory), against the reference; progress on stderr,
-    each finished batch written to ``json_path`` (whole), ``resume`` skips the mu values that file holds. Prints the
-    agreement, the located edges (mu_c = A/B) and the eigenvalue errors; exit 0 when the agreement is >= 95 %, every
-    edge within 0.02 and every eigenvalue within 0.02, else 1."""
+    batched (:func:`mu_per_rollout` mu values per rollout, a friction per trajectory), against the reference;
+    progress on stderr, each finished batch written to ``json_path`` (whole), ``resume`` skips the mu values that
+    file holds. Prints the agreement, the located edges (mu_c = A/B) and the eigenvalue errors; exit 0 when the
+    agreement is >= 95 %, every edge within 0.02 and every eigenvalue within 0.02, else 1."""
     from mjpoincare.parallel import run_jobs
     from mjpoincare.validation import resolve_inputs
 
@@ -186,8 +193,9 @@ def run_mu_sweep(values: Sequence[str], assignments: Mapping[str, str], preset: 
     refs.sort(key=lambda r: r["mu"])
     ref_wall = time.perf_counter() - start
     tty = sys.stderr.isatty() and not os.environ.get("CI")
-    for k in range(0, len(refs), SWEEP_BATCH):
-        batch = refs[k : k + SWEEP_BATCH]
+    per_rollout = mu_per_rollout(s)
+    for k in range(0, len(refs), per_rollout):
+        batch = refs[k : k + per_rollout]
         rows += sweep_batch(p, s, preset_name, batch)
         if json_path and json_path != "-":
             write_json(jsonable({**header, "rows": sorted(rows, key=lambda r: r["mu"])}), json_path)
