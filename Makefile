@@ -9,6 +9,11 @@
 #                     threads, starts x(1+1e-12) and the oldest numpy/scipy allowed (renders/margins*.json)
 #   make results         every scenario's default validation at each preset into docs/results/json/, then its pages
 #   make results-render  re-render docs/results/*.md from the committed JSON (no simulation)
+#   make backends     the backends' findings: every scenario on MuJoCo C, MJX (x64, float32) and MuJoCo Warp, one process
+#                     per run (resumable), into docs/results/backends/; PRESETS, BATCH (the batch setting), MAPS (the
+#                     friction wheel's basin map, MAPS x MAPS starts, and mu sweep, MAPS values; 0 = none), WORKERS
+#   make gpu-check    the same at a GPU's sizes (both presets, batches of 4096, 64 x 64 basin map, 64 mu values) into
+#                     docs/results/backends-gpu/; on a CPU, e.g. make gpu-check BATCH=8 MAPS=2 PRESETS=fast
 PYTHON ?= python3
 VENV := .venv
 BIN := $(VENV)/bin
@@ -18,7 +23,13 @@ LATEST := .venv-latest
 
 OLDEST := .venv-oldest
 
-.PHONY: validate test test-latest lock margins results results-render bench gate clean
+PRESETS ?= fast
+BATCH ?= 0
+MAPS ?= 0
+WORKERS ?= 1
+BACKENDS_OUT ?= docs/results/backends
+
+.PHONY: validate test test-latest lock margins results results-render backends gpu-check bench gate clean
 
 $(STAMP): pyproject.toml $(LOCK)
 	@$(PYTHON) -c 'import sys; sys.exit(0 if sys.version_info >= (3, 10) else "mjpoincare needs Python >= 3.10")'
@@ -53,6 +64,16 @@ results: $(STAMP)
 
 results-render: $(STAMP)
 	$(BIN)/python -m mjpoincare.results --render-only
+
+backends: $(STAMP)
+	$(BIN)/python -m mjpoincare.backends.findings all --presets $(PRESETS) --batch $(BATCH) --maps $(MAPS) \
+		--workers $(WORKERS) --out $(BACKENDS_OUT)
+
+gpu-check: PRESETS = fast accurate
+gpu-check: BATCH = 4096
+gpu-check: MAPS = 64
+gpu-check: BACKENDS_OUT = docs/results/backends-gpu
+gpu-check: backends
 
 lock: $(STAMP)
 	$(BIN)/python -m pip install --quiet uv

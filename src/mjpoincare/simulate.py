@@ -48,8 +48,9 @@ class Chunk:
 
 @dataclass
 class RolloutReport:
-    """What a batch rollout did: ``steps`` simulated, ``wall_s`` spent stepping, ``compile_s`` spent compiling
-    (MJX and Warp; 0 on MuJoCo C), divergence, warnings."""
+    """What a batch rollout did: ``steps`` simulated (trajectory-steps), ``batch_steps`` (each chunk's steps once:
+    the steps a GPU takes one after the other, whatever the batch size), ``wall_s`` spent stepping, ``compile_s``
+    spent compiling (MJX and Warp; 0 on MuJoCo C), divergence, warnings."""
 
     steps: int = 0
     wall_s: float = 0.0
@@ -63,6 +64,7 @@ class RolloutReport:
     #: two because MuJoCo's energy sensors lag the state by one step).
     sensor_first: np.ndarray = field(default_factory=lambda: np.zeros(0))
     compile_s: float = 0.0
+    batch_steps: int = 0
 
     def merge(self, other: RolloutReport) -> RolloutReport:
         """One report for two batches run one after the other."""
@@ -73,7 +75,8 @@ class RolloutReport:
                              diverged=np.concatenate([self.diverged, other.diverged]),
                              warnings=self.warnings + other.warnings, final_state=self.final_state,
                              sensor_min=low, sensor_max=high, sensor_first=first,
-                             compile_s=self.compile_s + other.compile_s)
+                             compile_s=self.compile_s + other.compile_s,
+                             batch_steps=self.batch_steps + other.batch_steps)
 
     def record_sensors(self, sensordata: np.ndarray) -> None:
         """Fold a chunk's sensor readings (..., nsensordata) into the extremes (NaN rows ignored)."""
@@ -145,6 +148,7 @@ def _native_chunk(pool: mj_rollout.Rollout, model: mujoco.MjModel | list[mujoco.
     states, sensordata = pool.rollout(model, datas, current, control, nstep=n)
     report.wall_s += time.perf_counter() - start
     report.steps += current.shape[0] * n
+    report.batch_steps += n
     full = np.concatenate([current[:, None, :], states], axis=1)
     expected = full[:, :1, 0] + dt * np.arange(n + 1)[None, :]
     bad = ~np.isfinite(full).all(axis=2) | (np.abs(full[:, :, 0] - expected) > 0.5 * dt)

@@ -51,7 +51,7 @@ def run_validation(name: str, assignments: Mapping[str, str] | None = None, pres
     checks = [*evaluation.checks, stability_check(len(diverged), len(report.warnings))]
     timing = {"wall_s": wall, "rollout_wall_s": report.wall_s, "steps": float(report.steps),
               "steps_per_s": report.steps / wall, "rollout_steps_per_s": report.steps_per_s,
-              "compile_s": report.compile_s}
+              "compile_s": report.compile_s, "batch_steps": float(report.batch_steps)}
     extras = dict(evaluation.extras)
     if int(settings["diagnostics"]) and report.sensor_min.size >= len(sim_settings.DIAGNOSTIC_SENSORS):
         extras["diagnostics"] = {"max_penetration_m": max(0.0, -float(report.sensor_min[0])),

@@ -135,6 +135,7 @@ class ArrayBatch:
         real = self._real
         self.report.wall_s += seconds
         self.report.steps += real * nstep
+        self.report.batch_steps += nstep
         full, bad = flag_divergence(self._current, states, self._diverged)
         self.report.diverged = self._diverged[:real].copy()
         if sensordata.shape[-1]:

@@ -142,7 +142,7 @@ class WarpBatch(ArrayBatch):
     def __exit__(self, kind: type[BaseException] | None, error: BaseException | None,
                  trace: TracebackType | None) -> None:
         self._finish()
-        self.report.warnings += _overflow_lines(self._data.overflow.numpy())
+        self.report.warnings += _overflow_lines(self._data.overflow.numpy()[: self._real])
 
     def _load(self, model: Any, data: Any, rows: slice, state: np.ndarray) -> None:
         """Write trajectories ``rows``' fields, ``eq_active`` and ``state`` (k, nstate) into ``model``/``data``."""
