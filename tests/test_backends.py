@@ -19,7 +19,7 @@ import pytest
 from mujoco import rollout as mj_rollout
 from test_rollout_seam import XML
 
-from mjpoincare.backends import check_installed, check_settings, findings, open_backend_batch
+from mjpoincare.backends import check_installed, check_settings, open_backend_batch
 from mjpoincare.params import ParameterError
 from mjpoincare.settings import DEFAULTS
 from mjpoincare.simulate import STATE_SPEC, Batch, initial_states
@@ -230,19 +230,6 @@ def test_a_setting_a_backend_lacks_is_refused_in_one_line() -> None:
         check_settings({**DEFAULTS, "backend": "mjx", "diagnostics": 1})
     for backend in ("mujoco", "warp"):
         check_settings({**DEFAULTS, "backend": backend, "diagnostics": 1})
-
-
-def test_findings_table_puts_each_backend_beside_mujoco_c() -> None:
-    """Each check's error per backend column (✗ over tolerance), compile seconds, and a refusal's one line."""
-    check = {"name": "eigenvalue", "error": 0.25, "tolerance": 0.02, "passed": False}
-    base = {"scenario": "toy", "preset": "fast", "wall_s": 2.0, "compile_s": 0.0,
-            "timing": {"rollout_steps_per_s": 1e5}}
-    runs = [{**base, "backend": "mujoco", "precision": "float64", "checks": [{**check, "error": 1e-4, "passed": True}]},
-            {**base, "backend": "mjx", "precision": "float32", "compile_s": 12.0, "checks": [check]},
-            {"scenario": "toy", "preset": "fast", "backend": "warp", "precision": "float32", "refused": "no sensor"}]
-    lines = findings.table(runs).splitlines()
-    assert "| toy | fast | eigenvalue | 0.02 | 0.0001 |  | 0.25 ✗ |  |" in lines
-    assert "| toy | fast | compile s | | 0 | not run | 12 | refused: no sensor |" in lines
 
 
 def test_rimless_wheel_on_mjx_passes_its_fast_checks(request: pytest.FixtureRequest) -> None:

@@ -103,12 +103,45 @@ def test_mu_sweep_batches_and_resumes(tmp_path: Path, capsys: pytest.CaptureFixt
     assert rows[0]["simulated"] == "C"
 
 
+def test_mu_values_per_rollout_fill_the_batch_setting() -> None:
+    offsets = len(mu_sweep.SWEEP_OFFSETS)
+    assert mu_sweep.mu_per_rollout({"batch": 0}) == mu_sweep.SWEEP_BATCH
+    assert mu_sweep.mu_per_rollout({"batch": 4096}) == 4096 // offsets
+    assert mu_sweep.mu_per_rollout({"batch": 1}) == 1
+
+
+def test_sliding_law_cannot_be_read_from_float32_states(monkeypatch: pytest.MonkeyPatch) -> None:
+    """MuJoCo C's own recorded rows of the fast preset, rounded to float32 as MJX float32 and MuJoCo Warp record them:
+    the law's residual goes from ~1e-11 to order 1 (measured 1.0 of its largest possible 1), as the foot's depth and
+    velocities are differences of hub coordinates of order 1 that float32 resolves to ~1e-7. The float32 backends'
+    misses of ``sliding_contact_law`` are their records' precision, not their contact."""
+    from mjpoincare.scenarios import rimless_wheel_friction as scenario
+    from mjpoincare.simulate import Chunk
+
+    measured: dict[str, float] = {}
+    law = scenario.sliding_contact
+
+    def both(rec: Chunk, *args: object) -> object:
+        single = Chunk(**{k: getattr(rec, k).astype(np.float32).astype(float) for k in ("time", "qpos", "qvel")})
+        measured["float32"] = law(single, *args).residual
+        found = law(rec, *args)
+        measured["float64"] = found.residual
+        return found
+
+    monkeypatch.setattr(scenario, "sliding_contact", both)
+    run_validation("rimless-wheel-friction", {}, "fast")
+    assert measured["float64"] < 1e-9
+    assert measured["float32"] > 0.1
+
+
 def test_basin_map_small(tmp_path: Path) -> None:
-    """An 8 x 5 map and the x_dot0 = 0 lines: the region of attraction agrees with the reference (exit 0: measured 0 %
-    of the reference points differ, against the 5 % the exit code allows), the sticking starts inside the window
-    converge, the slowest rolls back; the PNG and JSON are written."""
+    """An 8 x 5 map and the x_dot0 = 0 lines, in rollouts of 16 starts (the batch setting; 3 for the map): the region
+    of attraction agrees with the reference (exit 0: measured 0 % of the reference points differ, against the 5 % the
+    exit code allows), the sticking starts inside the window converge, the slowest rolls back; the PNG and JSON are
+    written."""
     png, js = tmp_path / "basins.png", tmp_path / "basins.json"
-    code = basins.run_basin_map("theta_dot0=0.05:1.2:8,x_dot0=0:0.04:5", {}, "coarse", str(js), str(png), workers=1)
+    code = basins.run_basin_map("theta_dot0=0.05:1.2:8,x_dot0=0:0.04:5", {"batch": "16"}, "coarse", str(js),
+                                str(png), workers=1)
     result = json.loads(js.read_text())
     assert png.stat().st_size > 10_000
     assert code == 0 and result["diverged"] == 0

@@ -6,7 +6,9 @@ each in rollouts of the ``batch`` setting's size.
 ``DIR/json/`` (one process per run, so that each compile time is a first compile; resumable), then writes
 ``DIR/README.md`` from the JSON. ``make backends`` writes ``docs/results/backends/`` this way; ``make gpu-check`` is
 the same command with a GPU's sizes (batches of thousands, both presets, the maps). ``... run SCENARIO BACKEND
-PRECISION --preset P --out DIR``: one validation. ``... render DIR``: the page again from the JSON (no simulation).
+PRECISION --preset P --out DIR``: one validation. ``... scaling SCENARIO BACKEND PRECISION --sizes B ...``: the
+seconds per batched step against the batch size (:mod:`mjpoincare.backends.scaling`). ``... render DIR``: the page
+again from the JSON (no simulation).
 """
 
 from __future__ import annotations
@@ -67,6 +69,8 @@ def environment() -> dict[str, Any]:
 
 
 def _key(record: dict[str, Any]) -> str:
+    if record["kind"] == "scaling":
+        return f"scaling-{record['scenario']}-{record['backend']}-{record['precision']}"
     if record["kind"] == "map":
         return f"map-{record['map']}-{record['backend']}-{record['precision']}"
     return f"{record['scenario']}-{record['preset']}-{record['backend']}-{record['precision']}"
@@ -174,6 +178,44 @@ def map_table(maps: Sequence[dict[str, Any]]) -> str:
     return "\n".join(lines)
 
 
+def scaling_table(scalings: Sequence[dict[str, Any]]) -> str:
+    """Markdown: per backend, the seconds per batched step and the trajectory-steps per second at each batch size,
+    with the fitted latency and per-trajectory seconds."""
+    lines = ["| scenario | backend | precision | batch | ms per batched step | trajectory-steps/s |",
+             "|---|---|---|---|---|---|"]
+    for s in sorted(scalings, key=lambda s: (s["scenario"], COLUMNS.index((s["backend"], s["precision"])))):
+        for row in s["sizes"]:
+            lines.append(f"| {s['scenario']} | {s['backend']} | {s['precision']} | {row['batch']} "
+                         f"| {1e3 * row['seconds_per_step']:.3g} | {row['steps_per_s']:.3g} |")
+        lines.append(f"| {s['scenario']} | {s['backend']} | {s['precision']} | fit | latency "
+                     f"{1e3 * s['latency_s']:.3g} ms + {1e6 * s['per_trajectory_s']:.3g} µs per trajectory | |")
+    return "\n".join(lines)
+
+
+def batched_steps(runs: Sequence[dict[str, Any]]) -> dict[tuple[str, str], float]:
+    """Per (backend, precision): the batched steps of all its validations (each chunk once), the steps a device
+    that runs a whole batch at once takes one after the other."""
+    out: dict[tuple[str, str], float] = {}
+    for r in runs:
+        if "timing" in r:
+            key = (r["backend"], r["precision"])
+            out[key] = out.get(key, 0.0) + r["timing"]["batch_steps"]
+    return out
+
+
+def estimate_lines(runs: Sequence[dict[str, Any]]) -> list[str]:
+    """What a GPU needs for the validations of these runs to take 10 minutes: their batched steps (the same on any
+    device, set by the designs and the chunks) and so the largest time per batched step, compile included."""
+    lines = ["| backend | precision | batched steps of all validations | compile s here | at most per batched step "
+             "for 10 minutes |", "|---|---|---|---|---|"]
+    for (backend, precision), steps in sorted(batched_steps(runs).items(), key=lambda kv: COLUMNS.index(kv[0])):
+        compile_s = sum(r["compile_s"] for r in runs if "timing" in r and (r["backend"], r["precision"]) ==
+                        (backend, precision))
+        budget = max(0.0, 600.0 - compile_s)
+        lines.append(f"| {backend} | {precision} | {steps:.4g} | {compile_s:.3g} | {1e6 * budget / steps:.3g} µs |")
+    return lines
+
+
 def _stamp(records: Sequence[dict[str, Any]]) -> list[str]:
     """The runs' environments: every distinct value of each field (runs of one ``make backends`` share most)."""
     def values(get: Any) -> str:
@@ -198,7 +240,8 @@ def render(records: Sequence[dict[str, Any]]) -> str:
     """The findings page, a pure function of the records (re-rendered byte for byte by the tests)."""
     runs = [r for r in records if r["kind"] == "validate"]
     maps = [r for r in records if r["kind"] == "map"]
-    batches = sorted({r["batch"] for r in records})
+    scalings = [r for r in records if r["kind"] == "scaling"]
+    batches = sorted({r["batch"] for r in records if "batch" in r})
     lines = [GENERATED, "", "# Backends: MuJoCo C, MJX and MuJoCo Warp against the same analytic results", "",
              *_stamp(records), "",
              "Each cell is a check's error in the check's own units (✗: over its tolerance, the same tolerance on "
@@ -210,6 +253,17 @@ def render(records: Sequence[dict[str, Any]]) -> str:
     if maps:
         lines += ["## Maps in one batch", "", "The friction wheel's basin map (`sweep rimless-wheel-friction --grid`) "
                   "and mu sweep (`--param mu`), in rollouts of `batch` trajectories.", "", map_table(maps), ""]
+    if scalings:
+        lines += ["## Batch-size scaling", "", "The scenario's model and starts tiled to each batch size, plain chunks "
+                  "(`python -m mjpoincare.backends.findings scaling`): the time of one batched step, and the line "
+                  "fitted to it, a latency paid whatever the batch plus a cost per trajectory. A device that steps "
+                  "the trajectories of a batch in parallel (a GPU, up to its width) pays mostly the latency.", "",
+                  scaling_table(scalings), ""]
+    if runs:
+        lines += ["## What a GPU needs", "", "The validations above step each chunk of a batch once, whatever the "
+                  "batch size: these batched steps are what a GPU runs one after the other (they are the same on "
+                  "any device). The last column is the time per batched step a device must stay under for all of "
+                  "them to take 10 minutes, after this machine's compile time.", "", *estimate_lines(runs), ""]
     return "\n".join(lines)
 
 
@@ -281,6 +335,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     for p in (every, one, area):
         p.add_argument("--batch", type=int, default=0, help="the batch setting (0: the scenarios' own)")
         p.add_argument("--out", type=Path, required=True)
+    scale = sub.add_parser("scaling", help="seconds per batched step against the batch size, into OUT/json")
+    scale.add_argument("scenario")
+    scale.add_argument("backend")
+    scale.add_argument("precision")
+    scale.add_argument("--sizes", type=int, nargs="+", required=True)
+    scale.add_argument("--steps", type=int, default=500)
+    scale.add_argument("--out", type=Path, required=True)
     show = sub.add_parser("render", help="write OUT/README.md again from OUT/json (no simulation)")
     show.add_argument("out", type=Path)
     args = parser.parse_args(argv)
@@ -292,7 +353,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     if args.command == "render":
         write_text(render(load(args.out)), str(args.out / "README.md"))
         return 0
-    if args.command == "run":
+    if args.command == "scaling":
+        from mjpoincare.backends.scaling import measure
+
+        record = {"kind": "scaling", "environment": environment(), "device": _device(args.backend),
+                  **measure(args.scenario, args.backend, args.precision, args.sizes, args.steps)}
+    elif args.command == "run":
         record = run(args.scenario, args.backend, args.precision, args.preset, args.batch)
     else:
         (args.out / "maps").mkdir(parents=True, exist_ok=True)
