@@ -24,9 +24,11 @@ def test_committed_page_reproduces_from_its_json() -> None:
 
 
 def test_every_scenario_ran_or_was_refused_on_every_backend_at_the_fast_preset() -> None:
-    done = {(r["scenario"], r["backend"], r["precision"]) for r in RECORDS
+    """And MuJoCo C ran again from each rounding-sized change of the starts (the spread column)."""
+    done = {(r["scenario"], r["backend"], r["precision"], r.get("start_perturbation", 0.0)) for r in RECORDS
             if r["kind"] == "validate" and r["preset"] == "fast"}
-    expected = {(s, b, p) for s in scenarios.REGISTRY for b, p in findings.COLUMNS}
+    expected = {(s, b, p, 0.0) for s in scenarios.REGISTRY for b, p in findings.COLUMNS}
+    expected |= {(s, "mujoco", "float64", x) for s in scenarios.REGISTRY for x in findings.PERTURBATIONS}
     assert expected <= done, sorted(expected - done)
     for r in RECORDS:
         assert "refused" in r or ("checks" in r and r["compile_s"] >= 0), findings._key(r)
@@ -42,6 +44,7 @@ def _run(backend: str, precision: str, error: float, **timing: float) -> dict[st
 
 def test_page_puts_each_backend_beside_mujoco_c_and_says_what_a_gpu_needs() -> None:
     records = [_run("mujoco", "float64", 1e-4), _run("mjx", "float32", 0.25, compile_s=100.0, batch_steps=5e4),
+               {**_run("mujoco", "float64", 3e-4), "start_perturbation": 1e-12},
                {"kind": "validate", "scenario": "toy", "preset": "fast", "backend": "warp", "precision": "float32",
                 "batch": 8, "environment": ENV, "refused": "no sensor"},
                {"kind": "scaling", "scenario": "toy", "backend": "mjx", "precision": "float64", "steps": 10,
@@ -51,8 +54,8 @@ def test_page_puts_each_backend_beside_mujoco_c_and_says_what_a_gpu_needs() -> N
                 "environment": ENV, "exit_code": 1, "wall_s": 20.0, "starts": 4, "agreement": 0.75,
                 "agreement_without_d_plus": 1.0, "max_eigenvalue_error": None}]
     lines = findings.render(records).splitlines()
-    assert "| toy | fast | eigenvalue | 0.02 | 0.0001 |  | 0.25 ✗ |  |" in lines
-    assert "| toy | fast | compile s | | 0 | not run | 100 | refused: no sensor |" in lines
+    assert "| toy | fast | eigenvalue | 0.02 | 0.0001 | 0.0001 to 0.0003 |  | 0.25 ✗ |  |" in lines
+    assert "| toy | fast | compile s | | 0 |  | not run | 100 | refused: no sensor |" in lines
     # 600 s less 100 s of compile over 5e4 batched steps: 1e4 µs per batched step at most
     assert "| mjx | float32 | 5e+04 | 100 | 1e+04 µs |" in lines
     assert "| toy | mjx | float64 | fit | latency 2 ms + 10 µs per trajectory | |" in lines

@@ -28,6 +28,10 @@ from mjpoincare.result import write_json, write_text
 
 #: The columns of the table, in order: (backend, precision).
 COLUMNS = (("mujoco", "float64"), ("mjx", "float64"), ("mjx", "float32"), ("warp", "float32"))
+#: Relative changes of MuJoCo C's start velocities (the ``start_perturbation`` setting) whose runs make the table's
+#: spread column: what rounding-sized differences do to each check through the impact jitter, the yardstick for a
+#: backend's difference from MuJoCo C.
+PERTURBATIONS = (1e-13, 1e-12, 1e-11)
 #: The packages whose versions stamp a run, beside :func:`mjpoincare.results.environment`'s.
 BACKEND_PACKAGES = ("jax", "jaxlib", "mujoco-mjx", "warp-lang", "mujoco-warp")
 #: The maps ``--maps N`` runs per backend: the friction wheel's basin map over (theta_dot0, x_dot0), an N x N grid,
@@ -73,19 +77,23 @@ def _key(record: dict[str, Any]) -> str:
         return f"scaling-{record['scenario']}-{record['backend']}-{record['precision']}"
     if record["kind"] == "map":
         return f"map-{record['map']}-{record['backend']}-{record['precision']}"
-    return f"{record['scenario']}-{record['preset']}-{record['backend']}-{record['precision']}"
+    perturbed = f"-p{record['start_perturbation']:g}" if record.get("start_perturbation") else ""
+    return f"{record['scenario']}-{record['preset']}-{record['backend']}-{record['precision']}{perturbed}"
 
 
-def run(scenario: str, backend: str, precision: str, preset: str, batch: int = 0) -> dict[str, Any]:
-    """One validation of ``scenario`` at ``preset`` on ``backend`` in ``precision`` (``batch``: the setting): the
-    result with the wall and compile seconds and the device, or the one-line refusal."""
+def run(scenario: str, backend: str, precision: str, preset: str, batch: int = 0, perturbation: float = 0.0
+        ) -> dict[str, Any]:
+    """One validation of ``scenario`` at ``preset`` on ``backend`` in ``precision`` (``batch``, ``perturbation``:
+    the settings ``batch`` and ``start_perturbation``): the result with the wall and compile seconds and the device,
+    or the one-line refusal."""
     from mjpoincare.validation import run_validation
 
     head = {"kind": "validate", "scenario": scenario, "preset": preset, "backend": backend, "precision": precision,
-            "batch": batch, "environment": environment()}
+            "batch": batch, "start_perturbation": perturbation, "environment": environment()}
     start = time.perf_counter()
     try:
-        result = run_validation(scenario, {"backend": backend, "precision": precision, "batch": batch}, preset)
+        result = run_validation(scenario, {"backend": backend, "precision": precision, "batch": batch,
+                                           "start_perturbation": perturbation}, preset)
     except ParameterError as refusal:
         return {**head, "refused": str(refusal)}
     return {**head, "wall_s": time.perf_counter() - start, "compile_s": result.timing["compile_s"],
@@ -129,12 +137,23 @@ def _error(check: dict[str, Any] | None) -> str:
     return f"{check['error']:.3g}{mark}"
 
 
+def _spread(c_run: dict[str, Any] | None, perturbed: Sequence[dict[str, Any]], name: str) -> str:
+    """The smallest and largest error of check ``name`` over MuJoCo C's run and its perturbed runs."""
+    errors = [c["error"] for r in [c_run or {}, *perturbed] for c in r.get("checks", []) if c["name"] == name]
+    errors = [e for e in errors if e is not None and e == e]
+    return f"{min(errors):.3g} to {max(errors):.3g}" if len(errors) > 1 else ""
+
+
 def table(runs: Sequence[dict[str, Any]]) -> str:
-    """Markdown: per scenario and preset, each check's error on every backend (✗: over its tolerance), then the
-    compile seconds, the steps per second spent stepping and the wall seconds; a refused run shows its reason."""
+    """Markdown: per scenario and preset, each check's error on every backend (✗: over its tolerance), beside the
+    spread of MuJoCo C's error under rounding-sized changes of the starts (:data:`PERTURBATIONS`), then the compile
+    seconds, the steps per second spent stepping and the wall seconds; a refused run shows its reason."""
     heads = [f"{b} {p}" for b, p in COLUMNS]
+    heads.insert(1, "mujoco float64, starts x (1 + 1e-13 to 1e-11)")
     lines = ["| scenario | preset | check | tolerance | " + " | ".join(heads) + " |",
              "|---|---|---|---|" + "---|" * len(heads)]
+    perturbed = [r for r in runs if r.get("start_perturbation")]
+    runs = [r for r in runs if not r.get("start_perturbation")]
     keyed = {(r["scenario"], r["preset"], r["backend"], r["precision"]): r for r in runs}
     for scenario, preset in sorted({(r["scenario"], r["preset"]) for r in runs}):
         row_runs = [keyed.get((scenario, preset, b, p)) for b, p in COLUMNS]
@@ -148,14 +167,17 @@ def table(runs: Sequence[dict[str, Any]]) -> str:
             tolerance = next(b[name]["tolerance"] for b in by_name if name in b)
             cells = [_error(b.get(name)) if r and "refused" not in r else "" for r, b in zip(row_runs, by_name,
                                                                                                strict=True)]
+            cells.insert(1, _spread(row_runs[0], [r for r in perturbed if (r["scenario"], r["preset"]) ==
+                                                  (scenario, preset)], name))
             lines.append(f"| {scenario} | {preset} | {name} | {tolerance:.3g} | " + " | ".join(cells) + " |")
-        lines.append(f"| {scenario} | {preset} | compile s | | " + " | ".join(
-            "refused: " + r["refused"] if r and "refused" in r else (f"{r['compile_s']:.3g}" if r else "not run")
-            for r in row_runs) + " |")
-        lines.append(f"| {scenario} | {preset} | steps/s (stepping) | | " + " | ".join(
-            f"{r['timing']['rollout_steps_per_s']:.3g}" if r and "timing" in r else "" for r in row_runs) + " |")
-        lines.append(f"| {scenario} | {preset} | wall s | | " + " | ".join(
-            f"{r['wall_s']:.3g}" if r and "wall_s" in r else "" for r in row_runs) + " |")
+        compile_cells = ["refused: " + r["refused"] if r and "refused" in r else
+                         (f"{r['compile_s']:.3g}" if r else "not run") for r in row_runs]
+        rate_cells = [f"{r['timing']['rollout_steps_per_s']:.3g}" if r and "timing" in r else "" for r in row_runs]
+        wall_cells = [f"{r['wall_s']:.3g}" if r and "wall_s" in r else "" for r in row_runs]
+        for label, cells in (("compile s", compile_cells), ("steps/s (stepping)", rate_cells),
+                             ("wall s", wall_cells)):
+            cells.insert(1, "")
+            lines.append(f"| {scenario} | {preset} | {label} | | " + " | ".join(cells) + " |")
     return "\n".join(lines)
 
 
@@ -239,6 +261,7 @@ def _stamp(records: Sequence[dict[str, Any]]) -> list[str]:
 def render(records: Sequence[dict[str, Any]]) -> str:
     """The findings page, a pure function of the records (re-rendered byte for byte by the tests)."""
     runs = [r for r in records if r["kind"] == "validate"]
+    base_runs = [r for r in runs if not r.get("start_perturbation")]
     maps = [r for r in records if r["kind"] == "map"]
     scalings = [r for r in records if r["kind"] == "scaling"]
     batches = sorted({r["batch"] for r in records if "batch" in r})
@@ -263,7 +286,7 @@ def render(records: Sequence[dict[str, Any]]) -> str:
         lines += ["## What a GPU needs", "", "The validations above step each chunk of a batch once, whatever the "
                   "batch size: these batched steps are what a GPU runs one after the other (they are the same on "
                   "any device). The last column is the time per batched step a device must stay under for all of "
-                  "them to take 10 minutes, after this machine's compile time.", "", *estimate_lines(runs), ""]
+                  "them to take 10 minutes, after this machine's compile time.", "", *estimate_lines(base_runs), ""]
     return "\n".join(lines)
 
 
@@ -272,13 +295,18 @@ def load(out: Path) -> list[dict[str, Any]]:
     return [json.loads(p.read_text()) for p in sorted((out / "json").glob("*.json"))]
 
 
-def _todo(scenarios: Sequence[str], presets: Sequence[str], maps: int, out: Path, again: bool
-          ) -> list[tuple[str, ...]]:
-    jobs: list[tuple[str, ...]] = [(s, b, p, preset) for preset in presets for s in scenarios for b, p in COLUMNS]
+def _jobs(scenarios: Sequence[str], presets: Sequence[str], maps: int) -> list[tuple[str, list[str]]]:
+    """Every run, as (the name of its record, the arguments of its ``findings`` process)."""
+    jobs = []
+    for preset in presets:
+        for s in scenarios:
+            jobs += [(f"{s}-{preset}-{b}-{p}", ["run", s, b, p, "--preset", preset]) for b, p in COLUMNS]
+            jobs += [(f"{s}-{preset}-mujoco-float64-p{x:g}", ["run", s, "mujoco", "float64", "--preset", preset,
+                                                             "--start-perturbation", str(x)]) for x in PERTURBATIONS]
     if maps:
-        jobs += [("map", which, b, p) for which in ("basins", "mu") for b, p in COLUMNS]
-    names = [f"map-{j[1]}-{j[2]}-{j[3]}" if j[0] == "map" else f"{j[0]}-{j[3]}-{j[1]}-{j[2]}" for j in jobs]
-    return [j for j, n in zip(jobs, names, strict=True) if again or not (out / "json" / f"{n}.json").exists()]
+        jobs += [(f"map-{which}-{b}-{p}", ["map", which, b, p, "--size", str(maps)]) for which in ("basins", "mu")
+                 for b, p in COLUMNS]
+    return jobs
 
 
 def run_all(scenarios: Sequence[str], presets: Sequence[str], batch: int, maps: int, out: Path, *,
@@ -286,15 +314,9 @@ def run_all(scenarios: Sequence[str], presets: Sequence[str], batch: int, maps: 
     """Every (scenario, preset, backend) validation and, when ``maps`` > 0, both maps at that size on every backend,
     each in a process of its own (``workers`` at a time), skipping those already in ``out/json/`` unless ``again``;
     then the page. Returns the files written."""
-    jobs = _todo(scenarios, presets, maps, out, again)
-    commands = []
-    for job in jobs:
-        if job[0] == "map":
-            extra = ["map", job[1], job[2], job[3], "--size", str(maps)]
-        else:
-            extra = ["run", job[0], job[1], job[2], "--preset", job[3]]
-        commands.append([sys.executable, "-m", "mjpoincare.backends.findings", *extra, "--batch", str(batch),
-                         "--out", str(out)])
+    commands = [[sys.executable, "-m", "mjpoincare.backends.findings", *extra, "--batch", str(batch), "--out",
+                 str(out)] for name, extra in _jobs(scenarios, presets, maps)
+                if again or not (out / "json" / f"{name}.json").exists()]
     running: list[subprocess.Popen[bytes]] = []
     for command in commands:
         while len(running) >= workers:
@@ -327,6 +349,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     one.add_argument("backend")
     one.add_argument("precision")
     one.add_argument("--preset", default="fast")
+    one.add_argument("--start-perturbation", type=float, default=0.0, help="the start_perturbation setting")
     area = sub.add_parser("map", help="one map (basins or mu) on one backend, write its record into OUT/json")
     area.add_argument("which", choices=("basins", "mu"))
     area.add_argument("backend")
@@ -359,7 +382,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         record = {"kind": "scaling", "environment": environment(), "device": _device(args.backend),
                   **measure(args.scenario, args.backend, args.precision, args.sizes, args.steps)}
     elif args.command == "run":
-        record = run(args.scenario, args.backend, args.precision, args.preset, args.batch)
+        record = run(args.scenario, args.backend, args.precision, args.preset, args.batch, args.start_perturbation)
     else:
         (args.out / "maps").mkdir(parents=True, exist_ok=True)
         record = run_map(args.which, args.backend, args.precision, args.size, args.batch, args.out)
