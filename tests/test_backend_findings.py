@@ -70,3 +70,15 @@ def test_each_record_is_its_backends_own(record: dict[str, Any]) -> None:
     """A record's settings name the backend and precision it claims (a run cannot fall back to MuJoCo C)."""
     assert record["settings"]["backend"] == record["backend"]
     assert record["settings"]["precision"] == record["precision"]
+
+
+@pytest.mark.parametrize("argv", [["run", "nope", "mjx", "float64"], ["run", "rimless-wheel", "cuda", "float64"],
+                                  ["scaling", "rimless-wheel", "mjx", "float64", "--sizes", "0"],
+                                  ["all", "--workers", "0"], ["all", "--batch", "-1"]])
+def test_bad_input_exits_2_before_any_simulation(argv: list[str], tmp_path: Path,
+                                                 capsys: pytest.CaptureFixture[str]) -> None:
+    with pytest.raises(SystemExit) as exit_:
+        findings.main([*argv, "--out", str(tmp_path)])
+    assert exit_.value.code == 2
+    assert "error:" in capsys.readouterr().err
+    assert not list(tmp_path.iterdir())

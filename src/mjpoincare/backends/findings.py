@@ -346,28 +346,40 @@ def main(argv: Sequence[str] | None = None) -> int:
     every.add_argument("--again", action="store_true", help="run again what OUT/json already holds")
     one = sub.add_parser("run", help="validate one scenario on one backend, write its record into OUT/json")
     one.add_argument("scenario")
-    one.add_argument("backend")
-    one.add_argument("precision")
+    one.add_argument("backend", choices=sorted({b for b, _ in COLUMNS}))
+    one.add_argument("precision", choices=("float64", "float32"))
     one.add_argument("--preset", default="fast")
     one.add_argument("--start-perturbation", type=float, default=0.0, help="the start_perturbation setting")
     area = sub.add_parser("map", help="one map (basins or mu) on one backend, write its record into OUT/json")
     area.add_argument("which", choices=("basins", "mu"))
-    area.add_argument("backend")
-    area.add_argument("precision")
+    area.add_argument("backend", choices=sorted({b for b, _ in COLUMNS}))
+    area.add_argument("precision", choices=("float64", "float32"))
     area.add_argument("--size", type=int, required=True)
     for p in (every, one, area):
         p.add_argument("--batch", type=int, default=0, help="the batch setting (0: the scenarios' own)")
         p.add_argument("--out", type=Path, required=True)
     scale = sub.add_parser("scaling", help="seconds per batched step against the batch size, into OUT/json")
     scale.add_argument("scenario")
-    scale.add_argument("backend")
-    scale.add_argument("precision")
+    scale.add_argument("backend", choices=sorted({b for b, _ in COLUMNS}))
+    scale.add_argument("precision", choices=("float64", "float32"))
     scale.add_argument("--sizes", type=int, nargs="+", required=True)
     scale.add_argument("--steps", type=int, default=500)
     scale.add_argument("--out", type=Path, required=True)
     show = sub.add_parser("render", help="write OUT/README.md again from OUT/json (no simulation)")
     show.add_argument("out", type=Path)
     args = parser.parse_args(argv)
+    for name in ("batch", "maps", "workers", "steps", "size"):
+        low = 1 if name in ("workers", "steps", "size") else 0
+        if getattr(args, name, low) < low:
+            parser.error(f"--{name} must be >= {low} (got {getattr(args, name)})")
+    if min(getattr(args, "sizes", None) or [1]) < 1:
+        parser.error(f"--sizes must be >= 1 (got {min(args.sizes)})")
+    names = args.scenarios if args.command == "all" else [args.scenario] if args.command in ("run", "scaling") else []
+    try:  # an unknown scenario is refused before any simulation
+        for name in names:
+            scenarios.get(name)
+    except ParameterError as error:
+        parser.error(str(error))
     if args.command == "all":
         for path in run_all(args.scenarios, args.presets, args.batch, args.maps, args.out, workers=args.workers,
                             again=args.again):
