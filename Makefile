@@ -11,9 +11,10 @@
 #   make results-render  re-render docs/results/*.md from the committed JSON (no simulation)
 #   make backends     the backends' findings: every scenario on MuJoCo C, MJX (x64, float32) and MuJoCo Warp, one process
 #                     per run (resumable), into docs/results/backends/; PRESETS, BATCH (the batch setting), MAPS (the
-#                     friction wheel's basin map, MAPS x MAPS starts, and mu sweep, MAPS values; 0 = none), WORKERS
-#   make gpu-check    the same at a GPU's sizes (both presets, batches of 4096, 64 x 64 basin map, 64 mu values) into
-#                     docs/results/backends-gpu/; on a CPU, e.g. make gpu-check BATCH=8 MAPS=2 PRESETS=fast
+#                     friction wheel's basin map, MAPS x MAPS starts, and mu sweep, MAPS values; 0 = none), SCALING
+#                     (batch sizes to time a batched step at), WORKERS
+#   make gpu-check    the same at a GPU's sizes (both presets, batches of 4096, 64 x 64 basin map, 64 mu values, batch
+#                     sizes 1 to 16384) into docs/results/backends-gpu/; on a CPU: make gpu-check BATCH=8 MAPS=2 ...
 PYTHON ?= python3
 VENV := .venv
 BIN := $(VENV)/bin
@@ -26,6 +27,7 @@ OLDEST := .venv-oldest
 PRESETS ?= fast
 BATCH ?= 0
 MAPS ?= 0
+SCALING ?=
 WORKERS ?= 1
 BACKENDS_OUT ?= docs/results/backends
 
@@ -67,11 +69,12 @@ results-render: $(STAMP)
 
 backends: $(STAMP)
 	$(BIN)/python -m mjpoincare.backends.findings all --presets $(PRESETS) --batch $(BATCH) --maps $(MAPS) \
-		--workers $(WORKERS) --out $(BACKENDS_OUT)
+		--scaling $(SCALING) --workers $(WORKERS) --out $(BACKENDS_OUT)
 
 gpu-check: PRESETS = fast accurate
 gpu-check: BATCH = 4096
 gpu-check: MAPS = 64
+gpu-check: SCALING = 1 16 256 4096 16384
 gpu-check: BACKENDS_OUT = docs/results/backends-gpu
 gpu-check: backends
 

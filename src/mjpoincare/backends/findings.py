@@ -295,27 +295,37 @@ def load(out: Path) -> list[dict[str, Any]]:
     return [json.loads(p.read_text()) for p in sorted((out / "json").glob("*.json"))]
 
 
-def _jobs(scenarios: Sequence[str], presets: Sequence[str], maps: int) -> list[tuple[str, list[str]]]:
+#: The scenario whose model and starts the batch-size scaling of ``all --scaling`` times.
+SCALING_SCENARIO = "rimless-wheel"
+
+
+def _jobs(scenarios: Sequence[str], presets: Sequence[str], batch: int, maps: int, scaling: Sequence[int]
+          ) -> list[tuple[str, list[str]]]:
     """Every run, as (the name of its record, the arguments of its ``findings`` process)."""
     jobs = []
     for preset in presets:
         for s in scenarios:
-            jobs += [(f"{s}-{preset}-{b}-{p}", ["run", s, b, p, "--preset", preset]) for b, p in COLUMNS]
+            jobs += [(f"{s}-{preset}-{b}-{p}", ["run", s, b, p, "--preset", preset, "--batch", str(batch)])
+                     for b, p in COLUMNS]
             jobs += [(f"{s}-{preset}-mujoco-float64-p{x:g}", ["run", s, "mujoco", "float64", "--preset", preset,
                                                              "--start-perturbation", str(x)]) for x in PERTURBATIONS]
     if maps:
-        jobs += [(f"map-{which}-{b}-{p}", ["map", which, b, p, "--size", str(maps)]) for which in ("basins", "mu")
-                 for b, p in COLUMNS]
+        jobs += [(f"map-{which}-{b}-{p}", ["map", which, b, p, "--size", str(maps), "--batch", str(batch)])
+                 for which in ("basins", "mu") for b, p in COLUMNS]
+    if scaling:
+        jobs += [(f"scaling-{SCALING_SCENARIO}-{b}-{p}", ["scaling", SCALING_SCENARIO, b, p, "--sizes",
+                                                          *map(str, scaling)]) for b, p in COLUMNS]
     return jobs
 
 
 def run_all(scenarios: Sequence[str], presets: Sequence[str], batch: int, maps: int, out: Path, *,
-            workers: int = 1, again: bool = False) -> list[Path]:
-    """Every (scenario, preset, backend) validation and, when ``maps`` > 0, both maps at that size on every backend,
-    each in a process of its own (``workers`` at a time), skipping those already in ``out/json/`` unless ``again``;
-    then the page. Returns the files written."""
-    commands = [[sys.executable, "-m", "mjpoincare.backends.findings", *extra, "--batch", str(batch), "--out",
-                 str(out)] for name, extra in _jobs(scenarios, presets, maps)
+            scaling: Sequence[int] = (), workers: int = 1, again: bool = False) -> list[Path]:
+    """Every (scenario, preset, backend) validation with MuJoCo C's perturbed runs, when ``maps`` > 0 both maps at
+    that size on every backend, and when ``scaling`` gives batch sizes the batch-size scaling of every backend, each
+    in a process of its own (``workers`` at a time), skipping those already in ``out/json/`` unless ``again``; then
+    the page. Returns the files written."""
+    commands = [[sys.executable, "-m", "mjpoincare.backends.findings", *extra, "--out", str(out)]
+                for name, extra in _jobs(scenarios, presets, batch, maps, scaling)
                 if again or not (out / "json" / f"{name}.json").exists()]
     running: list[subprocess.Popen[bytes]] = []
     for command in commands:
@@ -342,6 +352,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     every.add_argument("--scenarios", nargs="*", default=list(scenarios.REGISTRY))
     every.add_argument("--presets", nargs="*", default=["fast"])
     every.add_argument("--maps", type=int, default=0, help="the maps' size N (N x N grid, N mu values); 0: none")
+    every.add_argument("--scaling", type=int, nargs="*", default=[],
+                       help=f"batch sizes to time {SCALING_SCENARIO}'s batched step at on every backend")
     every.add_argument("--workers", type=int, default=1)
     every.add_argument("--again", action="store_true", help="run again what OUT/json already holds")
     one = sub.add_parser("run", help="validate one scenario on one backend, write its record into OUT/json")
@@ -372,8 +384,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         low = 1 if name in ("workers", "steps", "size") else 0
         if getattr(args, name, low) < low:
             parser.error(f"--{name} must be >= {low} (got {getattr(args, name)})")
-    if min(getattr(args, "sizes", None) or [1]) < 1:
-        parser.error(f"--sizes must be >= 1 (got {min(args.sizes)})")
+    for name in ("sizes", "scaling"):
+        if min(getattr(args, name, None) or [1]) < 1:
+            parser.error(f"--{name} must be >= 1 (got {min(getattr(args, name))})")
     names = args.scenarios if args.command == "all" else [args.scenario] if args.command in ("run", "scaling") else []
     try:  # an unknown scenario is refused before any simulation
         for name in names:
@@ -381,8 +394,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     except ParameterError as error:
         parser.error(str(error))
     if args.command == "all":
-        for path in run_all(args.scenarios, args.presets, args.batch, args.maps, args.out, workers=args.workers,
-                            again=args.again):
+        for path in run_all(args.scenarios, args.presets, args.batch, args.maps, args.out, scaling=args.scaling,
+                            workers=args.workers, again=args.again):
             print(f"wrote {path}")
         return 0
     if args.command == "render":
