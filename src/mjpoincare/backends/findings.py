@@ -32,7 +32,7 @@ COLUMNS = (("mujoco", "float64"), ("mjx", "float64"), ("mjx", "float32"), ("warp
 #: spread column: what tiny differences do to each check through the impact jitter, the yardstick for a backend's
 #: difference from MuJoCo C (the compass biped's eigenvalue error moves from 0.018 to 0.015 and 0.021 between 1e-11
 #: and 1e-9, so the range reaches 1e-9).
-PERTURBATIONS = (1e-13, 1e-11, 1e-9)
+PERTURBATIONS = (1e-13, 1e-12, 1e-11, 1e-10, 1e-9)
 #: The packages whose versions stamp a run, beside :func:`mjpoincare.results.environment`'s.
 BACKEND_PACKAGES = ("jax", "jaxlib", "mujoco-mjx", "warp-lang", "mujoco-warp")
 #: The maps ``--maps N`` runs per backend: the friction wheel's basin map over (theta_dot0, x_dot0), an N x N grid,
