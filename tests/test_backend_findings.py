@@ -10,16 +10,16 @@ from typing import Any
 import pytest
 
 from mjpoincare import scenarios
-from mjpoincare.backends import findings
+from mjpoincare.backends import findings, findings_page
 
 BACKENDS = Path(__file__).resolve().parent.parent / "docs" / "results" / "backends"
-RECORDS = findings.load(BACKENDS)
+RECORDS = findings_page.load(BACKENDS)
 ENV = {"mujoco": "9.9.9", "cpu": "CPU X", "logical_cpus": 2, "git_sha": "abc123", "git_dirty": False,
        "date": "2026-01-01T00:00:00Z", "backend_packages": {"jax": "1.0"}}
 
 
 def test_committed_page_reproduces_from_its_json() -> None:
-    assert (BACKENDS / "README.md").read_text() == findings.render(RECORDS), "stale: python -m " \
+    assert (BACKENDS / "README.md").read_text() == findings_page.render(RECORDS), "stale: python -m " \
         "mjpoincare.backends.findings render docs/results/backends"
 
 
@@ -27,8 +27,8 @@ def test_every_scenario_ran_or_was_refused_on_every_backend_at_the_fast_preset()
     """And MuJoCo C ran again from each rounding-sized change of the starts (the spread column)."""
     done = {(r["scenario"], r["backend"], r["precision"], r.get("start_perturbation", 0.0)) for r in RECORDS
             if r["kind"] == "validate" and r["preset"] == "fast"}
-    expected = {(s, b, p, 0.0) for s in scenarios.REGISTRY for b, p in findings.COLUMNS}
-    expected |= {(s, "mujoco", "float64", x) for s in scenarios.REGISTRY for x in findings.PERTURBATIONS}
+    expected = {(s, b, p, 0.0) for s in scenarios.REGISTRY for b, p in findings_page.COLUMNS}
+    expected |= {(s, "mujoco", "float64", x) for s in scenarios.REGISTRY for x in findings_page.PERTURBATIONS}
     assert expected <= done, sorted(expected - done)
     for r in RECORDS:
         assert "refused" in r or ("checks" in r and r["compile_s"] >= 0), findings._key(r)
@@ -53,7 +53,7 @@ def test_page_puts_each_backend_beside_mujoco_c_and_says_what_a_gpu_needs() -> N
                {"kind": "map", "map": "mu", "backend": "mujoco", "precision": "float64", "batch": 8, "size": 4,
                 "environment": ENV, "exit_code": 1, "wall_s": 20.0, "starts": 4, "agreement": 0.75,
                 "agreement_without_d_plus": 1.0, "max_eigenvalue_error": None}]
-    lines = findings.render(records).splitlines()
+    lines = findings_page.render(records).splitlines()
     assert "| toy | fast | eigenvalue | 0.02 | 0.0001 | 0.0001 to 0.0003 |  | 0.25 ✗ |  |" in lines
     assert "| toy | fast | compile s | | 0 |  | not run | 100 | refused: no sensor |" in lines
     # 600 s less 100 s of compile over 5e4 batched steps: 1e4 µs per batched step at most
