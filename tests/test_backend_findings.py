@@ -31,7 +31,8 @@ def test_every_scenario_ran_or_was_refused_on_every_backend_at_the_fast_preset()
     expected |= {(s, "mujoco", "float64", x) for s in scenarios.REGISTRY for x in findings_page.PERTURBATIONS}
     assert expected <= done, sorted(expected - done)
     for r in RECORDS:
-        assert "refused" in r or ("checks" in r and r["compile_s"] >= 0), findings._key(r)
+        if r["kind"] == "validate":
+            assert "refused" in r or ("checks" in r and r["compile_s"] >= 0), findings._key(r)
 
 
 def _run(backend: str, precision: str, error: float, **timing: float) -> dict[str, Any]:
