@@ -51,7 +51,8 @@ def test_page_puts_each_backend_beside_mujoco_c_and_says_what_a_gpu_needs() -> N
                 "batch": 8, "environment": ENV, "refused": "no sensor"},
                {"kind": "scaling", "scenario": "toy", "backend": "mjx", "precision": "float64", "steps": 10,
                 "environment": ENV, "device": "cpu", "latency_s": 2e-3, "per_trajectory_s": 1e-5,
-                "sizes": [{"batch": 1, "seconds_per_step": 2e-3, "steps_per_s": 500.0, "compile_s": 9.0}]},
+                "sizes": [{"batch": 1, "seconds_per_step": 2e-3, "steps_per_s": 500.0, "compile_s": 9.0},
+                          {"batch": 9, "seconds_per_step": 1e-2, "steps_per_s": 900.0, "compile_s": 9.0}]},
                {"kind": "map", "map": "mu", "backend": "mujoco", "precision": "float64", "batch": 8, "size": 4,
                 "environment": ENV, "exit_code": 1, "wall_s": 20.0, "starts": 4, "agreement": 0.75,
                 "agreement_without_d_plus": 1.0, "max_eigenvalue_error": None}]
@@ -59,8 +60,8 @@ def test_page_puts_each_backend_beside_mujoco_c_and_says_what_a_gpu_needs() -> N
     assert "| toy | fast | eigenvalue | 0.02 | 0.0001 | 0.0001 to 0.0003 |  | 0.25 ✗ |  |" in lines
     assert "| toy | fast | compile s | | 0 |  | not run | 100 | refused: no sensor |" in lines
     # 600 s less 100 s of compile over 5e4 batched steps: 1e4 µs per batched step at most
-    assert "| mjx | float32 | 5e+04 | 100 | 1e+04 µs |" in lines
-    assert "| toy | mjx | float64 | fit | latency 2 ms + 10 µs per trajectory | |" in lines
+    assert "| fast | mjx | float32 | 1 | 5e+04 | 100 | 1e+04 µs |" in lines
+    assert "| toy | mjx | float64 | fit | latency 1 ms + 1e+03 µs per trajectory | |" in lines
     assert any(line.startswith("| mu | mujoco | float64 | 4 | 8 | gait type agrees on 75.0% (100.0% without")
                for line in lines)
     assert "| git commit | abc123 |" in lines

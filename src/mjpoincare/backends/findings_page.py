@@ -4,9 +4,12 @@
 from __future__ import annotations
 
 import json
+import math
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
+
+import numpy as np
 
 #: The columns of the table, in order: (backend, precision).
 COLUMNS = (("mujoco", "float64"), ("mjx", "float64"), ("mjx", "float32"), ("warp", "float32"))
@@ -89,43 +92,47 @@ def map_table(maps: Sequence[dict[str, Any]]) -> str:
     return "\n".join(lines)
 
 
+def scaling_fit(sizes: Sequence[dict[str, Any]]) -> tuple[float, float]:
+    """(latency, per-trajectory) seconds of the line fitted to the seconds per batched step against the batch size,
+    weighted by each time's own size (relative errors), so that the small batches set the latency."""
+    batch = np.array([row["batch"] for row in sizes], float)
+    seconds = np.array([row["seconds_per_step"] for row in sizes])
+    if batch.size < 2:
+        return float(seconds[0]), math.nan
+    per_trajectory, latency = np.polyfit(batch, seconds, 1, w=1.0 / seconds)
+    return float(latency), float(per_trajectory)
+
+
 def scaling_table(scalings: Sequence[dict[str, Any]]) -> str:
     """Markdown: per backend, the seconds per batched step and the trajectory-steps per second at each batch size,
-    with the fitted latency and per-trajectory seconds."""
+    with the fitted latency and per-trajectory seconds (:func:`scaling_fit`)."""
     lines = ["| scenario | backend | precision | batch | ms per batched step | trajectory-steps/s |",
              "|---|---|---|---|---|---|"]
     for s in sorted(scalings, key=lambda s: (s["scenario"], COLUMNS.index((s["backend"], s["precision"])))):
         for row in s["sizes"]:
             lines.append(f"| {s['scenario']} | {s['backend']} | {s['precision']} | {row['batch']} "
                          f"| {1e3 * row['seconds_per_step']:.3g} | {row['steps_per_s']:.3g} |")
+        latency, per_trajectory = scaling_fit(s["sizes"])
         lines.append(f"| {s['scenario']} | {s['backend']} | {s['precision']} | fit | latency "
-                     f"{1e3 * s['latency_s']:.3g} ms + {1e6 * s['per_trajectory_s']:.3g} µs per trajectory | |")
+                     f"{1e3 * latency:.3g} ms + {1e6 * per_trajectory:.3g} µs per trajectory | |")
     return "\n".join(lines)
 
 
-def batched_steps(runs: Sequence[dict[str, Any]]) -> dict[tuple[str, str], float]:
-    """Per (backend, precision): the batched steps of all its validations (each chunk once), the steps a device
-    that runs a whole batch at once takes one after the other."""
-    out: dict[tuple[str, str], float] = {}
-    for r in runs:
-        if "timing" in r:
-            key = (r["backend"], r["precision"])
-            out[key] = out.get(key, 0.0) + r["timing"]["batch_steps"]
-    return out
-
-
 def estimate_lines(runs: Sequence[dict[str, Any]]) -> list[str]:
-    """What a GPU needs for the validations of these runs to take 10 minutes: their batched steps (the same on any
-    device, set by the designs and the chunks) and so the largest time per batched step, compile included."""
-    lines = ["| backend | precision | batched steps of all validations | compile s here | at most per batched step "
-             "for 10 minutes |", "|---|---|---|---|---|"]
-    for (backend, precision), steps in sorted(batched_steps(runs).items(), key=lambda kv: COLUMNS.index(kv[0])):
-        if backend == "mujoco":  # MuJoCo C runs on the CPU only
-            continue
-        compile_s = sum(r["compile_s"] for r in runs if "timing" in r and (r["backend"], r["precision"]) ==
-                        (backend, precision))
+    """What a GPU needs for the validations of these runs to take 10 minutes, per preset and array backend: their
+    batched steps (each chunk once: the same on any device, set by the designs and the chunks) and so the largest
+    time per batched step, after this machine's compile time."""
+    lines = ["| preset | backend | precision | scenarios run | batched steps | compile s here | at most per batched "
+             "step for 10 minutes |", "|---|---|---|---|---|---|---|"]
+    done = [r for r in runs if "timing" in r and r["backend"] != "mujoco"]  # MuJoCo C runs on the CPU only
+    for preset, backend, precision in sorted({(r["preset"], r["backend"], r["precision"]) for r in done},
+                                             key=lambda k: (k[0], COLUMNS.index(k[1:]))):
+        mine = [r for r in done if (r["preset"], r["backend"], r["precision"]) == (preset, backend, precision)]
+        steps = sum(r["timing"]["batch_steps"] for r in mine)
+        compile_s = sum(r["compile_s"] for r in mine)
         budget = max(0.0, 600.0 - compile_s)
-        lines.append(f"| {backend} | {precision} | {steps:.4g} | {compile_s:.3g} | {1e6 * budget / steps:.3g} µs |")
+        lines.append(f"| {preset} | {backend} | {precision} | {len(mine)} | {steps:.4g} | {compile_s:.3g} "
+                     f"| {1e6 * budget / steps:.3g} µs |")
     return lines
 
 

@@ -21,8 +21,8 @@ from mjpoincare.simulate import open_batch
 
 def measure(scenario: str, backend: str, precision: str, sizes: Sequence[int], steps: int) -> dict[str, Any]:
     """Seconds per batched step of ``scenario``'s model on ``backend`` in ``precision`` at each batch size in
-    ``sizes`` (``steps`` timed steps each, after a first chunk that compiles), and the fitted latency and
-    per-trajectory seconds."""
+    ``sizes`` (``steps`` timed steps each, after a first chunk that compiles); the line through them is
+    :func:`mjpoincare.backends.findings_page.scaling_fit`."""
     from mjpoincare.validation import resolve_inputs
 
     spec, _, params, settings = resolve_inputs(scenario, {"backend": backend, "precision": precision}, None)
@@ -39,8 +39,5 @@ def measure(scenario: str, backend: str, precision: str, sizes: Sequence[int], s
             seconds = time.perf_counter() - start
         rows.append({"batch": int(size), "seconds_per_step": seconds / steps, "steps_per_s": size * steps / seconds,
                      "compile_s": batch.report.compile_s})
-    per_step = np.array([r["seconds_per_step"] for r in rows])
-    per_trajectory, latency = np.polyfit(np.array(sizes, float), per_step, 1) if len(sizes) > 1 else (np.nan,
-                                                                                                      per_step[0])
     return {"scenario": scenario, "backend": backend, "precision": str(settings["precision"]), "steps": steps,
-            "sizes": rows, "latency_s": float(latency), "per_trajectory_s": float(per_trajectory)}
+            "sizes": rows}
