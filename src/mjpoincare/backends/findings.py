@@ -27,6 +27,10 @@ from mjpoincare.backends.findings_page import COLUMNS, PERTURBATIONS, load, rend
 from mjpoincare.params import ParameterError
 from mjpoincare.result import write_json, write_text
 
+#: The fields of a validation's result a record keeps (the scenario's extras, fits and plots stay out: the page
+#: needs the checks, and the JSON of every run of ``make backends`` stays small enough for git).
+RESULT_FIELDS = ("seed", "passed", "params", "settings", "mujoco_version", "checks", "timing", "warnings",
+                 "diverged_trajectories", "reported")
 #: The packages whose versions stamp a run, beside :func:`mjpoincare.results.environment`'s.
 BACKEND_PACKAGES = ("jax", "jaxlib", "mujoco-mjx", "warp-lang", "mujoco-warp")
 #: The maps ``--maps N`` runs per backend: the friction wheel's basin map over (theta_dot0, x_dot0), an N x N grid,
@@ -89,8 +93,9 @@ def run(scenario: str, backend: str, precision: str, preset: str, batch: int = 0
                                            "start_perturbation": perturbation}, preset)
     except ParameterError as refusal:
         return {**head, "refused": str(refusal)}
+    kept = {k: v for k, v in result.to_dict().items() if k in RESULT_FIELDS}
     return {**head, "wall_s": time.perf_counter() - start, "compile_s": result.timing["compile_s"],
-            "device": _device(backend), **result.to_dict()}
+            "device": _device(backend), **kept}
 
 
 def run_map(which: str, backend: str, precision: str, size: int, batch: int, out: Path) -> dict[str, Any]:
