@@ -243,7 +243,7 @@ def test_rimless_wheel_on_mjx_passes_its_fast_checks(request: pytest.FixtureRequ
     output, _ = process.communicate(timeout=1800)
     assert process.returncode == 0, output.decode()
     scenario, backend, precision, preset = MJX_RUN
-    record = json.loads((out / f"{scenario}-{preset}-{backend}-{precision}.json").read_text())
+    record = json.loads((out / "json" / f"{scenario}-{preset}-{backend}-{precision}.json").read_text())
     table = "\n".join(f"{c['name']}: {c['error']:.3g} (tolerance {c['tolerance']:.3g})" for c in record["checks"])
     assert record["passed"] and all(c["passed"] for c in record["checks"]), table
     assert {c["name"] for c in record["checks"]} >= {"omega_post_impact", "eigenvalue", "basins", "stable"}
