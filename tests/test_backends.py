@@ -17,12 +17,12 @@ import mujoco
 import numpy as np
 import pytest
 from mujoco import rollout as mj_rollout
-from test_rollout_seam import XML
+from test_rollout_seam import XML, fractional_step_of
 
 from mjpoincare.backends import check_installed, check_settings, open_backend_batch
 from mjpoincare.params import ParameterError
 from mjpoincare.settings import DEFAULTS
-from mjpoincare.simulate import STATE_SPEC, Batch, initial_states
+from mjpoincare.simulate import Batch, initial_states
 
 #: The seam's model with a 1 kg sled on the floor, sliding along x and free to settle along z (box-plane contact):
 #: friction decelerates it.
@@ -199,14 +199,7 @@ def test_advance_steps_a_fraction_of_the_timestep(backend: tuple[str, str], mode
     with _open(backend, model, start[None, :]) as batch:
         state = batch.advance(0, start, 0.0005)
         assert batch.timestep == 0.002
-    data = mujoco.MjData(model)
-    mujoco.mj_setState(model, data, start, STATE_SPEC)
-    quarter = copy.copy(model)
-    quarter.opt.timestep = 0.0005
-    mujoco.mj_step(quarter, data)
-    expected = np.empty_like(start)
-    mujoco.mj_getState(model, data, expected, STATE_SPEC)
-    assert np.abs(state - expected).max() <= BACKENDS[backend]
+    assert np.abs(state - fractional_step_of(model, start, 0.0005)).max() <= BACKENDS[backend]
 
 
 def test_mjx_float32_is_mjx_in_single_precision(free: mujoco.MjModel) -> None:

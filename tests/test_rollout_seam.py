@@ -199,19 +199,24 @@ def test_actuator_bias_and_gear_per_trajectory(model: mujoco.MjModel) -> None:
     assert back[1, -1, push] == pytest.approx(0.0, abs=1e-12)
 
 
+def fractional_step_of(model: mujoco.MjModel, start: np.ndarray, seconds: float) -> np.ndarray:
+    """The state after one MuJoCo C step of ``seconds`` from ``start`` on a copy of ``model`` with that timestep."""
+    data = mujoco.MjData(model)
+    mujoco.mj_setState(model, data, start, STATE_SPEC)
+    short = copy.copy(model)
+    short.opt.timestep = seconds
+    mujoco.mj_step(short, data)
+    out = np.empty_like(start)
+    mujoco.mj_getState(model, data, out, STATE_SPEC)
+    return out
+
+
 def test_advance_steps_a_fraction_of_the_timestep(model: mujoco.MjModel) -> None:
     start = _states(model, 1, swing=0.5)[0]
     models = _copies(model, 1)
     with MujocoBatch(models, start[None, :]) as batch:
         state = batch.advance(0, start, 0.0005)
-    data = mujoco.MjData(model)
-    mujoco.mj_setState(model, data, start, STATE_SPEC)
-    quarter = copy.copy(model)
-    quarter.opt.timestep = 0.0005
-    mujoco.mj_step(quarter, data)
-    expected = np.empty_like(start)
-    mujoco.mj_getState(model, data, expected, STATE_SPEC)
-    np.testing.assert_array_equal(state, expected)
+    np.testing.assert_array_equal(state, fractional_step_of(model, start, 0.0005))
     assert state[0] == pytest.approx(0.0005) and models[0].opt.timestep == 0.002
 
 
