@@ -160,23 +160,41 @@ def _native_chunk(pool: mj_rollout.Rollout, model: mujoco.MjModel | list[mujoco.
     return states, full
 
 
-#: ``geom_margin`` of a geom whose contacts are switched off: a contact would need a penetration deeper than 1000 km.
-#: MJX and MuJoCo Warp can change ``geom_margin`` per trajectory at runtime but not ``geom_contype`` (MuJoCo docs,
-#: "Collision detection": a contact is generated when the distance is below the margin).
+#: ``geom_margin`` of a geom whose contacts are switched off on MJX and MuJoCo Warp: a contact would need a
+#: penetration deeper than 1000 km. Those backends can change ``geom_margin`` per trajectory at runtime but not
+#: ``geom_contype`` (MuJoCo docs, "Collision detection": a contact is generated when the distance is below the
+#: margin). MuJoCo C before 3.5 still generates the contact of a geom resting on a plane with this margin, so
+#: :class:`MujocoBatch` switches contacts with the collision filter instead (:func:`switch_contact_filter`).
 RELEASED_MARGIN = -1e6
 
 
 def switch_contact(released: dict[tuple[int, int], float], margins: np.ndarray, index: int, geom: int, on: bool
                    ) -> None:
-    """:meth:`Batch.set_contact` on any backend: trajectory ``index``'s geom margins ``margins`` (a writable view of
-    its own, (ngeom,)) get :data:`RELEASED_MARGIN` at ``geom`` when its contact is switched off, and the margin kept in
-    ``released`` back when it is switched on again (switching twice either way changes nothing)."""
+    """:meth:`Batch.set_contact` through the margin (MJX, MuJoCo Warp): trajectory ``index``'s geom margins
+    ``margins`` (a writable view of its own, (ngeom,)) get :data:`RELEASED_MARGIN` at ``geom`` when its contact is
+    switched off, and the margin kept in ``released`` back when it is switched on again (switching twice either way
+    changes nothing)."""
     if on:
         if (index, geom) in released:
             margins[geom] = released.pop((index, geom))
     elif (index, geom) not in released:
         released[index, geom] = float(margins[geom])
         margins[geom] = RELEASED_MARGIN
+
+
+def switch_contact_filter(released: dict[tuple[int, int], tuple[int, int]], model: mujoco.MjModel, index: int,
+                          geom: int, on: bool) -> None:
+    """:meth:`Batch.set_contact` through the collision filter (MuJoCo C, every release): trajectory ``index``'s own
+    ``model`` gets ``geom_contype`` and ``geom_conaffinity`` 0 at ``geom`` when its contact is switched off (no pair
+    with it passes the filter; MuJoCo docs, "Collision detection"), and the pair kept in ``released`` back when it is
+    switched on again (switching twice either way changes nothing)."""
+    if on:
+        if (index, geom) in released:
+            model.geom_contype[geom], model.geom_conaffinity[geom] = released.pop((index, geom))
+    elif (index, geom) not in released:
+        released[index, geom] = (int(model.geom_contype[geom]), int(model.geom_conaffinity[geom]))
+        model.geom_contype[geom] = 0
+        model.geom_conaffinity[geom] = 0
 
 
 class Batch(Protocol):
@@ -250,7 +268,7 @@ class MujocoBatch:
         first = self.models[0]
         self._datas = [mujoco.MjData(first) for _ in range(max(1, threads))]
         self._event_data: mujoco.MjData | None = None
-        self._released: dict[tuple[int, int], float] = {}
+        self._released: dict[tuple[int, int], tuple[int, int]] = {}
         self.timestep = first.opt.timestep
         self._pool = mj_rollout.Rollout(nthread=threads)
         self.report = RolloutReport(diverged=np.zeros(self._current.shape[0], bool))
@@ -285,7 +303,7 @@ class MujocoBatch:
         self._current[np.asarray(indices, int)] = states
 
     def set_contact(self, index: int, geom: int, on: bool) -> None:
-        switch_contact(self._released, self._model(index).geom_margin, index, geom, on)
+        switch_contact_filter(self._released, self._model(index), index, geom, on)
 
     def set_eq_active(self, index: int, eq: int, on: bool) -> None:
         self._model(index).eq_active0[eq] = on

@@ -14,6 +14,7 @@ import mujoco
 import numpy as np
 
 from mjpoincare import settings as sim_settings
+from mjpoincare.mjcompat import efc_diag_inverse_inertia
 from mjpoincare.analysis.contact_modes import EXCLUDED
 from mjpoincare.analysis.rimless_wheel_rows import impact_window, stance_contact, wheel_rows
 from mjpoincare.analysis.soft_contact import SoftContact
@@ -172,7 +173,7 @@ def sliding_contact(rec: Chunk, model: mujoco.MjModel, p: Values, s: Values, row
                     ) -> SlidingContact:
     """:class:`SlidingContact` of the recorded rows ``rec`` of ``model`` (their signals ``rows``, thresholds ``cls``:
     each trajectory's friction, and the foot speed above which a lift-off counts as a slide's); MuJoCo's
-    ``efc_diagA`` of a foot's normal row is read once from ``model`` at the first recorded state."""
+    the diagonal inverse inertia of a foot's normal row (``efc_diagA``) is read once from ``model`` at the first recorded state."""
     mu, cls_v_thr = cls.mu, cls.v_thr
     x, z, pitch = (JointIndex.of(model, name) for name in ("x", "z", "pitch"))
     con = stance_contact(pitch=rec.qpos[:, :, pitch.qpos], pitch_rate=rec.qvel[:, :, pitch.dof],
@@ -209,4 +210,4 @@ def _normal_diag_inverse_inertia(model: mujoco.MjModel, rec: Chunk) -> float:
     mujoco.mj_forward(model, data)
     if data.ncon == 0:
         return math.nan
-    return float(data.efc_diagA[data.contact[0].efc_address])
+    return float(efc_diag_inverse_inertia(data)[data.contact[0].efc_address])
