@@ -7,7 +7,7 @@ from collections.abc import Mapping
 
 import mujoco
 
-from mjpoincare import scenarios
+from mjpoincare import scenarios, seam_check
 from mjpoincare import settings as sim_settings
 from mjpoincare.analysis.checks import Check
 from mjpoincare.params import resolve, unknown
@@ -16,7 +16,9 @@ from mjpoincare.result import Result
 
 def resolve_inputs(name: str, assignments: Mapping[str, str], preset: str | None
                    ) -> tuple[scenarios.Scenario, str, dict, dict]:
-    """Scenario, preset name, checked parameters and settings; bad input raises ParameterError."""
+    """Scenario, preset name, checked parameters and settings; bad input raises ParameterError, and a seam mechanism
+    the scenario uses that fails its self-test on the loaded MuJoCo and backend raises
+    :class:`~mjpoincare.seam_check.MechanismFailed` (both before any simulation of the scenario)."""
     scenario = scenarios.get(name)
     unknown(assignments, scenario.params, sim_settings.SETTINGS)
     preset_name, overrides = scenario.preset(preset)
@@ -24,6 +26,7 @@ def resolve_inputs(name: str, assignments: Mapping[str, str], preset: str | None
     settings = resolve(sim_settings.SETTINGS, {**sim_settings.DEFAULTS, **overrides}, assignments)
     sim_settings.check_backend(settings)
     scenario.check_params(params)
+    seam_check.require(scenario.mechanisms, str(settings["backend"]), str(settings["precision"]))
     return scenario, preset_name, params, settings
 
 

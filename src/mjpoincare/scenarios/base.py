@@ -208,6 +208,8 @@ class Scenario:
             and ``--grid`` is refused).
         param_sweeps: the scenario's own sweeps by parameter name (:class:`ParamSweep`), run by ``sweep --param NAME``
             in place of the generic sweep; every other parameter or setting gets the generic sweep.
+        mechanisms: the seam mechanisms its event controllers and checks use (keys of
+            :data:`mjpoincare.seam_check.MECHANISMS`), each self-tested on the loaded MuJoCo before the scenario runs.
     """
 
     name: str
@@ -231,6 +233,7 @@ class Scenario:
     soak: Callable[[Values, Values, int], Soak] | None = None
     region_map: RegionMap | None = None
     param_sweeps: Mapping[str, ParamSweep] = field(default_factory=dict)
+    mechanisms: tuple[str, ...] = ()
 
     def preset(self, name: str | None) -> tuple[str, Values]:
         """The preset's name and setting overrides (the default preset when ``name`` is None)."""

@@ -389,4 +389,5 @@ COMPASS_BIPED = Scenario(
     camera_distance=3.0,
     stress_cases=STRESS_CASES,
     soak=soak,
+    mechanisms=("rollout", "contact", "actuator"),
 )

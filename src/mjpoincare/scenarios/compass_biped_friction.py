@@ -390,4 +390,5 @@ COMPASS_BIPED_FRICTION = Scenario(
     track_body="hip",
     camera_distance=3.5,
     stress_cases=STRESS_CASES,
+    mechanisms=("rollout", "contact", "actuator"),
 )

@@ -386,4 +386,5 @@ RIMLESS_WHEEL = Scenario(
     camera_distance=4.0,
     stress_cases=STRESS_CASES,
     soak=soak,
+    mechanisms=("rollout",),
 )

@@ -399,4 +399,5 @@ RIMLESS_WHEEL_3D = Scenario(
     camera_elevation=-15.0,
     stress_cases=STRESS_CASES,
     soak=soak,
+    mechanisms=("rollout", "fractional_step"),
 )

@@ -386,4 +386,5 @@ RIMLESS_WHEEL_FRICTION = Scenario(
     region_map=RegionMap(grid="theta_dot0=START:STOP:N,x_dot0=START:STOP:N (post-impact rates, nondimensional)",
                          output="renders/basins-{scenario}.png", run=_basin_map),
     param_sweeps={"mu": _mu_sweep},
+    mechanisms=("rollout", "friction", "contact_fields"),
 )

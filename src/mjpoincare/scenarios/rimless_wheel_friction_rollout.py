@@ -14,12 +14,12 @@ import mujoco
 import numpy as np
 
 from mjpoincare import settings as sim_settings
-from mjpoincare.mjcompat import efc_diag_inverse_inertia
 from mjpoincare.analysis.contact_modes import EXCLUDED
 from mjpoincare.analysis.rimless_wheel_rows import impact_window, stance_contact, wheel_rows
 from mjpoincare.analysis.soft_contact import SoftContact
 from mjpoincare.analysis.stick_slip_phases import Classifier, Rows, Steps
 from mjpoincare.analysis.theory import rimless_wheel_friction as theory
+from mjpoincare.mjcompat import efc_diag_inverse_inertia
 from mjpoincare.params import ParameterError
 from mjpoincare.scenarios.base import JointIndex, Values
 from mjpoincare.settings import rollout_options
@@ -172,8 +172,8 @@ def _percentiles(x: np.ndarray) -> tuple[float, float, float]:
 def sliding_contact(rec: Chunk, model: mujoco.MjModel, p: Values, s: Values, rows: Rows, cls: Classifier
                     ) -> SlidingContact:
     """:class:`SlidingContact` of the recorded rows ``rec`` of ``model`` (their signals ``rows``, thresholds ``cls``:
-    each trajectory's friction, and the foot speed above which a lift-off counts as a slide's); MuJoCo's
-    the diagonal inverse inertia of a foot's normal row (``efc_diagA``) is read once from ``model`` at the first recorded state."""
+    each trajectory's friction, and the foot speed above which a lift-off counts as a slide's); MuJoCo's diagonal
+    inverse inertia of a foot's normal row (``efc_diagA``) is read once from ``model`` at the first recorded state."""
     mu, cls_v_thr = cls.mu, cls.v_thr
     x, z, pitch = (JointIndex.of(model, name) for name in ("x", "z", "pitch"))
     con = stance_contact(pitch=rec.qpos[:, :, pitch.qpos], pitch_rate=rec.qvel[:, :, pitch.dof],

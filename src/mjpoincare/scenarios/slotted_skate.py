@@ -360,4 +360,5 @@ SLOTTED_SKATE = Scenario(
     stress_cases=STRESS_CASES,
     region_map=RegionMap(grid="x=START:STOP:N,y=START:STOP:N with x = l0/delta, y = 1/delta^2",
                          output="renders/regions-{scenario}.png", run=_region_map),
+    mechanisms=("rollout", "fractional_step"),
 )
