@@ -13,6 +13,11 @@
 #                     per run (resumable), into docs/results/backends/; PRESETS, BATCH (the batch setting), MAPS (the
 #                     friction wheel's basin map, MAPS x MAPS starts, and mu sweep, MAPS values; 0 = none), SCALING
 #                     (batch sizes to time a batched step at), WORKERS
+#   make releases     the MuJoCo release history: one nox session per release (noxfile.py, uv), RELEASE_WORKERS at a
+#                     time, resumable, into docs/results/releases/json/, then docs/results/mujoco-releases.md
+#   make releases-render  re-render docs/results/mujoco-releases.md from the committed JSON (no simulation)
+#   make bisect LOW=3.17.0 HIGH=4.0.0 CHECK=rimless-wheel/eigenvalue [PRESET=fast]   the first patch release between
+#                     two releases where a check really changes (beyond its spread)
 #   make gpu-check    the same at a GPU's sizes (both presets, batches of 4096, 64 x 64 basin map, 64 mu values, batch
 #                     sizes 1 to 16384) into docs/results/backends-gpu/; on a CPU: make gpu-check BATCH=8 MAPS=2 ...
 PYTHON ?= python3
@@ -29,9 +34,12 @@ BATCH ?= 0
 MAPS ?= 0
 SCALING ?=
 WORKERS ?= 1
+RELEASE_WORKERS ?= 2
+PRESET ?= fast
 BACKENDS_OUT ?= docs/results/backends
 
-.PHONY: validate test test-latest lock margins results results-render backends gpu-check bench gate clean
+.PHONY: validate test test-latest lock margins results results-render backends gpu-check bench gate clean releases \
+	releases-render bisect
 
 $(STAMP): pyproject.toml $(LOCK)
 	@$(PYTHON) -c 'import sys; sys.exit(0 if sys.version_info >= (3, 10) else "mjpoincare needs Python >= 3.10")'
@@ -44,8 +52,9 @@ validate: $(STAMP)
 	$(BIN)/mjpoincare validate
 
 test: $(STAMP)
-	$(BIN)/ruff check src analysis models tests
+	$(BIN)/ruff check src analysis models tests noxfile.py
 	$(BIN)/python -m pytest -q
+	$(BIN)/nox -s oldest
 
 test-latest:
 	$(PYTHON) -m venv $(LATEST)
@@ -70,6 +79,17 @@ results-render: $(STAMP)
 backends: $(STAMP)
 	$(BIN)/python -m mjpoincare.backends.findings all --presets $(PRESETS) --batch $(BATCH) --maps $(MAPS) \
 		--scaling $(SCALING) --workers $(WORKERS) --out $(BACKENDS_OUT)
+
+releases: $(STAMP)
+	$(BIN)/python -m mjpoincare.releases sessions | xargs -P $(RELEASE_WORKERS) -I{} $(BIN)/nox -s "{}"
+	$(BIN)/python -m mjpoincare.releases render
+
+releases-render: $(STAMP)
+	$(BIN)/python -m mjpoincare.releases render
+
+bisect: $(STAMP)
+	@test -n "$(LOW)" -a -n "$(HIGH)" -a -n "$(CHECK)" || { echo "usage: make bisect LOW=3.17.0 HIGH=4.0.0 CHECK=rimless-wheel/eigenvalue [PRESET=fast]"; exit 2; }
+	$(BIN)/python -m mjpoincare.releases bisect $(LOW) $(HIGH) --check $(CHECK) --preset $(PRESET)
 
 gpu-check: PRESETS = fast accurate
 gpu-check: BATCH = 4096
@@ -96,4 +116,4 @@ gate:
 	.venv-mujoco-$(MUJOCO)/bin/mjpoincare validate --json renders/gate-mujoco-$(MUJOCO).json
 
 clean:
-	rm -rf $(VENV) $(LATEST) $(OLDEST) .venv-mujoco-* build *.egg-info
+	rm -rf $(VENV) $(LATEST) $(OLDEST) .venv-mujoco-* .nox build *.egg-info

@@ -33,6 +33,9 @@ TIMESTEP = 1e-3
 FREE_FALL = 0.5 * GRAVITY * (STEPS * TIMESTEP) ** 2
 #: A body the seam holds (contact, equality on) moves less than this, m (a tenth of the free fall).
 HELD = 0.1 * FREE_FALL
+#: What agrees exactly agrees to this many machine epsilons of the backend's precision (times of at most 1 s, speeds
+#: of at most 1 m/s, a 1 kg body's inverse inertia): rounding, never a missing or wrong mechanism.
+EXACT = 64.0
 #: Radius of the ball, m.
 RADIUS = 0.1
 
@@ -72,13 +75,14 @@ class Mechanism:
 
     Attributes:
         name: what the mechanism is, as the refusal names it.
-        test: ``(batch opener) -> None`` when it works, or what went wrong, in a few words with the numbers.
+        test: ``(batch opener, eps) -> None`` when it works, or what went wrong, in a few words with the numbers
+            (``eps``: the machine epsilon of the backend's precision, which scales the exact comparisons).
         c_only: the mechanism reads MuJoCo C's ``mjData`` whatever the backend (a check's field), so it is tested on
             MuJoCo C.
     """
 
     name: str
-    test: Callable[[Callable[[np.ndarray], Batch]], str | None]
+    test: Callable[[Callable[[np.ndarray], Batch], float], str | None]
     c_only: bool = False
 
 
@@ -87,9 +91,10 @@ def self_test_model() -> mujoco.MjModel:
     return mujoco.MjModel.from_xml_string(_MODEL)
 
 
-def _starts(model: mujoco.MjModel, count: int, *, ball_z: float = RADIUS - 1e-4, ball_vx: float = 0.0
+def _starts(model: mujoco.MjModel, count: int = 2, *, ball_z: float = RADIUS - 1e-4, ball_vx: float = 0.0
             ) -> np.ndarray:
-    """``count`` identical starts: the ball pressed 0.1 mm into the plane (sliding at ``ball_vx``), the bob held."""
+    """``count`` identical starts (every test steps two trajectories for the same number of steps, so that MJX and
+    MuJoCo Warp compile one chunk for them all): the ball pressed 0.1 mm into the plane (sliding at ``ball_vx``), the bob held."""
     qpos = np.tile([0.0, ball_z - RADIUS, 0.0], (count, 1))  # slide joints measure from the body's position
     qvel = np.tile([ball_vx, 0.0, 0.0], (count, 1))
     return initial_states(model, qpos, qvel)
@@ -101,7 +106,7 @@ def _drop(batch: Batch, qpos: int) -> np.ndarray:
     return chunk[:, 0, 1 + qpos] - chunk[:, -1, 1 + qpos]
 
 
-def _rollout(opener: Callable[[np.ndarray], Batch]) -> str | None:
+def _rollout(opener: Callable[[np.ndarray], Batch], eps: float) -> str | None:
     model = self_test_model()
     start = _starts(model, 2, ball_z=1.0)  # in the air
     with opener(start) as batch:
@@ -109,17 +114,18 @@ def _rollout(opener: Callable[[np.ndarray], Batch]) -> str | None:
         batch.set_states(np.array([1]), start[1:])  # trajectory 1 starts again, trajectory 0 goes on
         second = batch.run_chunk(STEPS)
     ticks = np.diff(np.concatenate([first[:, :, 0], second[:, 1:, 0]], axis=1), axis=1)
-    if not (np.abs(ticks[0] - TIMESTEP) < 1e-9 * TIMESTEP).all():
+    if not (np.abs(ticks[0] - TIMESTEP) < EXACT * eps).all():  # rounding of times near 0.1 s
         return f"recorded times advance by {ticks[0].min():.6g}-{ticks[0].max():.6g} s per step, not the timestep"
     drop = first[0, 0, 2] - first[0, -1, 2]
     again = second[1, 0, 2] - second[1, -1, 2]
-    if not (abs(drop - FREE_FALL) < 0.05 * FREE_FALL and again == drop and second[0, 0, 2] == first[0, -1, 2]):
+    if not (abs(drop - FREE_FALL) < 0.05 * FREE_FALL and abs(again - drop) < EXACT * eps
+            and second[0, 0, 2] == first[0, -1, 2]):
         return (f"a falling ball dropped {drop * 1e3:.4g} mm (free fall {FREE_FALL * 1e3:.4g}), "
                 f"{again * 1e3:.4g} mm after its state was set back")
     return None
 
 
-def _contact_release(opener: Callable[[np.ndarray], Batch]) -> str | None:
+def _contact_release(opener: Callable[[np.ndarray], Batch], eps: float) -> str | None:
     model = self_test_model()
     ball = model.geom("ball").id
     with opener(_starts(model, 2)) as batch:
@@ -138,7 +144,7 @@ def _contact_release(opener: Callable[[np.ndarray], Batch]) -> str | None:
     return None
 
 
-def _equality_toggle(opener: Callable[[np.ndarray], Batch]) -> str | None:
+def _equality_toggle(opener: Callable[[np.ndarray], Batch], eps: float) -> str | None:
     model = self_test_model()
     hold = model.equality("hold").id
     with opener(_starts(model, 2)) as batch:
@@ -155,7 +161,7 @@ def _equality_toggle(opener: Callable[[np.ndarray], Batch]) -> str | None:
     return None
 
 
-def _friction(opener: Callable[[np.ndarray], Batch]) -> str | None:
+def _friction(opener: Callable[[np.ndarray], Batch], eps: float) -> str | None:
     model = self_test_model()
     mus = (0.1, 0.5)
     with opener(_starts(model, 2, ball_vx=1.0)) as batch:
@@ -170,23 +176,23 @@ def _friction(opener: Callable[[np.ndarray], Batch]) -> str | None:
     return None
 
 
-def _fractional_step(opener: Callable[[np.ndarray], Batch]) -> str | None:
+def _fractional_step(opener: Callable[[np.ndarray], Batch], eps: float) -> str | None:
     model = self_test_model()
-    start = _starts(model, 1, ball_z=1.0)  # in the air
+    start = _starts(model, 2, ball_z=1.0)  # in the air
     with opener(start) as batch:
         fraction = 0.3 * batch.timestep
         after = batch.advance(0, start[0], fraction)
-        full = batch.run_chunk(1)
+        full = batch.run_chunk(STEPS)
     dt, vz = after[0] - start[0, 0], after[1 + model.nq + 1] - start[0, 1 + model.nq + 1]
-    if not (abs(dt - fraction) < 1e-9 * TIMESTEP and abs(vz + GRAVITY * fraction) < 1e-6 * GRAVITY * fraction):
+    if not (abs(dt - fraction) < EXACT * eps and abs(vz + GRAVITY * fraction) < EXACT * eps):
         return (f"a step of {fraction:g} s advanced the time by {dt:.6g} s and the falling ball's speed by "
                 f"{vz:.6g} m/s (expected {-GRAVITY * fraction:.6g})")
-    if not abs(full[0, 1, 0] - full[0, 0, 0] - TIMESTEP) < 1e-9 * TIMESTEP:
+    if not abs(full[0, 1, 0] - full[0, 0, 0] - TIMESTEP) < EXACT * eps:
         return f"the step after a fractional step lasted {full[0, 1, 0] - full[0, 0, 0]:.6g} s, not the timestep"
     return None
 
 
-def _actuator(opener: Callable[[np.ndarray], Batch]) -> str | None:
+def _actuator(opener: Callable[[np.ndarray], Batch], eps: float) -> str | None:
     model = self_test_model()
     hold, push = model.equality("hold").id, model.actuator("push").id
     with opener(_starts(model, 2)) as batch:
@@ -200,17 +206,17 @@ def _actuator(opener: Callable[[np.ndarray], Batch]) -> str | None:
     return None
 
 
-def _contact_fields(opener: Callable[[np.ndarray], Batch]) -> str | None:
-    del opener  # read from MuJoCo C's mjData, whatever the backend
+def _contact_fields(opener: Callable[[np.ndarray], Batch], eps: float) -> str | None:
+    del opener, eps  # read from MuJoCo C's mjData in float64, whatever the backend
     model = self_test_model()
     data = mujoco.MjData(model)
-    mujoco.mj_setState(model, data, _starts(model, 1)[0], STATE_SPEC)
+    mujoco.mj_setState(model, data, _starts(model)[0], STATE_SPEC)
     mujoco.mj_forward(model, data)
     if data.ncon != 1:
         return f"a ball pressed into a plane has {data.ncon} contacts, not 1"
     diag = float(efc_diag_inverse_inertia(data)[data.contact[0].efc_address])
     expected = float(model.body_invweight0[model.body("ball").id, 0])  # MuJoCo's translational inverse weight
-    if not abs(diag - expected) <= 1e-9 * expected:
+    if not abs(diag - expected) <= EXACT * np.finfo(float).eps * expected:
         return f"the contact's diagonal inverse inertia reads {diag:.6g} 1/kg, not the body's {expected:.6g}"
     return None
 
@@ -234,12 +240,13 @@ def failure(key: str, backend: str = "mujoco", precision: str = "float64") -> st
     mechanism = MECHANISMS[key]
     if mechanism.c_only:
         backend, precision = "mujoco", "float64"
+    eps = float(np.finfo(np.float32 if precision == "float32" else np.float64).eps)
 
     def opener(state0: np.ndarray) -> Batch:
         return open_batch(self_test_model(), state0, threads=1, backend=backend, precision=precision)
 
     try:
-        return mechanism.test(opener)
+        return mechanism.test(opener, eps)
     except Exception as err:  # a missing attribute or API on this release is a failed mechanism, not a crash
         return f"{type(err).__name__}: {err}"
 
