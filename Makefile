@@ -81,7 +81,7 @@ backends: $(STAMP)
 		--scaling $(SCALING) --workers $(WORKERS) --out $(BACKENDS_OUT)
 
 releases: $(STAMP)
-	$(BIN)/python -m mjpoincare.releases sessions | xargs -P $(RELEASE_WORKERS) -I{} $(BIN)/nox -s "{}"
+	$(BIN)/python -m mjpoincare.releases sessions | xargs -d '\n' -P $(RELEASE_WORKERS) -I{} $(BIN)/nox -s {}
 	$(BIN)/python -m mjpoincare.releases render
 
 releases-render: $(STAMP)

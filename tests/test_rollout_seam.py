@@ -19,6 +19,7 @@ from mjpoincare.simulate import (
     MujocoBatch,
     event_rollout,
     initial_states,
+    switch_contact,
 )
 
 #: A ball on a slide joint above a plane (contact margin 1 mm), a pendulum, a bob held by a weld, and a slider pushed
@@ -130,28 +131,35 @@ def test_event_rollout_restarts_at_the_returned_row_and_takes_overrides(free: mu
 
 
 def test_contact_released_and_restored_per_trajectory(model: mujoco.MjModel) -> None:
-    """A released ball falls through the floor while the other rests on it; restored, its own margin is back."""
+    """A released ball falls through the floor while the other rests on it; restored, its own collision filter is
+    back."""
     ball, drop = model.geom("ball").id, _column(model, "drop")
     models = _copies(model, 2)
     with MujocoBatch(models, _states(model, 2)) as batch:
         batch.set_contact(1, ball, False)
         fell = batch.run_chunk(200)
-        assert models[1].geom_margin[ball] == RELEASED_MARGIN and models[0].geom_margin[ball] == 0.001
+        assert models[1].geom_contype[ball] == models[1].geom_conaffinity[ball] == 0
+        np.testing.assert_array_equal(models[0].geom_contype, model.geom_contype)
         batch.set_contact(1, ball, True)
-        batch.set_contact(1, ball, True)  # restoring twice keeps the model's own margin
+        batch.set_contact(1, ball, True)  # restoring twice keeps the model's own filter
     assert fell[0, -1, drop] > -0.01  # resting, up to the soft contact's penetration
     assert fell[1, -1, drop] < -0.5 * 9.81 * 0.4**2 * 0.9  # free fall over 0.4 s
-    np.testing.assert_array_equal(models[1].geom_margin, model.geom_margin)
+    np.testing.assert_array_equal(models[1].geom_contype, model.geom_contype)
+    np.testing.assert_array_equal(models[1].geom_conaffinity, model.geom_conaffinity)
 
 
-def test_a_released_contact_is_bitwise_a_filtered_one(model: mujoco.MjModel) -> None:
-    """Switching a geom's contact off through its margin gives the very states of removing it from collision
-    (contype 0), so backends that can only change the margin at runtime keep every number."""
+@pytest.mark.skipif(tuple(int(v) for v in mujoco.__version__.split(".")[:2]) < (3, 5),
+                    reason="before 3.5 MuJoCo C still generates a contact below a negative margin (MJX and MuJoCo "
+                           "Warp, the backends that release through the margin, need 3.17)")
+def test_a_contact_released_through_the_margin_is_bitwise_a_filtered_one(model: mujoco.MjModel) -> None:
+    """Switching a geom's contact off through its margin (MJX, MuJoCo Warp) gives the very states of removing it
+    from collision (contype 0, MuJoCo C), so the backends keep every number."""
     ball = model.geom("ball").id
-    filtered = copy.copy(model)
-    filtered.geom_contype[ball] = filtered.geom_conaffinity[ball] = 0
+    through_margin = copy.copy(model)
+    switch_contact({}, through_margin.geom_margin, 0, ball, False)
+    assert through_margin.geom_margin[ball] == RELEASED_MARGIN
     start = _states(model, 1)
-    expected, _ = mj_rollout.rollout(filtered, mujoco.MjData(filtered), start, nstep=300)
+    expected, _ = mj_rollout.rollout(through_margin, mujoco.MjData(through_margin), start, nstep=300)
     with MujocoBatch(_copies(model, 1), start) as batch:
         batch.set_contact(0, ball, False)
         got = batch.run_chunk(300)
@@ -224,14 +232,14 @@ def test_a_shared_model_is_copied_for_the_trajectory_an_event_changes(model: muj
     """Events on one trajectory of a shared model change that trajectory's own copy: the caller's model and the
     other trajectories keep theirs, and the released ball falls through as with a model of its own."""
     ball, drop = model.geom("ball").id, _column(model, "drop")
-    margins, frictions = model.geom_margin.copy(), model.geom_friction.copy()
+    filters, frictions = model.geom_contype.copy(), model.geom_friction.copy()
     with MujocoBatch(model, _states(model, 3)) as batch:
         batch.set_contact(1, ball, False)
         batch.set_friction(2, 0.25)
         rows = batch.run_chunk(200)
         assert batch.models[0] is model and batch.models[1] is not model and batch.models[2] is not model
-        assert batch.models[1].geom_margin[ball] == RELEASED_MARGIN and batch.models[2].geom_friction[ball, 0] == 0.25
-    np.testing.assert_array_equal(model.geom_margin, margins)
+        assert batch.models[1].geom_contype[ball] == 0 and batch.models[2].geom_friction[ball, 0] == 0.25
+    np.testing.assert_array_equal(model.geom_contype, filters)
     np.testing.assert_array_equal(model.geom_friction, frictions)
     assert rows[0, -1, drop] > -0.01 and rows[2, -1, drop] > -0.01 and rows[1, -1, drop] < -0.5
 

@@ -21,8 +21,8 @@ from mjpoincare.scenarios import REGISTRY
 from mjpoincare.simulate import MujocoBatch
 
 #: The seam method (or MuJoCo C field reader) each mechanism stands behind.
-CALLS = {"set_contact": "contact", "set_eq_active": "equality", "set_friction": "friction", "advance": "fractional_step",
-         "set_actuator": "actuator", "efc_diag_inverse_inertia": "contact_fields"}
+CALLS = {"set_contact": "contact", "set_eq_active": "equality", "set_friction": "friction",
+         "advance": "fractional_step", "set_actuator": "actuator", "efc_diag_inverse_inertia": "contact_fields"}
 
 
 @pytest.fixture(autouse=True)

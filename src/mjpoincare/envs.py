@@ -26,7 +26,7 @@ gets the validated model and start, and their own controller acts through ``phys
 
 * ``compass-biped``, ``compass-biped-friction``: no contact switching (the swing foot's contact is not switched off
   after heel strike nor back on once ahead and clear, the trailing foot is not released at heel strike; the
-  validation switches the contacts of ``foot0`` / ``foot1`` per trajectory through ``geom_margin``). The swing foot
+  validation switches the contacts of ``foot0`` / ``foot1`` per trajectory through the seam). The swing foot
   catches the slope near legs-parallel (t = 0.24 s on the default ``compass-biped``) and the walker falls forward,
   legs together. No constant or PD torques either (``tau_ankle``, ``tau_hip``, gaits ``i`` / ``iii``), and no phase
   reset.

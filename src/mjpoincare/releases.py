@@ -170,7 +170,7 @@ def changes(payloads: Sequence[dict[str, Any]], scenario: str, preset: str) -> l
             spreads = [s if s is not None else math.inf for s in (old["spread"], check["spread"])]
             spread = max(spreads)
             out.append({"check": check["name"], "from": before, "to": after, "change": change, "spread": spread,
-                        "real": change > spread})
+                        "tolerance": check["tolerance"], "real": change > spread})
     return out
 
 
@@ -227,14 +227,16 @@ def render(payloads: Sequence[dict[str, Any]]) -> str:
             lines += _scenario_section(payloads, name, preset, found)
     lines += ["## Real changes", "",
               "Every change beyond the spread, with the first release where it appears (`python -m mjpoincare.releases "
-              "bisect` finds the patch release within a minor line).", ""]
+              "bisect` finds the patch release within a minor line). Real is not large: the last column is the change "
+              "against the check's tolerance.", ""]
     if all_real:
-        lines += ["| scenario | preset | check | first in | after | change | spread | change / spread |",
-                  "|---|---|---|---|---|---|---|---|"]
+        lines += ["| scenario | preset | check | first in | after | change | spread | change / spread "
+                  "| change / tolerance |", "|---|---|---|---|---|---|---|---|---|"]
         for name, preset, c in all_real:
             ratio = c["change"] / c["spread"] if c["spread"] > 0 else math.inf
+            to_tol = c["change"] / c["tolerance"] if c["tolerance"] > 0 else math.inf
             lines.append(f"| {name} | {preset} | {c['check']} | {c['to']} | {c['from']} | {_number(c['change'])} "
-                         f"| {_number(c['spread'])} | {_number(ratio)} |")
+                         f"| {_number(c['spread'])} | {_number(ratio)} | {_number(to_tol)} |")
     else:
         lines.append("None.")
     lines.append("")

@@ -94,7 +94,8 @@ def self_test_model() -> mujoco.MjModel:
 def _starts(model: mujoco.MjModel, count: int = 2, *, ball_z: float = RADIUS - 1e-4, ball_vx: float = 0.0
             ) -> np.ndarray:
     """``count`` identical starts (every test steps two trajectories for the same number of steps, so that MJX and
-    MuJoCo Warp compile one chunk for them all): the ball pressed 0.1 mm into the plane (sliding at ``ball_vx``), the bob held."""
+    MuJoCo Warp compile one chunk for them all): the ball pressed 0.1 mm into the plane (sliding at ``ball_vx``),
+    the bob held."""
     qpos = np.tile([0.0, ball_z - RADIUS, 0.0], (count, 1))  # slide joints measure from the body's position
     qvel = np.tile([ball_vx, 0.0, 0.0], (count, 1))
     return initial_states(model, qpos, qvel)
