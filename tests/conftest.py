@@ -9,9 +9,12 @@ import subprocess
 import sys
 import tempfile
 from collections.abc import Iterator
+from importlib import metadata
 from pathlib import Path
 
 import pytest
+from packaging.requirements import Requirement
+from packaging.utils import canonicalize_name
 
 # dm_control (the environments' tests) opens a GLFW context at import unless told otherwise; off-screen EGL works here
 os.environ.setdefault("MUJOCO_GL", "egl")
@@ -24,6 +27,42 @@ MJX_TEST = "tests/test_backends.py::test_rimless_wheel_on_mjx_passes_its_fast_ch
 mjx_run_key = pytest.StashKey[tuple[subprocess.Popen[bytes], Path]]()
 
 
+#: The distribution that makes each optional backend (``mjpoincare.backends.REQUIRES``) required in CI.
+BACKEND_DISTRIBUTIONS = {"mjx": "mujoco-mjx", "warp": "mujoco-warp"}
+#: The extras ``make test`` installs (CI runs ``make test``).
+CI_EXTRAS = ("dev", "viz", "dask", "peers", "mjx", "warp")
+
+
+def required_in_ci(distribution: str) -> bool:
+    """Whether CI (``CI=true``) must have ``distribution``: one of mjpoincare's requirements under an extra that
+    ``make test`` installs, whose environment marker admits this platform and Python (drake has no wheel for some
+    platforms, MJX and Warp need Python 3.11)."""
+    if os.environ.get("CI") != "true":
+        return False
+    for text in metadata.requires("mjpoincare") or []:
+        requirement = Requirement(text)
+        if canonicalize_name(requirement.name) == canonicalize_name(distribution) and (
+                requirement.marker is None or any(requirement.marker.evaluate({"extra": e}) for e in CI_EXTRAS)):
+            return True
+    return False
+
+
+def skip_unless_required(reason: str, distribution: str) -> None:
+    """Skip the calling test for ``reason`` (something optional is missing), or fail it where CI must have
+    ``distribution`` (:func:`required_in_ci`): a broken install never hides behind a skip."""
+    if required_in_ci(distribution):
+        pytest.fail(f"CI installs {distribution}, but: {reason}")
+    pytest.skip(reason)
+
+
+def require_module(module: str, distribution: str) -> None:
+    """Import ``module`` or :func:`skip_unless_required`."""
+    try:
+        __import__(module)
+    except ImportError as missing:
+        skip_unless_required(f"{module} is not installed ({missing})", distribution)
+
+
 @pytest.fixture(autouse=True)
 def _in_tmp_dir(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[Path]:
     monkeypatch.chdir(tmp_path)
@@ -31,16 +70,18 @@ def _in_tmp_dir(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[Pat
     assert not (tmp_path / "MUJOCO_LOG.TXT").exists(), "MuJoCo wrote MUJOCO_LOG.TXT into the working directory"
 
 
+@pytest.hookimpl(trylast=True)
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
     """The backend tests run last: they load JAX and Warp, whose native threads make every later process pool spawn
     its workers instead of forking them (:func:`mjpoincare.parallel.start_method`), which costs the sweeps and
     convergence ladders after them their start-up time. The MJX validation starts now, in a process of its own, when
-    its test is selected and MJX is installed (its test reports a missing MJX)."""
+    its test is selected and MJX is installed (its test reports a missing MJX). This hook runs last, after ``-m`` and
+    ``-k`` have deselected what they deselect, and ``--collect-only`` starts nothing."""
     items.sort(key=lambda item: item.nodeid.startswith("tests/test_backends.py"))
     from mjpoincare.backends import check_installed
     from mjpoincare.params import ParameterError
 
-    if not any(item.nodeid == MJX_TEST for item in items):
+    if config.option.collectonly or not any(item.nodeid == MJX_TEST for item in items):
         return
     try:
         check_installed("mjx")

@@ -18,6 +18,7 @@ from typing import Any
 
 import numpy as np
 import pytest
+from conftest import require_module
 from mjpoincare.analysis import checks
 from mjpoincare.analysis.checks import Check
 
@@ -59,7 +60,7 @@ def test_slotted_skate_is_first_order_to_the_analytic_value(tmp_path: Path) -> N
         assert entry["verdict"] == ANALYTIC, (name, entry["bias"], entry["band"])
     resumed = converge("slotted-skate", {}, "fast", axes=("timestep",), points=3, json_path=path, resume=True)
     assert resumed["rungs_run"] == 0 and resumed["analysis"] == payload["analysis"]
-    pytest.importorskip("matplotlib")
+    require_module("matplotlib", "matplotlib")
     plots = write_plots(payload, str(tmp_path / "report"))
     assert {p.name for p in plots} >= {"converge-slotted-skate-sigma4_forward.png"}
 

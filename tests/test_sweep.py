@@ -7,6 +7,7 @@ import math
 from pathlib import Path
 
 import pytest
+from conftest import require_module
 
 from mjpoincare.cli import main
 from mjpoincare.params import ParameterError
@@ -55,7 +56,7 @@ def test_parallel_sweep_resumes_from_its_results_file(tmp_path: Path, capsys: py
 
 @pytest.mark.mujoco
 def test_dask_engine_gives_the_same_rows(tmp_path: Path) -> None:
-    pytest.importorskip("dask.distributed")
+    require_module("dask.distributed", "dask")
     local, dask = tmp_path / "local.json", tmp_path / "dask.json"
     args = ["sweep", "slotted-skate", "--param", "Omega0", "--values", "0.1,0.2"]
     assert main([*args, "--json", str(local)]) == 0
