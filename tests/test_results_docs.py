@@ -65,7 +65,7 @@ def _rows(page: str) -> list[list[str]]:
 def test_renderer_reports_the_json() -> None:
     payload = _synthetic()
     page = results.render_scenario(payload)
-    assert page == results.render_scenario(copy.deepcopy(payload))
+    assert payload == _synthetic()  # rendering leaves its input alone
     rows = _rows(page)
     assert all(len(r) == 7 for r in rows), "a pipe or newline in a cell broke the table"
     fast = {r[0]: r for r in rows[:3]}
