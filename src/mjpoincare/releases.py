@@ -257,7 +257,8 @@ def _scenario_section(payloads: Sequence[dict[str, Any]], name: str, preset: str
     flag = {(c["to"], c["check"]): c for c in found}
     lines = [f"## {name} [{preset}]", "",
              "Each cell: the simulated value, then `err` the error (`FAIL` when beyond the tolerance), `±` the spread "
-             "on that release, and **real** or jitter for the change from the release above.", "",
+             "on that release, and **real**, jitter or identical (bit for bit) for the change from the release "
+             "above.", "",
              "| MuJoCo | verdict | " + " | ".join(checks) + " |", "|---|---|" + "---|" * len(checks)]
     for version, run in runs:
         if run["refused"]:
@@ -271,7 +272,8 @@ def _scenario_section(payloads: Sequence[dict[str, Any]], name: str, preset: str
                 cells.append("not available")
                 continue
             change = flag.get((version, check))
-            mark = "" if change is None else (" **real**" if change["real"] else " jitter")
+            mark = ("" if change is None else " **real**" if change["real"]
+                    else " identical" if change["change"] == 0 else " jitter")
             fail = "" if c["passed"] else " FAIL"
             cells.append(f"{_value(c['simulated'])}<br>err {_number(c['error'])}{fail} ±{_number(c['spread'], 2)}"
                          f"{mark}")
