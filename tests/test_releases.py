@@ -4,6 +4,7 @@ the first patch release of a change (on a synthetic index: no simulation here)."
 
 from __future__ import annotations
 
+import json
 import re
 from pathlib import Path
 from typing import Any
@@ -119,3 +120,26 @@ def test_bad_input_exits_2_in_one_line(capsys: pytest.CaptureFixture[str]) -> No
 def test_sessions_are_the_nox_sessions_of_the_history(capsys: pytest.CaptureFixture[str]) -> None:
     assert releases.main(["sessions"]) == 0
     assert capsys.readouterr().out.split() == [f"release(mujoco='{v}')" for v in releases.RELEASES]
+
+
+def test_a_bisection_reads_the_history_then_runs_a_release_point(tmp_path: Path,
+                                                                 monkeypatch: pytest.MonkeyPatch) -> None:
+    """A release the history holds is read from it; one it does not is run through the nox session release_point
+    into the bisection's own folder (never into the history's)."""
+    history, out = tmp_path / "history", tmp_path / "bisect"
+    for folder, version, value in ((history, "3.3.4", 0.5), (out, "3.3.5", 0.6)):
+        (folder / "json").mkdir(parents=True, exist_ok=True)
+        (folder / "json" / f"mujoco-{version}.json").write_text(json.dumps(_payload(version, value, 1e-6)))
+    monkeypatch.setattr(releases, "OUT", history)
+    calls: list[list[str]] = []
+
+    def fake_nox(command: list[str], check: bool) -> None:
+        calls.append(command)
+        (out / "json" / "mujoco-3.3.6.json").write_text(json.dumps(_payload("3.3.6", 0.7, 1e-6)))
+
+    monkeypatch.setattr(releases.subprocess, "run", fake_nox)
+    value_at = releases._nox_point(out, "toy", "fast", "eigenvalue")
+    assert value_at("3.3.4") == (0.5, 1e-6) and value_at("3.3.5") == (0.6, 1e-6) and not calls
+    assert value_at("3.3.6") == (0.7, 1e-6)
+    assert calls[0][1:] == ["-m", "nox", "-s", "release_point", "--", "3.3.6", "--out", str(out), "--scenario", "toy",
+                            "--preset", "fast"]

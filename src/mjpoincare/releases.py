@@ -49,6 +49,8 @@ SPREAD: tuple[tuple[str, int, dict[str, Value]], ...] = (
 #: Where ``make releases`` writes, relative to the repository root.
 OUT = Path("docs/results/releases")
 PAGE = Path("docs/results/mujoco-releases.md")
+#: Where a bisection's runs of releases outside the history go.
+BISECT_OUT = Path("renders/releases-bisect")
 SCHEMA = 1
 INDEX = "https://pypi.org/simple/mujoco/"
 
@@ -325,17 +327,25 @@ def bisect(low: str, high: str, scenario: str, preset: str, check: str,
 
 
 def _nox_point(out: Path, scenario: str, preset: str, check: str) -> Callable[[str], tuple[Any, float]]:
-    """``value_at`` for :func:`bisect`: a release's run through the nox session ``release_point`` (its JSON reused
-    when ``out`` holds it)."""
+    """``value_at`` for :func:`bisect`: a release's run from the history (:data:`OUT`) when it holds the scenario at
+    ``preset``, else from ``out`` or through the nox session ``release_point`` into ``out``."""
+
+    def held(release: str) -> dict[str, Any] | None:
+        for folder in (OUT, out):
+            path = folder / "json" / f"mujoco-{release}.json"
+            if path.exists():
+                payload = json.loads(path.read_text())
+                run = _run(payload, scenario, preset)
+                if run is not None:
+                    return run
+        return None
 
     def value_at(release: str) -> tuple[Any, float]:
-        path = out / "json" / f"mujoco-{release}.json"
-        held = json.loads(path.read_text()) if path.exists() else None
-        if held is None or _run(held, scenario, preset) is None:
+        run = held(release)
+        if run is None:
             subprocess.run([sys.executable, "-m", "nox", "-s", "release_point", "--", release, "--out", str(out),
                             "--scenario", scenario, "--preset", preset], check=True)
-            held = json.loads(path.read_text())
-        run = _run(held, scenario, preset)
+            run = held(release)
         if run is None or run["refused"]:
             raise ParameterError(f"bisect: MuJoCo {release} refused {scenario}: {run and run['refused']}")
         found = next((c for c in run["checks"] if c["name"] == check), None)
@@ -363,7 +373,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     bis.add_argument("high")
     bis.add_argument("--check", required=True, help="SCENARIO/CHECK, e.g. rimless-wheel/eigenvalue")
     bis.add_argument("--preset", default="fast")
-    bis.add_argument("--out", type=Path, default=OUT)
+    bis.add_argument("--out", type=Path, default=BISECT_OUT, help="where runs outside the history go")
     bis.add_argument("--json", help="write the bisection's result here")
     args = parser.parse_args(argv)
     try:
@@ -393,7 +403,8 @@ def _cmd_bisect(args: argparse.Namespace) -> int:
         raise ParameterError(f"bisect: {args.low} must be older than {args.high}")
     value_at = _nox_point(args.out, scenario, args.preset, check)
     result = bisect(args.low, args.high, scenario, args.preset, check, value_at)
-    print(f"{args.check} [{args.preset}]: first real change after {args.low} in {result['first'] or 'none'}")
+    print(f"{args.check} [{args.preset}]: first real change after {args.low} in {result['first'] or 'none'} "
+          f"(probed {', '.join(result['probed'])})")
     if args.json:
         write_json(result, args.json)
     return 0
