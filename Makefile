@@ -5,8 +5,9 @@
 # resolution); pip installs through it as constraints, so CI and a new user get the versions the suite was tested on.
 #   make lock         regenerate requirements/lock.txt from pyproject.toml
 #   make test-latest  the tests against the newest versions pyproject.toml allows (finds dependency drift)
-#   make margins      the regression gate's margin table: every gated check's error and its spread under seed,
-#                     threads, starts x(1+1e-12) and the oldest numpy/scipy allowed (renders/margins*.json)
+#   make margins      the regression gate's margin table: every check's form (gated, watched, declared miss), error,
+#                     spread under seed, threads, starts x(1+1e-12) and x(1+1e-9) and the oldest numpy/scipy allowed,
+#                     and resolution (renders/margins*.json)
 #   make results         every scenario's default validation at each preset into docs/results/json/, then its pages
 #   make results-render  re-render docs/results/*.md from the committed JSON (no simulation)
 #   make backends     the backends' findings: every scenario on MuJoCo C, MJX (x64, float32) and MuJoCo Warp, one process

@@ -63,6 +63,25 @@ def require_module(module: str, distribution: str) -> None:
         skip_unless_required(f"{module} is not installed ({missing})", distribution)
 
 
+def all_gated(label: str) -> str:
+    """``label``, after asserting that every check of that gate case is gated (a test that needs a whole run to pass
+    uses such a case, and leaves the margin to the gate)."""
+    from mjpoincare import gate
+
+    found = gate.case(label)
+    assert not found.watched and not found.misses, f"{label} is not a wholly gated case"
+    return found.scenario
+
+
+def failed_gated_checks(label: str, checks: list[dict[str, object]]) -> list[str]:
+    """The checks (JSON records) that gate case ``label`` gates and that failed in ``checks`` (a run of the same
+    scenario and preset elsewhere: another backend, an installed copy)."""
+    from mjpoincare import gate
+
+    gated = set(gate.case(label).gated)
+    return [str(c["name"]) for c in checks if c["name"] in gated and not c["passed"]]
+
+
 @pytest.fixture(autouse=True)
 def _in_tmp_dir(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[Path]:
     monkeypatch.chdir(tmp_path)

@@ -14,7 +14,7 @@ import json
 import mujoco
 import numpy as np
 import pytest
-from conftest import BACKEND_DISTRIBUTIONS, skip_unless_required
+from conftest import BACKEND_DISTRIBUTIONS, failed_gated_checks, skip_unless_required
 from mujoco import rollout as mj_rollout
 from test_rollout_seam import XML, fractional_step_of
 
@@ -224,8 +224,8 @@ def test_a_setting_a_backend_lacks_is_refused_in_one_line() -> None:
 
 def test_rimless_wheel_on_mjx_passes_its_fast_checks(request: pytest.FixtureRequest) -> None:
     """The rimless wheel's fast-preset validation on MJX (x64), run by the findings command in a process of its own
-    (``conftest.MJX_RUN``, started at collection): every check passes against MuJoCo C's tolerances, and the record
-    carries MJX's compile seconds."""
+    (``conftest.MJX_RUN``, started at collection): every check MuJoCo C's gate gates on that run passes against MuJoCo
+    C's tolerances (the others are the gate's to watch), and the record carries MJX's compile seconds."""
     _require("mjx")
     from conftest import MJX_RUN, mjx_run_key
 
@@ -235,20 +235,21 @@ def test_rimless_wheel_on_mjx_passes_its_fast_checks(request: pytest.FixtureRequ
     scenario, backend, precision, preset = MJX_RUN
     record = json.loads((out / "json" / f"{scenario}-{preset}-{backend}-{precision}.json").read_text())
     table = "\n".join(f"{c['name']}: {c['error']:.3g} (tolerance {c['tolerance']:.3g})" for c in record["checks"])
-    assert record["passed"] and all(c["passed"] for c in record["checks"]), table
+    assert not failed_gated_checks("rimless-wheel[fast]", record["checks"]), table  # the C gate's gated checks
     assert {c["name"] for c in record["checks"]} >= {"omega_post_impact", "eigenvalue", "basins", "stable"}
     assert record["settings"]["backend"] == "mjx" and record["settings"]["precision"] == "float64"
     assert record["compile_s"] > 0
 
 
 def test_rimless_wheel_on_warp_as_measured() -> None:
-    """The rimless wheel's fast-preset validation on MuJoCo Warp (float32): every check passes, and the eigenvalue
-    error is Warp's own, 2.8e-3 measured here against MuJoCo C's 2.6e-4 (float32 arithmetic through the impact
-    jitter); asserted within a factor of 2.5 of the measurement, as machines differ at that level."""
+    """The rimless wheel's fast-preset validation on MuJoCo Warp (float32): every check MuJoCo C's gate gates passes
+    (the others are the gate's to watch), and the eigenvalue error is Warp's own, 2.8e-3 measured here against MuJoCo
+    C's 2.6e-4 (float32 arithmetic through the impact jitter); asserted within a factor of 2.5 of the measurement, as
+    machines differ at that level."""
     from mjpoincare.validation import run_validation
 
     _require("warp")
     result = run_validation("rimless-wheel", {"backend": "warp"}, "fast")
-    assert result.passed, result.table()
+    assert not failed_gated_checks("rimless-wheel[fast]", result.to_dict()["checks"]), result.table()
     eigenvalue = next(c for c in result.checks if c.name == "eigenvalue")
     assert 2.8e-3 / 2.5 <= eigenvalue.error <= 2.8e-3 * 2.5, result.table()

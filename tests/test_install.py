@@ -12,6 +12,7 @@ import zipfile
 from pathlib import Path
 
 import pytest
+from conftest import all_gated
 
 REPO = Path(__file__).resolve().parents[1]
 pytestmark = pytest.mark.install
@@ -56,18 +57,20 @@ def test_wheel_ships_no_generic_top_level_name(wheel: Path) -> None:
 def test_installed_cli_runs_from_another_directory(env_bin: Path, tmp_path: Path) -> None:
     listed = _run([env_bin / "mjpoincare", "list"], cwd=tmp_path)
     assert listed.returncode == 0 and "rimless-wheel" in listed.stdout, listed.stderr
-    ran = _run([env_bin / "mjpoincare", "validate", "rimless-wheel"], cwd=tmp_path)
+    scenario = all_gated("rimless-wheel-friction[fast]")  # every check gated: the run passes with margin
+    ran = _run([env_bin / "mjpoincare", "validate", scenario], cwd=tmp_path)
     assert ran.returncode == 0, ran.stdout + ran.stderr
-    api = _run([env_bin / "python", "-c", "import mjpoincare; print(mjpoincare.validate('rimless-wheel').passed)"],
+    api = _run([env_bin / "python", "-c", f"import mjpoincare; print(mjpoincare.validate({scenario!r}).passed)"],
                cwd=tmp_path)
     assert api.stdout.strip() == "True", api.stderr
     assert list(tmp_path.iterdir()) == []  # no MUJOCO_LOG.TXT, nothing else
 
 
 def test_plugin_gates_a_throwaway_project(env_bin: Path, tmp_path: Path) -> None:
-    """Only the wheel and pytest: the default settings pass; a 4 ms step (40x the fast preset's) fails with exit 1
-    and the failing check's analytic value, simulated value and tolerance in the report."""
-    passing = _run([env_bin / "pytest", "-q", "--mjpoincare", "rimless-wheel,slotted-skate"], cwd=tmp_path)
+    """Only the wheel and pytest: a wholly gated scenario's defaults pass; a 4 ms step (40x the fast preset's) fails
+    with exit 1 and the failing check's analytic value, simulated value and tolerance in the report."""
+    scenario = all_gated("rimless-wheel-friction[fast]")
+    passing = _run([env_bin / "pytest", "-q", "--mjpoincare", scenario], cwd=tmp_path)
     assert passing.returncode == 0, passing.stdout[-3000:]
     assert "rimless-wheel::eigenvalue" in _run([env_bin / "pytest", "-q", "--collect-only", "--mjpoincare",
                                                 "rimless-wheel"], cwd=tmp_path).stdout

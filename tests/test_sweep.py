@@ -30,8 +30,9 @@ def test_crossing_interpolates_and_extrapolates() -> None:
 @pytest.mark.mujoco
 def test_wheel_sweep_over_slope(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     out = tmp_path / "sweep.json"
-    assert main(["sweep", "rimless-wheel", "--param", "slope", "--values", "0.08,0.12", "--json", str(out)]) == 0
+    code = main(["sweep", "rimless-wheel", "--param", "slope", "--values", "0.08,0.12", "--json", str(out)])
     rows = json.loads(out.read_text())["rows"]
+    assert code == (0 if all(r["passed"] for r in rows) else 1)  # each row's verdict is the gate's to assert
     assert [r["slope"] for r in rows] == [0.08, 0.12]
     assert all(abs(r["fitted_lowest"] - 0.5) < 0.02 for r in rows)  # beta^2 = 0.5 for 8 spokes at any slope
     assert "lowest Re" in capsys.readouterr().out
@@ -42,13 +43,15 @@ def test_wheel_sweep_over_slope(tmp_path: Path, capsys: pytest.CaptureFixture[st
 def test_parallel_sweep_resumes_from_its_results_file(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     out = tmp_path / "sweep.json"
     args = ["sweep", "rimless-wheel", "--param", "slope", "--json", str(out)]
-    assert main([*args, "--values", "0.08,0.1", "--workers", "2"]) == 0
+    code = main([*args, "--values", "0.08,0.1", "--workers", "2"])
     first = json.loads(out.read_text())
+    assert code == (0 if all(r["passed"] for r in first["rows"]) else 1)
     assert [r["slope"] for r in first["rows"]] == [0.08, 0.1] and first["workers"] == 2
     capsys.readouterr()
-    assert main([*args, "--values", "0.08,0.1,0.12", "--resume"]) == 0
+    code = main([*args, "--values", "0.08,0.1,0.12", "--resume"])
     assert "1 points run (2 resumed)" in capsys.readouterr().out
     rows = json.loads(out.read_text())["rows"]
+    assert code == (0 if all(r["passed"] for r in rows) else 1)
     assert [r["slope"] for r in rows] == [0.08, 0.1, 0.12]
     assert rows[:2] == first["rows"]  # the finished points were not redone
     assert main([*args, "--values", "0.08", "--resume", "--set", "spokes=10"]) == 2  # a different sweep's file
@@ -59,8 +62,8 @@ def test_dask_engine_gives_the_same_rows(tmp_path: Path) -> None:
     require_module("dask.distributed", "dask")
     local, dask = tmp_path / "local.json", tmp_path / "dask.json"
     args = ["sweep", "slotted-skate", "--param", "Omega0", "--values", "0.1,0.2"]
-    assert main([*args, "--json", str(local)]) == 0
-    assert main([*args, "--json", str(dask), "--engine", "dask", "--workers", "2"]) == 0
+    code = main([*args, "--json", str(local)])
+    assert main([*args, "--json", str(dask), "--engine", "dask", "--workers", "2"]) == code
     strip = [{k: v for k, v in r.items() if k != "wall_s"} for r in json.loads(local.read_text())["rows"]]
     assert [{k: v for k, v in r.items() if k != "wall_s"} for r in json.loads(dask.read_text())["rows"]] == strip
 
