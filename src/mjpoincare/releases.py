@@ -28,7 +28,8 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
-from mjpoincare.params import ParameterError, Value
+from mjpoincare.gate import PERTURBATIONS
+from mjpoincare.params import ParameterError
 from mjpoincare.result import write_json, write_text
 
 #: The releases of the history: the oldest admitted (``pyproject.toml``: ``MjSpec.delete``, which the models' builds
@@ -38,14 +39,9 @@ RELEASES: tuple[str, ...] = ("3.3.4", "3.3.7", "3.4.0", "3.5.0", "3.6.0", "3.7.0
 OLDEST, NEWEST = RELEASES[0], RELEASES[-1]
 #: Releases on which the accurate preset runs too.
 ACCURATE_ON = (OLDEST, NEWEST)
-#: Perturbations that must not change a result (label, seed, extra settings): the gate's, and the starts scaled by
-#: 1 + 1e-9 (the largest perturbation of the spread).
-SPREAD: tuple[tuple[str, int, dict[str, Value]], ...] = (
-    ("seed 1", 1, {}),
-    ("threads 1", 0, {"threads": 1}),
-    ("starts x(1+1e-12)", 0, {"start_perturbation": 1e-12}),
-    ("starts x(1+1e-9)", 0, {"start_perturbation": 1e-9}),
-)
+#: Perturbations that must not change a result (label, seed, extra settings): the gate's (seed 1, one thread, the
+#: starts scaled by 1 + 1e-12 and 1 + 1e-9).
+SPREAD = PERTURBATIONS
 #: Where ``make releases`` writes, relative to the repository root.
 OUT = Path("docs/results/releases")
 PAGE = Path("docs/results/mujoco-releases.md")
