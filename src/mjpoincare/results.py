@@ -117,7 +117,7 @@ def format_json_value(value: Any) -> str:
     return str(value)
 
 
-def _cell(text: str) -> str:
+def table_cell(text: str) -> str:
     """``text`` safe inside a markdown table cell (pipes escaped, one line)."""
     return " ".join(text.split()).replace("|", "\\|")
 
@@ -136,7 +136,7 @@ def _stamp(env: dict[str, Any]) -> list[str]:
         f"| MuJoCo | {env['mujoco']} |",
         f"| numpy / scipy / Python | {env['numpy']} / {env['scipy']} / {env['python']} |",
         f"| git commit | {sha} |",
-        f"| CPU | {_cell(env['cpu'])} ({env['logical_cpus']} logical CPUs), {_cell(env['platform'])} |",
+        f"| CPU | {table_cell(env['cpu'])} ({env['logical_cpus']} logical CPUs), {table_cell(env['platform'])} |",
         f"| date (UTC) | {env['date']} |",
     ]
 
@@ -163,18 +163,18 @@ def render_scenario(payload: dict[str, Any]) -> str:
         for c in run["checks"]:
             error = "nan" if c["error"] is None else f"{c['error']:.3g}"
             unit = f" {c['unit']}" if c["unit"] else ""
-            lines.append(f"| {_cell(c['name'])} | {_cell(format_json_value(c['analytic']))}{unit} "
-                         f"| {_cell(format_json_value(c['simulated']))}{unit} | {error} {c['error_kind']} "
-                         f"| {c['tolerance']:.3g} | {'PASS' if c['passed'] else 'FAIL'} | {_cell(c['why'])} |")
+            lines.append(f"| {table_cell(c['name'])} | {table_cell(format_json_value(c['analytic']))}{unit} "
+                         f"| {table_cell(format_json_value(c['simulated']))}{unit} | {error} {c['error_kind']} "
+                         f"| {c['tolerance']:.3g} | {'PASS' if c['passed'] else 'FAIL'} | {table_cell(c['why'])} |")
         t = run["timing"]
         lines += ["", f"Wall {t['wall_s']:.3g} s for {t['steps']:.3g} steps ({t['steps_per_s']:.3g} steps/s; "
                   f"MuJoCo alone {t['rollout_steps_per_s']:.3g} steps/s)."]
         for item, rep in run.get("reported", {}).items():
             lines.append(f"Reported, not judged: {item} = {format_json_value(rep['value'])} {rep['unit']} "
-                         f"({_cell(rep['note'])}).")
+                         f"({table_cell(rep['note'])}).")
         if run["diverged_trajectories"]:
             lines.append(f"Diverged trajectories: {run['diverged_trajectories']}.")
-        lines += [f"MuJoCo warning: {_cell(w)}" for w in run["warnings"]]
+        lines += [f"MuJoCo warning: {table_cell(w)}" for w in run["warnings"]]
         lines += ["", f"Settings: {_assignments(run['settings'])}.", ""]
     return "\n".join(lines)
 
@@ -192,7 +192,7 @@ def render_index(payloads: Sequence[dict[str, Any]]) -> str:
         for run in payload["runs"]:
             failed = ", ".join(c["name"] for c in run["checks"] if not c["passed"]) or "none"
             lines.append(f"| [{payload['scenario']}]({payload['scenario']}.md) | {run['preset']} | {_verdict(run)} "
-                         f"| {_cell(failed)} | {run['timing']['wall_s']:.3g} | {env['mujoco']} | {sha} "
+                         f"| {table_cell(failed)} | {run['timing']['wall_s']:.3g} | {env['mujoco']} | {sha} "
                          f"| {env['date']} |")
     lines += ["", "A `+` after the commit: the run had uncommitted changes to tracked files. A failed check may be an "
               "expected miss that the regression gate declares with its mechanism (`src/mjpoincare/gate.py`, "

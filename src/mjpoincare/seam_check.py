@@ -126,40 +126,35 @@ def _rollout(opener: Callable[[np.ndarray], Batch], eps: float) -> str | None:
     return None
 
 
-def _contact_release(opener: Callable[[np.ndarray], Batch], eps: float) -> str | None:
-    model = self_test_model()
-    ball = model.geom("ball").id
-    with opener(_starts(model, 2)) as batch:
+def _release_and_restore(opener: Callable[[np.ndarray], Batch], switch: Callable[[Batch, bool], None], qpos: int,
+                         what: str) -> str | None:
+    """Trajectory 1's ``switch`` off: its body (coordinate ``qpos``) falls freely while trajectory 0's stays held;
+    switched on again and both set back to the start, both stay held."""
+    with opener(_starts(self_test_model())) as batch:
         start = batch.states()
-        batch.set_contact(1, ball, False)
-        released = _drop(batch, 1)
-        batch.set_contact(1, ball, True)
+        switch(batch, False)
+        released = _drop(batch, qpos)
+        switch(batch, True)
         batch.set_states(np.arange(2), start)
-        restored = _drop(batch, 1)
+        restored = _drop(batch, qpos)
     if not abs(released[1] - FREE_FALL) < 0.1 * FREE_FALL:
-        return (f"a released ball fell {released[1] * 1e3:.3g} mm in {STEPS * TIMESTEP:g} s "
+        return (f"a released {what} fell {released[1] * 1e3:.3g} mm in {STEPS * TIMESTEP:g} s "
                 f"(free fall {FREE_FALL * 1e3:.3g})")
     if not (abs(released[0]) < HELD and abs(restored).max() < HELD):
-        return (f"a resting ball moved {max(abs(released[0]), abs(restored).max()) * 1e3:.3g} mm with its contact on "
-                f"(or restored)")
+        return f"a held (or restored) {what} moved {max(abs(released[0]), abs(restored).max()) * 1e3:.3g} mm"
     return None
+
+
+def _contact_release(opener: Callable[[np.ndarray], Batch], eps: float) -> str | None:
+    ball = self_test_model().geom("ball").id
+    return _release_and_restore(opener, lambda batch, on: batch.set_contact(1, ball, on), 1,
+                                "ball resting on a plane (its contact)")
 
 
 def _equality_toggle(opener: Callable[[np.ndarray], Batch], eps: float) -> str | None:
-    model = self_test_model()
-    hold = model.equality("hold").id
-    with opener(_starts(model, 2)) as batch:
-        start = batch.states()
-        batch.set_eq_active(1, hold, False)
-        released = _drop(batch, 2)
-        batch.set_eq_active(1, hold, True)
-        batch.set_states(np.arange(2), start)
-        restored = _drop(batch, 2)
-    if not abs(released[1] - FREE_FALL) < 0.1 * FREE_FALL:
-        return f"a bob released from its equality fell {released[1] * 1e3:.3g} mm (free fall {FREE_FALL * 1e3:.3g})"
-    if not (abs(released[0]) < HELD and abs(restored).max() < HELD):
-        return f"a bob held by its equality moved {max(abs(released[0]), abs(restored).max()) * 1e3:.3g} mm"
-    return None
+    hold = self_test_model().equality("hold").id
+    return _release_and_restore(opener, lambda batch, on: batch.set_eq_active(1, hold, on), 2,
+                                "bob held by a joint equality")
 
 
 def _friction(opener: Callable[[np.ndarray], Batch], eps: float) -> str | None:
