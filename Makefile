@@ -19,6 +19,10 @@
 #   make releases-render  re-render docs/results/mujoco-releases.md from the committed JSON (no simulation)
 #   make bisect LOW=3.17.0 HIGH=4.0.0 CHECK=rimless-wheel/eigenvalue [PRESET=fast]   the first patch release between
 #                     two releases where a check really changes (beyond its spread)
+#   make tune         the preset search: continue each stored study (renders/tune/SCENARIO.db, Optuna) of TUNE_SCENARIOS
+#                     to TUNE_TRIALS trials per target preset, export it to docs/results/tune/json/ with its front's
+#                     plot, then render docs/results/tune/SCENARIO.md
+#   make tune-render  re-render docs/results/tune/*.md from the committed JSON (no simulation)
 #   make gpu-check    the same at a GPU's sizes (both presets, batches of 4096, 64 x 64 basin map, 64 mu values, batch
 #                     sizes 1 to 16384) into docs/results/backends-gpu/; on a CPU: make gpu-check BATCH=8 MAPS=2 ...
 PYTHON ?= python3
@@ -37,10 +41,12 @@ SCALING ?=
 WORKERS ?= 1
 RELEASE_WORKERS ?= 2
 PRESET ?= fast
+TUNE_SCENARIOS ?= rimless-wheel rimless-wheel-friction slotted-skate rimless-wheel-3d compass-biped
+TUNE_TRIALS ?= 16
 BACKENDS_OUT ?= docs/results/backends
 
 .PHONY: validate test test-latest lock margins results results-render backends gpu-check bench gate clean releases \
-	releases-render bisect
+	releases-render bisect tune tune-render
 
 $(STAMP): pyproject.toml $(LOCK)
 	@$(PYTHON) -c 'import sys; sys.exit(0 if sys.version_info >= (3, 10) else "mjpoincare needs Python >= 3.10")'
@@ -76,6 +82,15 @@ results: $(STAMP)
 
 results-render: $(STAMP)
 	$(BIN)/python -m mjpoincare.results --render-only
+
+tune: $(STAMP)
+	set -e; for s in $(TUNE_SCENARIOS); do for t in accurate fast; do \
+	  $(BIN)/mjpoincare tune $$s --target $$t --trials $(TUNE_TRIALS) --resume \
+	    --json docs/results/tune/json/$$s-$$t.json --plot docs/results/tune/$$s-$$t.png; done; done
+	$(BIN)/python -m mjpoincare.tune_pages
+
+tune-render: $(STAMP)
+	$(BIN)/python -m mjpoincare.tune_pages
 
 backends: $(STAMP)
 	$(BIN)/python -m mjpoincare.backends.findings all --presets $(PRESETS) --batch $(BATCH) --maps $(MAPS) \

@@ -1,4 +1,4 @@
-"""``mjpoincare list | validate | bench | sweep | converge | stress | margins | render``: the command line."""
+"""``mjpoincare list | validate | bench | sweep | converge | stress | margins | tune | render``: the command line."""
 
 from __future__ import annotations
 
@@ -8,6 +8,7 @@ import sys
 from collections.abc import Sequence
 from pathlib import Path
 
+from mjpoincare.parallel import machine_cores
 from mjpoincare.params import ParameterError, parse_assignments
 
 EXIT_PASS, EXIT_FAIL, EXIT_BAD_INPUT = 0, 1, 2
@@ -219,6 +220,43 @@ def _cmd_margins(args: argparse.Namespace) -> int:
     return EXIT_PASS if all(r["holds"] for r in rows) else EXIT_FAIL
 
 
+def _cmd_tune(args: argparse.Namespace) -> int:
+    from mjpoincare import scenarios
+    from mjpoincare.result import check_output_path, write_json
+    from mjpoincare.results import environment
+    from mjpoincare.tune import STUDY_DIR, run_study, summary
+
+    name = scenarios.get(args.scenario).name
+    check_output_path(args.json, "--json")
+    check_output_path(args.plot, "--plot")
+    if args.plot:
+        _require_viz("tune --plot", "matplotlib")
+    path = Path(args.study or STUDY_DIR / f"{name}.db")
+    study = run_study(name, args.target, trials=args.trials, workers=args.workers, path=path, resume=args.resume,
+                      seed=args.seed)
+    data = {**summary(study), "environment": environment(),
+            "command": f"mjpoincare tune {name} --target {args.target} --trials {args.trials}"}
+    print(f"{data['study']}: {len(data['trials'])} trials, Pareto front of {len(data['front'])} (study {path})")
+    print(f"{'CPU s':>8} {'wall s':>8} {'worst ratio':>12}  worst check / settings")
+    for row in data["front"]:
+        print(f"{row['cpu_s']:8.3g} {row['wall_s']:8.3g} {row['worst_ratio']:12.3g}  {row['worst_check']}"
+              f"  [{row['origin']}] {row['settings']}")
+    chosen = data["chosen"]
+    if chosen is None:
+        print(f"no trial holds every check within {data['preset_ratio']:g} of its {args.target} tolerance at every "
+              "coverage point: no preset in the searched space (the front above is the best found)")
+    else:
+        print(f"preset {args.target}: trial {chosen['number']} ({chosen['cpu_s']:.3g} CPU s, worst ratio "
+              f"{chosen['worst_ratio']:.3g} at {chosen['worst_check']}): {data['preset']}")
+    if args.json:
+        write_json(data, args.json)
+    if args.plot:
+        from mjpoincare.tune_pages import plot_front
+
+        plot_front(data, args.plot)
+    return EXIT_PASS
+
+
 def _cmd_render(args: argparse.Namespace) -> int:
     from mjpoincare.render import parse_size, render_frames, select_gl_backend, write_media
 
@@ -339,6 +377,23 @@ def build_parser() -> argparse.ArgumentParser:
     margins.add_argument("--base-only", action="store_true", help="only each case's own run, no perturbations (to "
                          "record another environment's errors for --compare)")
     margins.set_defaults(func=_cmd_margins)
+
+    tune = sub.add_parser("tune", help="search the simulator settings for the cheapest that pass at every coverage "
+                          "point (Optuna, multi-objective: CPU seconds against the worst error/tolerance)")
+    tune.add_argument("scenario", help="scenario name")
+    tune.add_argument("--target", default="accurate", help="the preset whose tolerances judge the trials: accurate "
+                      "or fast (default accurate)")
+    tune.add_argument("--trials", type=int, default=40, help="finished trials the study holds at the end (default 40; "
+                      "with --resume, counting the stored ones)")
+    tune.add_argument("--workers", type=int, default=machine_cores(), help="trials run at once, one process each "
+                      "(default: this machine's cores)")
+    tune.add_argument("--resume", action="store_true", help="continue the stored study instead of starting anew")
+    tune.add_argument("--study", metavar="PATH", help="the study's SQLite file (default renders/tune/SCENARIO.db; "
+                      "one file holds both targets' studies)")
+    tune.add_argument("--json", metavar="PATH|-", help="write the trials, the Pareto front and the chosen preset")
+    tune.add_argument("--plot", metavar="PNG", help="plot the front (needs the viz extra)")
+    tune.add_argument("--seed", type=int, default=0, help="seed of the sampler (worker k uses seed + k)")
+    tune.set_defaults(func=_cmd_tune)
 
     render = sub.add_parser("render", help="render a scenario off-screen to a video (.mp4, .gif) or still (.png)")
     render.add_argument("scenario", help="scenario name")

@@ -14,6 +14,7 @@ multithreaded process can deadlock the child. With
 
 from __future__ import annotations
 
+import os
 import sys
 from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
@@ -25,6 +26,13 @@ from mjpoincare.params import ParameterError
 ENGINES = ("local", "dask")
 #: Modules that start native threads when imported: a process holding them is not forked.
 THREADED_MODULES = ("jax", "jaxlib", "warp")
+
+
+def machine_cores() -> int:
+    """The cores this process may run on (its CPU affinity where the system reports one, else the CPU count)."""
+    if hasattr(os, "sched_getaffinity"):
+        return max(1, len(os.sched_getaffinity(0)))
+    return max(1, os.cpu_count() or 1)
 
 
 def start_method() -> str:

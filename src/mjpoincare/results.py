@@ -126,7 +126,8 @@ def _assignments(values: dict[str, Any]) -> str:
     return ", ".join(f"`{k}={format_json_value(v)}`" for k, v in values.items())
 
 
-def _stamp(env: dict[str, Any]) -> list[str]:
+def stamp_table(env: dict[str, Any]) -> list[str]:
+    """The run-stamp table of a generated page: MuJoCo, numpy/scipy/Python, git commit, CPU and date."""
     sha = env["git_sha"] or "unknown"
     if env["git_dirty"]:
         sha += " (with uncommitted changes)"
@@ -152,7 +153,7 @@ def render_scenario(payload: dict[str, Any]) -> str:
     lines = [GENERATED.format(source=f"json/{name}.json"), "", f"# {name}: measured results", "",
              f"{payload['summary']}. Analytic reference: {payload['source']}. Model, section, checks and why each "
              f"tolerance is what it is: [docs/scenarios/{name}.md](../scenarios/{name}.md).", "",
-             *_stamp(payload["environment"]), "",
+             *stamp_table(payload["environment"]), "",
              f"Each preset's default validation, seed {payload['seed']}. Each error is followed by its kind (relative, "
              "absolute, max-abs over components, count or fraction); complex values are written [re, im].", ""]
     for run in payload["runs"]:

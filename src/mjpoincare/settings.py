@@ -9,9 +9,11 @@ scenario, because the error a setting produces depends on the system.
 from __future__ import annotations
 
 from collections.abc import Mapping
+from dataclasses import dataclass
 
 import mujoco
 
+from mjpoincare.parallel import machine_cores
 from mjpoincare.params import Param, ParameterError, Value
 
 INTEGRATORS = {
@@ -33,6 +35,7 @@ BACKENDS = ("mujoco", "mjx", "warp")
 BACKEND_PRECISIONS = {"mujoco": ("float64",), "mjx": ("float64", "float32"), "warp": ("float32",)}
 _CONTACT_DIST, _REDUCE_MINDIST = 8, 1  # MuJoCo contact-sensor data bit "dist" and reduce mode "mindist"
 
+
 SETTINGS: tuple[Param, ...] = (
     Param("timestep", 1e-4, "integration step, s", float, 0.0, 0.05, low_open=True),
     Param("integrator", "implicitfast", "MuJoCo integrator", str, choices=tuple(INTEGRATORS)),
@@ -51,7 +54,8 @@ SETTINGS: tuple[Param, ...] = (
     Param("noslip_iterations", 0, "noslip post-processing iterations", int, 0, 1000),
     Param("solver", "newton", "constraint solver", str, choices=tuple(SOLVERS)),
     Param("jacobian", "auto", "constraint Jacobian storage", str, choices=tuple(JACOBIANS)),
-    Param("threads", 2, "rollout threads", int, 1, 256),
+    Param("threads", machine_cores(), "rollout threads (default: this machine's cores; results are bit-identical "
+          "across thread counts; pin with --set threads=N)", int, 1, 256),
     Param("start_perturbation", 0.0, "relative change of every start state's velocities (a rounding-sized change, "
           "e.g. 1e-12, that must not change a verdict: mjpoincare margins)", float, 0.0, 1e-6),
     Param("unskip", "none", "undo one of the scene's skips, to measure it (bench --skips): collisions = every geom "
@@ -70,6 +74,53 @@ SETTINGS: tuple[Param, ...] = (
           "and the energy computation; off unless asked, as nothing else reads them)", int, 0, 1),
 )
 DEFAULTS: dict[str, Value] = {p.name: p.default for p in SETTINGS}
+
+
+@dataclass(frozen=True)
+class Dimension:
+    """One setting the preset search (``mjpoincare tune``) varies, and its range.
+
+    Attributes:
+        name: the setting (a name in :data:`SETTINGS`).
+        low, high: the numeric range (ignored with ``choices``).
+        log: sample the range on a log scale.
+        choices: the values of a categorical setting (or a few values of a numeric one).
+        per_timestep: the sampled number is in timesteps; the setting is that number times the trial's timestep
+            (the contact time constant: MuJoCo clamps it to >= 2 timesteps, so it is searched from there).
+    """
+
+    name: str
+    low: float = 0.0
+    high: float = 0.0
+    log: bool = False
+    choices: tuple[Value, ...] = ()
+    per_timestep: bool = False
+
+
+#: The settings every contact scene can be searched over (a scenario names its own subset or additions): the step,
+#: the contact's time constant (in steps) and damping, the integrator, the friction cone and its impedance ratio,
+#: noslip, the foot spheres' radius, and the constraint solver's iterations and tolerance.
+SEARCH_SPACE: tuple[Dimension, ...] = (
+    Dimension("timestep", 1e-5, 1e-3, log=True),
+    Dimension("solref_timeconst", 2.0, 40.0, log=True, per_timestep=True),
+    Dimension("solref_dampratio", 0.5, 10.0, log=True),
+    Dimension("integrator", choices=("implicitfast", "euler", "rk4")),
+    Dimension("cone", choices=("elliptic", "pyramidal")),
+    Dimension("impratio", 1.0, 100.0, log=True),
+    Dimension("noslip_iterations", choices=(0, 2, 10)),
+    Dimension("foot_radius", 1e-4, 2e-3, log=True),
+    Dimension("iterations", choices=(20, 50, 100, 200)),
+    Dimension("tolerance", 1e-14, 1e-6, log=True),
+)
+
+
+def search_space(*names: str, extra: tuple[Dimension, ...] = ()) -> tuple[Dimension, ...]:
+    """The dimensions of :data:`SEARCH_SPACE` called ``names`` (all of them when none is named), then ``extra``."""
+    chosen = [d for d in SEARCH_SPACE if not names or d.name in names]
+    missing = set(names) - {d.name for d in chosen}
+    if missing:
+        raise KeyError(f"not in SEARCH_SPACE: {', '.join(sorted(missing))}")
+    return (*chosen, *extra)
 
 
 def solref(settings: Mapping[str, Value]) -> list[float]:

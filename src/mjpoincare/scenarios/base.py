@@ -19,6 +19,7 @@ import numpy as np
 
 from mjpoincare.analysis.checks import Check
 from mjpoincare.params import Param, ParameterError, Value
+from mjpoincare.settings import SEARCH_SPACE, Dimension
 from mjpoincare.simulate import RolloutReport
 
 Values = Mapping[str, Value]
@@ -141,6 +142,22 @@ class Soak:
     rollout: RolloutReport
 
 
+@dataclass(frozen=True)
+class CoveragePoint:
+    """A parameter point the preset search (``mjpoincare tune``) judges every trial at: a preset holds only where it
+    holds at all of a scenario's coverage points.
+
+    Attributes:
+        name: short label (tables, the study's JSON).
+        assignments: ``--set``-style parameter values on top of the scenario's defaults.
+        why: what makes the point hard (a bound it sits near, a gait, a mode).
+    """
+
+    name: str
+    assignments: Mapping[str, str]
+    why: str
+
+
 class RegionMapRun(Protocol):
     """Runs a region map: parses ``grid`` (refusing bad input with :class:`ParameterError` before any simulation),
     prints a summary, writes the PNG ``output`` and, when ``json_path`` is given, the JSON; returns the exit code."""
@@ -210,6 +227,10 @@ class Scenario:
             in place of the generic sweep; every other parameter or setting gets the generic sweep.
         mechanisms: the seam mechanisms its event controllers and checks use (keys of
             :data:`mjpoincare.seam_check.MECHANISMS`), each self-tested on the loaded MuJoCo before the scenario runs.
+        coverage: the parameter points that span the scenario's range (:class:`CoveragePoint`; the defaults first):
+            the preset search judges each trial at all of them.
+        search_space: the settings the preset search varies (:class:`~mjpoincare.settings.Dimension`); the preset's
+            other settings are the scene's own and stay as declared.
     """
 
     name: str
@@ -234,6 +255,8 @@ class Scenario:
     region_map: RegionMap | None = None
     param_sweeps: Mapping[str, ParamSweep] = field(default_factory=dict)
     mechanisms: tuple[str, ...] = ()
+    coverage: tuple[CoveragePoint, ...] = (CoveragePoint("defaults", {}, "the scenario's default parameters"),)
+    search_space: tuple[Dimension, ...] = SEARCH_SPACE
 
     def preset(self, name: str | None) -> tuple[str, Values]:
         """The preset's name and setting overrides (the default preset when ``name`` is None)."""

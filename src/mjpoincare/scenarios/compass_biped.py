@@ -36,6 +36,7 @@ from mjpoincare.analysis.theory import compass_biped as theory
 from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios.base import (
+    CoveragePoint,
     Evaluation,
     JointIndex,
     ReturnMapPlot,
@@ -371,6 +372,15 @@ def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
     return event_clip(model, start, nstep, controller, chunk, setup=controller.configure).states(nstep)
 
 
+#: Where a preset must hold (mjpoincare tune): the defaults, a shallow slope (slow, short steps: the smallest impacts,
+#: where the contact's compliance is the largest part of a step) and Goswami's walker (m_h/m = 2, 3 degrees: a larger
+#: step angle and faster impacts than the defaults).
+COVERAGE = (
+    CoveragePoint("defaults", {}, "m_h = 10, m = 5, slope 0.04"),
+    CoveragePoint("shallow", {"slope": "0.01"}, "slope 0.01: slow, short steps, the smallest impacts"),
+    CoveragePoint("Goswami walker", {"m_h": "2", "m_l": "1", "slope": "0.0524"}, "m_h/m = 2 on 3 degrees"),
+)
+
 COMPASS_BIPED = Scenario(
     name="compass-biped",
     summary="passive compass-gait walker on a slope: fixed point, 3 eigenvalues, step period and length",
@@ -390,4 +400,5 @@ COMPASS_BIPED = Scenario(
     stress_cases=STRESS_CASES,
     soak=soak,
     mechanisms=("rollout", "contact", "actuator"),
+    coverage=COVERAGE,
 )

@@ -31,6 +31,7 @@ from mjpoincare.analysis.theory.rimless_wheel_hybrid import simulate_hybrid
 from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios.base import (
+    CoveragePoint,
     Evaluation,
     JointIndex,
     ReturnMapPlot,
@@ -368,6 +369,20 @@ def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
     return plain_clip(model, state0, nstep)
 
 
+#: Where a preset must hold (mjpoincare tune). Near the existence bound the step period is singular (the wheel barely
+#: vaults the spoke, and d ln T / d ln omega+ grows without bound): the point sits where that sensitivity is twice
+#: the defaults' (2.7 at slope 0.08, 5.2 at 0.073), so that a simulator error is amplified at most twice as much.
+#: Nothing is singular at the no-flight bound; the point sits 5 % of the n = 8 slope range below it, where the
+#: impacts are hardest without the wheel leaving the ground.
+COVERAGE = (
+    CoveragePoint("defaults", {}, "n = 8, slope 0.08"),
+    CoveragePoint("near existence", {"slope": "0.073"}, "slope 0.073 above the existence bound 0.0682: the step "
+                  "period's sensitivity to omega+ is twice the defaults'"),
+    CoveragePoint("steep", {"slope": "0.25"}, "slope 0.25 below the no-flight bound 0.2621: hard impacts, the soft "
+                  "contact's hop"),
+    CoveragePoint("six spokes", {"spokes": "6", "slope": "0.22"}, "n = 6: beta^2 = 0.25, the hardest impacts"),
+)
+
 RIMLESS_WHEEL = Scenario(
     name="rimless-wheel",
     summary="planar rimless wheel on a slope: rolling fixed point, multiplier, impact law, basins",
@@ -387,4 +402,5 @@ RIMLESS_WHEEL = Scenario(
     stress_cases=STRESS_CASES,
     soak=soak,
     mechanisms=("rollout",),
+    coverage=COVERAGE,
 )

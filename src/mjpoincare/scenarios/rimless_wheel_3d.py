@@ -40,6 +40,7 @@ from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios import rimless_wheel_3d_runs as runs
 from mjpoincare.scenarios.base import (
+    CoveragePoint,
     Evaluation,
     ReturnMapPlot,
     Scenario,
@@ -380,6 +381,14 @@ def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray 
     return kept.states(nstep), kept.tagged(nstep)[:, None, :]
 
 
+#: Where a preset must hold (mjpoincare tune): the defaults, six spokes down the fall line (the hardest impacts:
+#: impulse ratio 0.67) and a heavy hub (J = 2: slow multipliers, the largest friction demand at impact).
+COVERAGE = (
+    CoveragePoint("defaults", {}, "n = 16, slope 0.125, heading pi/10"),
+    CoveragePoint("six spokes", {"spokes": "6", "slope": "0.2", "heading": "0"}, "n = 6: the hardest impacts"),
+    CoveragePoint("heavy hub", {"J": "2"}, "J = 2: slow multipliers, mu = 0.99 needed"),
+)
+
 RIMLESS_WHEEL_3D = Scenario(
     name="rimless-wheel-3d",
     summary="3D rimless wheel: planar cycles at any heading, 5 eigenvalues of the 3D map; contact or ideal impacts",
@@ -400,4 +409,5 @@ RIMLESS_WHEEL_3D = Scenario(
     stress_cases=STRESS_CASES,
     soak=soak,
     mechanisms=("rollout", "fractional_step"),
+    coverage=COVERAGE,
 )

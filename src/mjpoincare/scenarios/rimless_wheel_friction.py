@@ -35,6 +35,7 @@ from mjpoincare.analysis.theory import rimless_wheel_friction as theory
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios import rimless_wheel as rw
 from mjpoincare.scenarios.base import (
+    CoveragePoint,
     Evaluation,
     RegionMap,
     ReturnMapPlot,
@@ -365,6 +366,14 @@ def _mu_sweep(values: Sequence[str], assignments: Mapping[str, str], preset: str
     return run_mu_sweep(values, assignments, preset, json_path, resume=resume, workers=max(workers, 2))
 
 
+#: Where a preset must hold (mjpoincare tune): one point per stick-slip gait type the default validation judges,
+#: from high to low friction: Type A (no slip), Type B (the defaults, mu = 0.3) and Type C (slipping impact).
+COVERAGE = (
+    CoveragePoint("Type B", {}, "mu = 0.3 (the paper's stick-slip case): slip before each impact"),
+    CoveragePoint("Type A", {"mu": "2"}, "mu = 2 > mu_c: no slip"),
+    CoveragePoint("Type C", {"mu": "0.24"}, "mu = 0.24: slipping impact, slip -> stick -> slip"),
+)
+
 RIMLESS_WHEEL_FRICTION = Scenario(
     name="rimless-wheel-friction",
     summary="rimless wheel with Coulomb friction: stick-slip gait types A-D, multipliers, slip onset, impacts",
@@ -387,4 +396,5 @@ RIMLESS_WHEEL_FRICTION = Scenario(
                          output="renders/basins-{scenario}.png", run=_basin_map),
     param_sweeps={"mu": _mu_sweep},
     mechanisms=("rollout", "friction", "contact_fields"),
+    coverage=COVERAGE,
 )

@@ -30,9 +30,18 @@ from mjpoincare.analysis.returnmap import fit_return_map
 from mjpoincare.analysis.theory import slotted_skate as theory
 from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
-from mjpoincare.scenarios.base import Evaluation, RegionMap, Scenario, StressCase, Tolerances, Values, at_preset
+from mjpoincare.scenarios.base import (
+    CoveragePoint,
+    Evaluation,
+    RegionMap,
+    Scenario,
+    StressCase,
+    Tolerances,
+    Values,
+    at_preset,
+)
 from mjpoincare.scenarios.slotted_skate_pegs import PegController
-from mjpoincare.settings import rollout_options
+from mjpoincare.settings import rollout_options, search_space
 from mjpoincare.simulate import event_clip, event_rollout, initial_states
 
 PARAMS: tuple[Param, ...] = (
@@ -340,6 +349,14 @@ def _region_map(grid: str, assignments: Mapping[str, str], preset: str | None, j
     return run_regions(grid, assignments, preset, json_path, output)
 
 
+#: Where a preset must hold (mjpoincare tune): the defaults, the other stability region (slot behind the mass centre)
+#: and a fast slide (20x the slot speed: few steps per stance, the hardest impacts on the pegs).
+COVERAGE = (
+    CoveragePoint("defaults", {}, "l0 = 1, delta = 1/3, V0 = 1"),
+    CoveragePoint("slot behind", {"l0": "-2"}, "L0 < -Delta: the other stability region"),
+    CoveragePoint("fast slide", {"V0": "20"}, "20x the slot speed: few steps per stance"),
+)
+
 SLOTTED_SKATE = Scenario(
     name="slotted-skate",
     summary="discrete Chaplygin sleigh: pegs as switched equality constraints; sigma4, energy loss, reversals",
@@ -361,4 +378,7 @@ SLOTTED_SKATE = Scenario(
     region_map=RegionMap(grid="x=START:STOP:N,y=START:STOP:N with x = l0/delta, y = 1/delta^2",
                          output="renders/regions-{scenario}.png", run=_region_map),
     mechanisms=("rollout", "fractional_step"),
+    coverage=COVERAGE,
+    search_space=search_space("timestep", "solref_timeconst", "solref_dampratio", "integrator", "iterations",
+                              "tolerance"),
 )

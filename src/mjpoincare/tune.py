@@ -1,0 +1,284 @@
+"""``mjpoincare tune``: the cheapest simulator settings that pass, found by a multi-objective search.
+
+A study searches a scenario's :attr:`~mjpoincare.scenarios.base.Scenario.search_space` for one target preset
+(``fast`` or ``accurate``: the tolerances a trial is judged at). Each trial runs the scenario's validation at every
+one of its coverage points (:attr:`~mjpoincare.scenarios.base.Scenario.coverage`) with the trial's settings and
+reports two objectives, both minimised:
+
+- **cost**: the CPU seconds of those validations (``time.process_time`` of the worker process, over all its threads).
+  CPU time is the work done: it does not change with the thread count, and a busy machine stretches wall time far
+  more than it changes CPU time, so trials run side by side stay comparable. Each trial runs its rollouts on one
+  thread. Wall time is recorded beside it.
+- **worst ratio**: the largest ``error / tolerance`` over every check of every coverage point (the ``stable`` check
+  included). A failed check whose tolerance is 0 (a count or a category), a missing value and a diverged run count
+  as :data:`RATIO_CAP`, so the sampler still ranks them behind every finite ratio.
+
+The study is Optuna's (multi-objective TPE sampler with constant liar for parallel workers) in an SQLite file: a
+study can be resumed (``--resume``), shared and run by ``--workers`` processes at once. The first trials are the
+scenario's current presets, so that the front shows where they stand. The Pareto front is Optuna's
+(``study.best_trials``). The preset for the target is the cheapest front point whose worst ratio is at most
+:data:`PRESET_RATIO`; if none is, the study says so, and the front shows the best that was found.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import sys
+import time
+from collections.abc import Mapping, Sequence
+from concurrent.futures import ProcessPoolExecutor, wait
+from dataclasses import dataclass, replace
+from multiprocessing import get_context
+from pathlib import Path
+from typing import Any
+
+from mjpoincare import scenarios
+from mjpoincare import settings as sim_settings
+from mjpoincare.analysis.checks import Check
+from mjpoincare.params import ParameterError, Value
+from mjpoincare.validation import resolve_inputs, run_validation
+
+TARGETS = ("accurate", "fast")
+#: The ratio a failed zero-tolerance check, a missing value or a diverged run counts as.
+RATIO_CAP = 1e3
+#: A preset's worst ratio over every check and coverage point: its tolerances held with a factor 2 to spare.
+PRESET_RATIO = 0.5
+STUDY_DIR = Path("renders/tune")
+#: The timestep range each target searches (within the scenario's own): an accurate preset is not looked for at steps
+#: the fast presets already take, nor a fast one at steps that cost more than the accurate presets.
+TARGET_TIMESTEPS = {"accurate": (1e-5, 2e-4), "fast": (5e-5, 1e-3)}
+_FINISHED = ("COMPLETE", "FAIL", "PRUNED")
+
+
+def _optuna() -> Any:
+    try:
+        import optuna
+    except ImportError:
+        raise ParameterError("tune needs the optional extra: pip install 'mjpoincare[tune]'") from None
+    optuna.logging.set_verbosity(optuna.logging.WARNING)
+    return optuna
+
+
+def check_ratio(check: Check) -> float:
+    """``error / tolerance`` of one check; :data:`RATIO_CAP` for a missing value or a failed zero-tolerance check."""
+    if not math.isfinite(check.error):
+        return RATIO_CAP
+    if check.tolerance <= 0.0:
+        return 0.0 if check.error <= 0.0 else RATIO_CAP
+    return min(check.error / check.tolerance, RATIO_CAP)
+
+
+@dataclass(frozen=True)
+class TrialOutcome:
+    """One trial's verdict over the coverage points.
+
+    Attributes:
+        cpu_s: CPU seconds of the validations (the cost objective).
+        wall_s: their wall seconds.
+        worst_ratio: the largest ``error / tolerance`` (the accuracy objective).
+        worst_check: where it is, ``point/check``.
+        point_ratios: each coverage point's worst ratio and its check.
+    """
+
+    cpu_s: float
+    wall_s: float
+    worst_ratio: float
+    worst_check: str
+    point_ratios: Mapping[str, tuple[float, str]]
+
+
+def setting_text(value: Value) -> str:
+    """A setting as ``--set`` text (numbers to 12 significant digits)."""
+    return f"{value:.12g}" if isinstance(value, float) else str(value)
+
+
+def run_trial(name: str, target: str, settings: Mapping[str, Value]) -> TrialOutcome:
+    """Validate scenario ``name`` with ``settings`` at each of its coverage points, judged at ``target``'s
+    tolerances, on one rollout thread."""
+    scenario = scenarios.get(name)
+    overrides = {k: setting_text(v) for k, v in settings.items()} | {"threads": "1"}
+    cpu = wall = 0.0
+    point_ratios: dict[str, tuple[float, str]] = {}
+    for point in scenario.coverage:
+        cpu0, wall0 = time.process_time(), time.perf_counter()
+        result = run_validation(name, {**point.assignments, **overrides}, preset=target)
+        cpu += time.process_time() - cpu0
+        wall += time.perf_counter() - wall0
+        ratio, check = max((check_ratio(c), c.name) for c in result.checks)
+        point_ratios[point.name] = (ratio, check)
+    worst_point = max(point_ratios, key=lambda k: point_ratios[k][0])
+    ratio, check = point_ratios[worst_point]
+    return TrialOutcome(cpu_s=cpu, wall_s=wall, worst_ratio=ratio, worst_check=f"{worst_point}/{check}",
+                        point_ratios=point_ratios)
+
+
+def target_space(scenario: scenarios.Scenario, target: str) -> tuple[sim_settings.Dimension, ...]:
+    """The scenario's search space with the timestep range narrowed to the target's (:data:`TARGET_TIMESTEPS`)."""
+    low, high = TARGET_TIMESTEPS[target]
+    return tuple(replace(d, low=max(d.low, low), high=min(d.high, high)) if d.name == "timestep" else d
+                 for d in scenario.search_space)
+
+
+def _param_name(dim: sim_settings.Dimension) -> str:
+    return f"{dim.name}_steps" if dim.per_timestep else dim.name
+
+
+def suggest_settings(trial: Any, space: Sequence[sim_settings.Dimension]) -> dict[str, Value]:
+    """The settings an Optuna ``trial`` proposes over ``space`` (a ``per_timestep`` value times the timestep)."""
+    values: dict[str, Value] = {}
+    for dim in space:
+        if dim.choices:
+            values[dim.name] = trial.suggest_categorical(_param_name(dim), list(dim.choices))
+        else:
+            values[dim.name] = trial.suggest_float(_param_name(dim), dim.low, dim.high, log=dim.log)
+    for dim in space:
+        if dim.per_timestep:
+            values[dim.name] = float(values[dim.name]) * float(values["timestep"])
+    return values
+
+
+def preset_params(scenario: scenarios.Scenario, preset: str) -> dict[str, Value]:
+    """A scenario preset as the search's trial parameters (to enqueue it as a trial; it may lie outside a target's
+    timestep range)."""
+    full = {**sim_settings.DEFAULTS, **scenario.presets[preset]}
+    params: dict[str, Value] = {}
+    for dim in scenario.search_space:
+        value = full[dim.name]
+        params[_param_name(dim)] = float(value) / float(full["timestep"]) if dim.per_timestep else value
+    return params
+
+
+def study_name(name: str, target: str) -> str:
+    """The study of scenario ``name`` for ``target`` in its storage."""
+    return f"{name}-{target}"
+
+
+def storage_url(path: Path) -> str:
+    """The SQLite URL of a study file."""
+    return f"sqlite:///{path.resolve()}"
+
+
+def _storage(url: str) -> Any:
+    return _optuna().storages.RDBStorage(url, engine_kwargs={"connect_args": {"timeout": 120}})
+
+
+def _sampler(seed: int) -> Any:
+    return _optuna().samplers.TPESampler(seed=seed, multivariate=True, constant_liar=True, n_startup_trials=8)
+
+
+def _objective(name: str, target: str) -> Any:
+    space = target_space(scenarios.get(name), target)
+
+    def objective(trial: Any) -> tuple[float, float]:
+        settings = suggest_settings(trial, space)
+        try:
+            outcome = run_trial(name, target, settings)
+        except ParameterError as err:  # settings the scenario refuses (e.g. a time constant MuJoCo would clamp)
+            trial.set_user_attr("refused", str(err))
+            return math.inf, RATIO_CAP
+        trial.set_user_attr("settings", settings)
+        trial.set_user_attr("wall_s", outcome.wall_s)
+        trial.set_user_attr("worst_check", outcome.worst_check)
+        trial.set_user_attr("point_ratios", {k: list(v) for k, v in outcome.point_ratios.items()})
+        return outcome.cpu_s, outcome.worst_ratio
+
+    return objective
+
+
+def _work(url: str, name: str, target: str, total: int, seed: int) -> None:
+    """One worker: trials of the study until it holds ``total`` (module level: run in a spawned process)."""
+    optuna = _optuna()
+    resolve_inputs(name, {"threads": "1"}, target)  # the seam's self-tests, once, outside every trial's cost
+    study = optuna.load_study(study_name=study_name(name, target), storage=_storage(url), sampler=_sampler(seed))
+    states = tuple(getattr(optuna.trial.TrialState, s) for s in (*_FINISHED, "RUNNING"))
+    done = len(study.get_trials(deepcopy=False, states=states))
+    if done < total:
+        study.optimize(_objective(name, target), n_trials=total - done, catch=(Exception,),
+                       callbacks=[optuna.study.MaxTrialsCallback(total, states=states)])
+
+
+def _finished(study: Any) -> int:
+    states = tuple(getattr(_optuna().trial.TrialState, s) for s in _FINISHED)
+    return len(study.get_trials(deepcopy=False, states=states))
+
+
+def _progress(total: int, initial: int, label: str) -> Any:
+    from tqdm import tqdm
+
+    quiet = not sys.stderr.isatty() or os.environ.get("CI", "").lower() in ("1", "true", "yes")
+    return tqdm(total=total, initial=initial, desc=label, unit="trial", disable=quiet, file=sys.stderr)
+
+
+def run_study(name: str, target: str, *, trials: int, workers: int, path: Path, resume: bool, seed: int = 0) -> Any:
+    """Run (or, with ``resume``, continue) the study of scenario ``name`` for ``target`` in the SQLite file ``path``
+    until it holds ``trials`` finished trials, ``workers`` processes at once; returns the study."""
+    optuna = _optuna()
+    scenario = scenarios.get(name)
+    if target not in TARGETS or target not in scenario.presets:
+        raise ParameterError(f"--target must be one of {', '.join(TARGETS)} (got {target!r})")
+    if trials < 1 or workers < 1:
+        raise ParameterError(f"--trials and --workers must be >= 1 (got {trials}, {workers})")
+    resolve_inputs(name, {}, target)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    url, label = storage_url(path), study_name(name, target)
+    storage = _storage(url)
+    exists = label in [s.study_name for s in optuna.get_all_study_summaries(storage)]
+    if exists and not resume:
+        optuna.delete_study(study_name=label, storage=storage)
+    study = optuna.create_study(study_name=label, storage=storage, directions=["minimize", "minimize"],
+                                sampler=_sampler(seed), load_if_exists=True)
+    if not exists or not resume:
+        study.set_user_attr("scenario", name)
+        study.set_user_attr("target", target)
+        for preset in scenario.presets:
+            if preset in TARGETS:
+                study.enqueue_trial(preset_params(scenario, preset), user_attrs={"origin": f"preset {preset}"})
+    with _progress(trials, min(_finished(study), trials), label) as bar:
+        if workers == 1:
+            _work(url, name, target, trials, seed)
+        else:
+            with ProcessPoolExecutor(max_workers=workers, mp_context=get_context("spawn")) as pool:
+                futures = [pool.submit(_work, url, name, target, trials, seed + k) for k in range(workers)]
+                pending = set(futures)
+                while pending:
+                    _, pending = wait(pending, timeout=2.0)
+                    bar.update(min(_finished(study), trials) - bar.n)
+                for future in futures:
+                    future.result()
+        bar.update(min(_finished(study), trials) - bar.n)
+    return study
+
+
+def _row(trial: Any) -> dict[str, Any]:
+    attrs = trial.user_attrs
+    cost, ratio = trial.values if trial.values is not None else (math.nan, math.nan)
+    return {"number": trial.number, "state": trial.state.name, "origin": attrs.get("origin", "search"),
+            "settings": attrs.get("settings"), "cpu_s": cost if math.isfinite(cost) else None,
+            "wall_s": attrs.get("wall_s"), "worst_ratio": ratio if math.isfinite(ratio) else None,
+            "worst_check": attrs.get("worst_check"), "point_ratios": attrs.get("point_ratios"),
+            "refused": attrs.get("refused")}
+
+
+def choose(front: Sequence[Mapping[str, Any]], limit: float = PRESET_RATIO) -> Mapping[str, Any] | None:
+    """The cheapest front point whose worst ratio is at most ``limit`` (None if no point is)."""
+    passing = [r for r in front if r["worst_ratio"] is not None and r["worst_ratio"] <= limit and r["cpu_s"]]
+    return min(passing, key=lambda r: r["cpu_s"]) if passing else None
+
+
+def summary(study: Any) -> dict[str, Any]:
+    """The study as JSON data: every trial, the Pareto front (cheapest first) and the chosen preset."""
+    scenario = scenarios.get(study.user_attrs["scenario"])
+    target = study.user_attrs["target"]
+    rows = [_row(t) for t in study.trials]
+    front = sorted((_row(t) for t in study.best_trials if t.values and math.isfinite(t.values[0])),
+                   key=lambda r: r["cpu_s"])
+    chosen = choose(front)
+    preset = None if chosen is None else {**scenario.presets[target], **chosen["settings"]}
+    return {"scenario": scenario.name, "target": target, "study": study.study_name,
+            "objectives": ["cpu_s", "worst_ratio"], "preset_ratio": PRESET_RATIO, "ratio_cap": RATIO_CAP,
+            "coverage": [{"name": p.name, "assignments": dict(p.assignments), "why": p.why}
+                         for p in scenario.coverage],
+            "space": [{"name": d.name, "low": d.low, "high": d.high, "log": d.log, "choices": list(d.choices),
+                       "per_timestep": d.per_timestep} for d in target_space(scenario, target)],
+            "trials": rows, "front": front, "chosen": chosen, "preset": preset}
