@@ -30,7 +30,7 @@ mjx_run_key = pytest.StashKey[tuple[subprocess.Popen[bytes], Path]]()
 #: The distribution that makes each optional backend (``mjpoincare.backends.REQUIRES``) required in CI.
 BACKEND_DISTRIBUTIONS = {"mjx": "mujoco-mjx", "warp": "mujoco-warp"}
 #: The extras ``make test`` installs (CI runs ``make test``).
-CI_EXTRAS = ("dev", "viz", "dask", "peers", "mjx", "warp")
+CI_EXTRAS = ("dev", "viz", "dask", "tune", "peers", "mjx", "warp")
 
 
 def required_in_ci(distribution: str) -> bool:

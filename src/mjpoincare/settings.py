@@ -97,9 +97,10 @@ class Dimension:
     per_timestep: bool = False
 
 
-#: The settings every contact scene can be searched over (a scenario names its own subset or additions): the step,
-#: the contact's time constant (in steps) and damping, the integrator, the friction cone and its impedance ratio,
-#: noslip, the foot spheres' radius, and the constraint solver's iterations and tolerance.
+#: The settings a contact scene can be searched over: the step, the contact's time constant (in steps) and damping,
+#: the integrator, the friction cone and its impedance ratio, noslip, the foot spheres' radius, and the constraint
+#: solver's iterations and tolerance. A scenario searches the subset its physics depends on (a few trials go further
+#: in fewer dimensions).
 SEARCH_SPACE: tuple[Dimension, ...] = (
     Dimension("timestep", 1e-5, 1e-3, log=True),
     Dimension("solref_timeconst", 2.0, 40.0, log=True, per_timestep=True),

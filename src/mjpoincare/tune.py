@@ -26,6 +26,7 @@ import math
 import os
 import sys
 import time
+import warnings
 from collections.abc import Mapping, Sequence
 from concurrent.futures import ProcessPoolExecutor, wait
 from dataclasses import dataclass, replace
@@ -164,7 +165,7 @@ def _storage(url: str) -> Any:
 
 
 def _sampler(seed: int) -> Any:
-    return _optuna().samplers.TPESampler(seed=seed, multivariate=True, constant_liar=True, n_startup_trials=8)
+    return _optuna().samplers.TPESampler(seed=seed, multivariate=True, constant_liar=True, n_startup_trials=6)
 
 
 def _objective(name: str, target: str) -> Any:
@@ -186,16 +187,14 @@ def _objective(name: str, target: str) -> Any:
     return objective
 
 
-def _work(url: str, name: str, target: str, total: int, seed: int) -> None:
-    """One worker: trials of the study until it holds ``total`` (module level: run in a spawned process)."""
+def _work(url: str, name: str, target: str, count: int, seed: int) -> None:
+    """One worker: ``count`` trials of the study (module level: run in a spawned process)."""
     optuna = _optuna()
+    # a preset enqueued outside the target's timestep range is meant: it shows where the old preset stands
+    warnings.filterwarnings("ignore", message="Fixed parameter .* is out of range", category=UserWarning)
     resolve_inputs(name, {"threads": "1"}, target)  # the seam's self-tests, once, outside every trial's cost
     study = optuna.load_study(study_name=study_name(name, target), storage=_storage(url), sampler=_sampler(seed))
-    states = tuple(getattr(optuna.trial.TrialState, s) for s in (*_FINISHED, "RUNNING"))
-    done = len(study.get_trials(deepcopy=False, states=states))
-    if done < total:
-        study.optimize(_objective(name, target), n_trials=total - done, catch=(Exception,),
-                       callbacks=[optuna.study.MaxTrialsCallback(total, states=states)])
+    study.optimize(_objective(name, target), n_trials=count, catch=(Exception,))
 
 
 def _finished(study: Any) -> int:
@@ -212,7 +211,7 @@ def _progress(total: int, initial: int, label: str) -> Any:
 
 def run_study(name: str, target: str, *, trials: int, workers: int, path: Path, resume: bool, seed: int = 0) -> Any:
     """Run (or, with ``resume``, continue) the study of scenario ``name`` for ``target`` in the SQLite file ``path``
-    until it holds ``trials`` finished trials, ``workers`` processes at once; returns the study."""
+    until it holds ``trials`` finished trials, shared out over ``workers`` processes; returns the study."""
     optuna = _optuna()
     scenario = scenarios.get(name)
     if target not in TARGETS or target not in scenario.presets:
@@ -234,12 +233,15 @@ def run_study(name: str, target: str, *, trials: int, workers: int, path: Path, 
         for preset in scenario.presets:
             if preset in TARGETS:
                 study.enqueue_trial(preset_params(scenario, preset), user_attrs={"origin": f"preset {preset}"})
-    with _progress(trials, min(_finished(study), trials), label) as bar:
+    remaining = max(0, trials - _finished(study))
+    shares = [remaining // workers + (k < remaining % workers) for k in range(workers)]
+    with _progress(trials, trials - remaining, label) as bar:
         if workers == 1:
-            _work(url, name, target, trials, seed)
-        else:
+            _work(url, name, target, remaining, seed)
+        elif remaining:
             with ProcessPoolExecutor(max_workers=workers, mp_context=get_context("spawn")) as pool:
-                futures = [pool.submit(_work, url, name, target, trials, seed + k) for k in range(workers)]
+                futures = [pool.submit(_work, url, name, target, share, seed + k)
+                           for k, share in enumerate(shares) if share]
                 pending = set(futures)
                 while pending:
                     _, pending = wait(pending, timeout=2.0)
@@ -270,7 +272,7 @@ def summary(study: Any) -> dict[str, Any]:
     """The study as JSON data: every trial, the Pareto front (cheapest first) and the chosen preset."""
     scenario = scenarios.get(study.user_attrs["scenario"])
     target = study.user_attrs["target"]
-    rows = [_row(t) for t in study.trials]
+    rows = [_row(t) for t in study.trials if t.state.is_finished()]
     front = sorted((_row(t) for t in study.best_trials if t.values and math.isfinite(t.values[0])),
                    key=lambda r: r["cpu_s"])
     chosen = choose(front)

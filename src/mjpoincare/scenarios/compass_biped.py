@@ -48,7 +48,7 @@ from mjpoincare.scenarios.base import (
     at_preset,
 )
 from mjpoincare.scenarios.compass_gait_controller import GaitController
-from mjpoincare.settings import rollout_options
+from mjpoincare.settings import rollout_options, search_space
 from mjpoincare.simulate import (
     STATE_SPEC,
     MujocoBatch,
@@ -401,4 +401,5 @@ COMPASS_BIPED = Scenario(
     soak=soak,
     mechanisms=("rollout", "contact", "actuator"),
     coverage=COVERAGE,
+    search_space=search_space("timestep", "solref_timeconst", "solref_dampratio", "integrator", "foot_radius"),
 )

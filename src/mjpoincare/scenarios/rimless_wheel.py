@@ -42,7 +42,7 @@ from mjpoincare.scenarios.base import (
     Values,
     at_preset,
 )
-from mjpoincare.settings import rollout_options
+from mjpoincare.settings import rollout_options, search_space
 from mjpoincare.simulate import Chunk, RolloutReport, initial_states, plain_clip, rollout_batch
 
 PARAMS: tuple[Param, ...] = (
@@ -403,4 +403,5 @@ RIMLESS_WHEEL = Scenario(
     soak=soak,
     mechanisms=("rollout",),
     coverage=COVERAGE,
+    search_space=search_space("timestep", "solref_timeconst", "solref_dampratio", "integrator", "foot_radius"),
 )

@@ -51,6 +51,7 @@ from mjpoincare.scenarios.base import (
     at_preset,
 )
 from mjpoincare.scenarios.rimless_wheel_3d_ideal import IdealImpactController
+from mjpoincare.settings import search_space
 from mjpoincare.simulate import (
     event_clip,
     plain_clip,
@@ -410,4 +411,6 @@ RIMLESS_WHEEL_3D = Scenario(
     soak=soak,
     mechanisms=("rollout", "fractional_step"),
     coverage=COVERAGE,
+    search_space=search_space("timestep", "solref_timeconst", "solref_dampratio", "integrator", "foot_radius",
+                              "cone", "impratio", "noslip_iterations"),
 )

@@ -57,6 +57,7 @@ from mjpoincare.scenarios.rimless_wheel_friction_rollout import (
     simulate,
     sliding_contact,
 )
+from mjpoincare.settings import search_space
 from mjpoincare.simulate import plain_clip
 
 PAPER_SLOPE = math.radians(13.0)
@@ -397,4 +398,6 @@ RIMLESS_WHEEL_FRICTION = Scenario(
     param_sweeps={"mu": _mu_sweep},
     mechanisms=("rollout", "friction", "contact_fields"),
     coverage=COVERAGE,
+    search_space=search_space("timestep", "solref_timeconst", "solref_dampratio", "integrator", "foot_radius",
+                              "cone", "impratio", "noslip_iterations"),
 )
