@@ -61,6 +61,18 @@ def test_every_preset_is_a_point_of_its_search_space(name: str) -> None:
             assert value == (expected if isinstance(expected, str) else pytest.approx(expected, rel=1e-12)), key
 
 
+def test_enqueued_settings_become_trial_parameters_and_bad_ones_are_refused() -> None:
+    wheel = scenarios.get("rimless-wheel")
+    params = tune.enqueued_params(wheel, {"timestep": "2.5e-5", "solref_timeconst": "2.5e-4", "foot_radius": "1e-4"})
+    assert params == {"timestep": 2.5e-5, "solref_timeconst_steps": pytest.approx(10.0), "foot_radius": 1e-4}
+    with pytest.raises(tune.ParameterError, match="cone not searched for rimless-wheel"):
+        tune.enqueued_params(wheel, {"cone": "pyramidal"})
+    with pytest.raises(tune.ParameterError, match="solref_timeconst needs timestep"):
+        tune.enqueued_params(wheel, {"solref_timeconst": "1e-3"})
+    with pytest.raises(tune.ParameterError, match="timestep must be"):
+        tune.enqueued_params(wheel, {"timestep": "-1"})
+
+
 @pytest.mark.parametrize("name", list(scenarios.REGISTRY))
 def test_every_coverage_point_is_a_valid_input(name: str) -> None:
     for point in scenarios.get(name).coverage:

@@ -232,10 +232,12 @@ def _cmd_tune(args: argparse.Namespace) -> int:
     if args.plot:
         _require_viz("tune --plot", "matplotlib")
     path = Path(args.study or STUDY_DIR / f"{name}.db")
+    enqueue = [parse_assignments(item.split(",")) for item in args.enqueue]
     study = run_study(name, args.target, trials=args.trials, workers=args.workers, path=path, resume=args.resume,
-                      seed=args.seed)
+                      seed=args.seed, enqueue=enqueue)
     data = {**summary(study), "environment": environment(),
-            "command": f"mjpoincare tune {name} --target {args.target} --trials {args.trials}"}
+            "command": f"mjpoincare tune {name} --target {args.target} --trials {args.trials}"
+            + "".join(f" --enqueue {item}" for item in args.enqueue)}
     print(f"{data['study']}: {len(data['trials'])} trials, Pareto front of {len(data['front'])} (study {path})")
     print(f"{'CPU s':>8} {'wall s':>8} {'worst ratio':>12}  worst check / settings")
     for row in data["front"]:
@@ -393,6 +395,8 @@ def build_parser() -> argparse.ArgumentParser:
     tune.add_argument("--json", metavar="PATH|-", help="write the trials, the Pareto front and the chosen preset")
     tune.add_argument("--plot", metavar="PNG", help="plot the front (needs the viz extra)")
     tune.add_argument("--seed", type=int, default=0, help="seed of the sampler (worker k uses seed + k)")
+    tune.add_argument("--enqueue", action="append", default=[], metavar="NAME=VALUE,...", help="settings to try as "
+                      "the next trial (repeatable; the searched settings it leaves out are sampled)")
     tune.set_defaults(func=_cmd_tune)
 
     render = sub.add_parser("render", help="render a scenario off-screen to a video (.mp4, .gif) or still (.png)")

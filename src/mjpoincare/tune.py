@@ -37,7 +37,7 @@ from typing import Any
 from mjpoincare import scenarios
 from mjpoincare import settings as sim_settings
 from mjpoincare.analysis.checks import Check
-from mjpoincare.params import ParameterError, Value
+from mjpoincare.params import ParameterError, Value, resolve
 from mjpoincare.validation import resolve_inputs, run_validation
 
 TARGETS = ("accurate", "fast")
@@ -209,9 +209,29 @@ def _progress(total: int, initial: int, label: str) -> Any:
     return tqdm(total=total, initial=initial, desc=label, unit="trial", disable=quiet, file=sys.stderr)
 
 
-def run_study(name: str, target: str, *, trials: int, workers: int, path: Path, resume: bool, seed: int = 0) -> Any:
+def enqueued_params(scenario: scenarios.Scenario, assignments: Mapping[str, str]) -> dict[str, Value]:
+    """``--enqueue``'s settings as trial parameters (checked as settings; the settings it leaves out are sampled)."""
+    space = {d.name: d for d in scenario.search_space}
+    outside = set(assignments) - set(space)
+    if outside:
+        raise ParameterError(f"--enqueue: {', '.join(sorted(outside))} not searched for {scenario.name} "
+                             f"(searched: {', '.join(space)})")
+    values = resolve(sim_settings.SETTINGS, sim_settings.DEFAULTS, assignments)
+    params: dict[str, Value] = {}
+    for key in assignments:
+        dim = space[key]
+        if dim.per_timestep and "timestep" not in assignments:
+            raise ParameterError(f"--enqueue: {key} needs timestep beside it (it is searched in timesteps)")
+        params[_param_name(dim)] = float(values[key]) / float(values["timestep"]) if dim.per_timestep else values[key]
+    return params
+
+
+def run_study(name: str, target: str, *, trials: int, workers: int, path: Path, resume: bool, seed: int = 0,
+              enqueue: Sequence[Mapping[str, str]] = ()) -> Any:
     """Run (or, with ``resume``, continue) the study of scenario ``name`` for ``target`` in the SQLite file ``path``
-    until it holds ``trials`` finished trials, shared out over ``workers`` processes; returns the study."""
+    until it holds ``trials`` finished trials, shared out over ``workers`` processes; returns the study. The
+    scenario's presets are its first trials when it starts anew; ``enqueue`` adds settings to try next (partial
+    ones: the rest is sampled)."""
     optuna = _optuna()
     scenario = scenarios.get(name)
     if target not in TARGETS or target not in scenario.presets:
@@ -219,6 +239,7 @@ def run_study(name: str, target: str, *, trials: int, workers: int, path: Path, 
     if trials < 1 or workers < 1:
         raise ParameterError(f"--trials and --workers must be >= 1 (got {trials}, {workers})")
     resolve_inputs(name, {}, target)
+    extra = [enqueued_params(scenario, a) for a in enqueue]
     path.parent.mkdir(parents=True, exist_ok=True)
     url, label = storage_url(path), study_name(name, target)
     storage = _storage(url)
@@ -233,6 +254,8 @@ def run_study(name: str, target: str, *, trials: int, workers: int, path: Path, 
         for preset in scenario.presets:
             if preset in TARGETS:
                 study.enqueue_trial(preset_params(scenario, preset), user_attrs={"origin": f"preset {preset}"})
+    for params in extra:
+        study.enqueue_trial(params, user_attrs={"origin": "enqueued"})
     remaining = max(0, trials - _finished(study))
     shares = [remaining // workers + (k < remaining % workers) for k in range(workers)]
     with _progress(trials, trials - remaining, label) as bar:
