@@ -233,11 +233,11 @@ def _cmd_tune(args: argparse.Namespace) -> int:
         _require_viz("tune --plot", "matplotlib")
     path = Path(args.study or STUDY_DIR / f"{name}.db")
     enqueue = [parse_assignments(item.split(",")) for item in args.enqueue]
+    command = (f"mjpoincare tune {name} --target {args.target} --trials {args.trials}"
+               + "".join(f" --enqueue {item}" for item in args.enqueue) + (" --resume" if args.resume else ""))
     study = run_study(name, args.target, trials=args.trials, workers=args.workers, path=path, resume=args.resume,
-                      seed=args.seed, enqueue=enqueue)
-    data = {**summary(study), "environment": environment(),
-            "command": f"mjpoincare tune {name} --target {args.target} --trials {args.trials}"
-            + "".join(f" --enqueue {item}" for item in args.enqueue)}
+                      seed=args.seed, enqueue=enqueue, command=command)
+    data = {**summary(study), "environment": environment()}
     print(f"{data['study']}: {len(data['trials'])} trials, Pareto front of {len(data['front'])} (study {path})")
     print(f"{'CPU s':>8} {'wall s':>8} {'worst ratio':>12}  worst check / settings")
     for row in data["front"]:

@@ -198,7 +198,8 @@ def render_index(payloads: Sequence[dict[str, Any]]) -> str:
     lines += ["", "A `+` after the commit: the run had uncommitted changes to tracked files. A failed check may be an "
               "expected miss that the regression gate declares with its mechanism (`src/mjpoincare/gate.py`, "
               "`mjpoincare margins`). Regenerate with `make results` (runs everything) or `make results-render` "
-              "(re-renders these pages from `json/`).", ""]
+              "(re-renders these pages from `json/`). The presets come from the studies in [tune/](tune/) "
+              "(`make tune`); the MuJoCo release history is [mujoco-releases.md](mujoco-releases.md).", ""]
     return "\n".join(lines)
 
 

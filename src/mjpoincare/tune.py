@@ -227,11 +227,11 @@ def enqueued_params(scenario: scenarios.Scenario, assignments: Mapping[str, str]
 
 
 def run_study(name: str, target: str, *, trials: int, workers: int, path: Path, resume: bool, seed: int = 0,
-              enqueue: Sequence[Mapping[str, str]] = ()) -> Any:
+              enqueue: Sequence[Mapping[str, str]] = (), command: str = "") -> Any:
     """Run (or, with ``resume``, continue) the study of scenario ``name`` for ``target`` in the SQLite file ``path``
     until it holds ``trials`` finished trials, shared out over ``workers`` processes; returns the study. The
     scenario's presets are its first trials when it starts anew; ``enqueue`` adds settings to try next (partial
-    ones: the rest is sampled)."""
+    ones: the rest is sampled). ``command`` is recorded in the study when this call adds trials."""
     optuna = _optuna()
     scenario = scenarios.get(name)
     if target not in TARGETS or target not in scenario.presets:
@@ -257,6 +257,8 @@ def run_study(name: str, target: str, *, trials: int, workers: int, path: Path, 
     for params in extra:
         study.enqueue_trial(params, user_attrs={"origin": "enqueued"})
     remaining = max(0, trials - _finished(study))
+    if remaining and command:
+        study.set_user_attr("commands", [*study.user_attrs.get("commands", []), command])
     shares = [remaining // workers + (k < remaining % workers) for k in range(workers)]
     with _progress(trials, trials - remaining, label) as bar:
         if workers == 1:
@@ -301,6 +303,7 @@ def summary(study: Any) -> dict[str, Any]:
     chosen = choose(front)
     preset = None if chosen is None else {**scenario.presets[target], **chosen["settings"]}
     return {"scenario": scenario.name, "target": target, "study": study.study_name,
+            "commands": study.user_attrs.get("commands", []),
             "objectives": ["cpu_s", "worst_ratio"], "preset_ratio": PRESET_RATIO, "ratio_cap": RATIO_CAP,
             "coverage": [{"name": p.name, "assignments": dict(p.assignments), "why": p.why}
                          for p in scenario.coverage],

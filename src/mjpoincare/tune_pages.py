@@ -47,7 +47,7 @@ def render_target(study: Mapping[str, Any]) -> list[str]:
     target, chosen = study["target"], study["chosen"]
     lines = [f"## preset `{target}`", "",
              f"Study `{study['study']}`: {len(study['trials'])} trials, front of {len(study['front'])} points. "
-             f"Command: `{study['command']}`.", ""]
+             f"Commands that ran its trials: {', '.join(f'`{c}`' for c in study['commands'])}.", ""]
     if chosen is None:
         lines += [f"**No trial holds every check at every coverage point within {study['preset_ratio']:g} of its "
                   f"`{target}` tolerance**: the searched space has no preset for this target. The front below is the "
