@@ -39,10 +39,15 @@ def _front_row(number: int, cpu: float, ratio: float | None) -> dict[str, Any]:
 
 def test_the_preset_is_the_cheapest_front_point_within_half_its_tolerances() -> None:
     front = [_front_row(0, 1.0, 3.0), _front_row(1, 2.0, 0.6), _front_row(2, 4.0, 0.5), _front_row(3, 8.0, 0.1)]
-    chosen = tune.choose(front)
-    assert chosen is not None and chosen["number"] == 2
-    assert tune.choose(front[:2]) is None
-    assert tune.choose([_front_row(0, 1.0, None)]) is None
+    chosen, holds = tune.choose(front)
+    assert chosen is not None and chosen["number"] == 2 and holds == "margin"
+
+
+def test_without_such_a_point_the_preset_is_the_most_accurate_passing_one_or_none() -> None:
+    chosen, holds = tune.choose([_front_row(0, 1.0, 3.0), _front_row(1, 2.0, 0.9), _front_row(2, 4.0, 0.6)])
+    assert chosen is not None and chosen["number"] == 2 and holds == "no margin"
+    assert tune.choose([_front_row(0, 1.0, 3.0), _front_row(1, 2.0, 1.2)]) == (None, "none")
+    assert tune.choose([_front_row(0, 1.0, None)]) == (None, "none")
 
 
 @pytest.mark.parametrize("name", list(scenarios.REGISTRY))

@@ -244,12 +244,14 @@ def _cmd_tune(args: argparse.Namespace) -> int:
         print(f"{row['cpu_s']:8.3g} {row['wall_s']:8.3g} {row['worst_ratio']:12.3g}  {row['worst_check']}"
               f"  [{row['origin']}] {row['settings']}")
     chosen = data["chosen"]
-    if chosen is None:
+    if data["holds"] != "margin":
         print(f"no trial holds every check within {data['preset_ratio']:g} of its {args.target} tolerance at every "
-              "coverage point: no preset in the searched space (the front above is the best found)")
+              "coverage point (the front above is the best found)")
+    if chosen is None:
+        print(f"no trial passes every check: no {args.target} preset in the searched space")
     else:
         print(f"preset {args.target}: trial {chosen['number']} ({chosen['cpu_s']:.3g} CPU s, worst ratio "
-              f"{chosen['worst_ratio']:.3g} at {chosen['worst_check']}): {data['preset']}")
+              f"{chosen['worst_ratio']:.3g} at {chosen['worst_check']}; {data['holds']}): {data['preset']}")
     if args.json:
         write_json(data, args.json)
     if args.plot:

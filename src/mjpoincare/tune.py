@@ -17,7 +17,9 @@ The study is Optuna's (multi-objective TPE sampler with constant liar for parall
 study can be resumed (``--resume``), shared and run by ``--workers`` processes at once. The first trials are the
 scenario's current presets, so that the front shows where they stand. The Pareto front is Optuna's
 (``study.best_trials``). The preset for the target is the cheapest front point whose worst ratio is at most
-:data:`PRESET_RATIO`; if none is, the study says so, and the front shows the best that was found.
+:data:`PRESET_RATIO`. If none is, the study says so: the preset is then the front point with the smallest worst
+ratio if that one passes every check (within the tolerances, without the margin), else none is chosen; the front
+shows the best that was found.
 """
 
 from __future__ import annotations
@@ -287,10 +289,18 @@ def _row(trial: Any) -> dict[str, Any]:
             "refused": attrs.get("refused")}
 
 
-def choose(front: Sequence[Mapping[str, Any]], limit: float = PRESET_RATIO) -> Mapping[str, Any] | None:
-    """The cheapest front point whose worst ratio is at most ``limit`` (None if no point is)."""
-    passing = [r for r in front if r["worst_ratio"] is not None and r["worst_ratio"] <= limit and r["cpu_s"]]
-    return min(passing, key=lambda r: r["cpu_s"]) if passing else None
+def choose(front: Sequence[Mapping[str, Any]], limit: float = PRESET_RATIO) -> tuple[Mapping[str, Any] | None, str]:
+    """The preset's trial and how it holds: the cheapest front point whose worst ratio is at most ``limit``
+    (``"margin"``); else the front point with the smallest worst ratio if that passes every check (``"no margin"``:
+    within the tolerances, but not by the factor ``1 / limit``); else None (``"none"``)."""
+    rated = [r for r in front if r["worst_ratio"] is not None and r["cpu_s"]]
+    passing = [r for r in rated if r["worst_ratio"] <= limit]
+    if passing:
+        return min(passing, key=lambda r: r["cpu_s"]), "margin"
+    best = min(rated, key=lambda r: r["worst_ratio"], default=None)
+    if best is not None and best["worst_ratio"] <= 1.0:
+        return best, "no margin"
+    return None, "none"
 
 
 def summary(study: Any) -> dict[str, Any]:
@@ -300,7 +310,7 @@ def summary(study: Any) -> dict[str, Any]:
     rows = [_row(t) for t in study.trials if t.state.is_finished()]
     front = sorted((_row(t) for t in study.best_trials if t.values and math.isfinite(t.values[0])),
                    key=lambda r: r["cpu_s"])
-    chosen = choose(front)
+    chosen, holds = choose(front)
     preset = None if chosen is None else {**scenario.presets[target], **chosen["settings"]}
     return {"scenario": scenario.name, "target": target, "study": study.study_name,
             "commands": study.user_attrs.get("commands", []),
@@ -309,4 +319,4 @@ def summary(study: Any) -> dict[str, Any]:
                          for p in scenario.coverage],
             "space": [{"name": d.name, "low": d.low, "high": d.high, "log": d.log, "choices": list(d.choices),
                        "per_timestep": d.per_timestep} for d in target_space(scenario, target)],
-            "trials": rows, "front": front, "chosen": chosen, "preset": preset}
+            "trials": rows, "front": front, "chosen": chosen, "holds": holds, "preset": preset}

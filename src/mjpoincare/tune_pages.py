@@ -49,14 +49,18 @@ def render_target(study: Mapping[str, Any]) -> list[str]:
              f"Study `{study['study']}`: {len(study['trials'])} trials, front of {len(study['front'])} points. "
              f"Commands that ran its trials: {', '.join(f'`{c}`' for c in study['commands'])}.", ""]
     if chosen is None:
-        lines += [f"**No trial holds every check at every coverage point within {study['preset_ratio']:g} of its "
-                  f"`{target}` tolerance**: the searched space has no preset for this target. The front below is the "
-                  "best the search found.", ""]
+        lines += [f"**No trial passes every check at every coverage point at the `{target}` tolerances**: the "
+                  "searched space has no preset for this target, and the scenario keeps its own. The front below is "
+                  "the best the search found.", ""]
     else:
-        lines += [f"Chosen: trial {chosen['number']}, the cheapest front point whose worst ratio is at most "
-                  f"{study['preset_ratio']:g}: {chosen['cpu_s']:.3g} CPU s ({chosen['wall_s']:.3g} s wall) over the "
-                  f"coverage points, worst ratio {chosen['worst_ratio']:.3g} at {chosen['worst_check']}.", "",
-                  f"Preset `{target}`: `{_settings(study['preset'])}`.", ""]
+        how = (f"the cheapest front point whose worst ratio is at most {study['preset_ratio']:g}"
+               if study["holds"] == "margin" else
+               f"**no trial holds every check within {study['preset_ratio']:g} of its tolerance**; this is the front "
+               "point with the smallest worst ratio, which passes every check at every coverage point without that "
+               "margin")
+        lines += [f"Chosen: trial {chosen['number']}, {how}: {chosen['cpu_s']:.3g} CPU s ({chosen['wall_s']:.3g} s "
+                  f"wall) over the coverage points, worst ratio {chosen['worst_ratio']:.3g} at "
+                  f"{chosen['worst_check']}.", "", f"Preset `{target}`: `{_settings(study['preset'])}`.", ""]
     baselines = [r for r in study["trials"] if r["origin"] != "search"]
     lines += ["The scenario's presets as they stood when the study began (enqueued as its first trials):", "", *HEAD,
               *[_row(r) for r in baselines], "", "The Pareto front (cost against worst ratio), cheapest first:", "",
