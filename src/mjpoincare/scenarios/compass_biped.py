@@ -80,13 +80,14 @@ PRESETS: dict[str, dict[str, float | int | str]] = {
 TOLERANCES: dict[str, Tolerances] = {
     "accurate": Tolerances(
         bounds={"fixed_point": 1e-3, "eigenvalues": 0.01, "step_period": 1e-3, "step_length": 1e-3},
-        why="0.2 ms overdamped contact and 20 us steps: impact window ~1 ms; 1e-3 is the accuracy the accurate "
-            "preset promises"
+        why="the suite's accuracy target for an impact window of a few contact time constants; the preset is the "
+            "cheapest setting a search found to hold it at every coverage point (docs/results/tune/compass-biped.md)"
     ),
     "fast": Tolerances(
         bounds={"fixed_point": 5e-3, "eigenvalues": 0.03, "step_period": 5e-3, "step_length": 5e-3},
-        why="1 ms overdamped contact and 0.1 ms steps: the impact onset jitters on the step grid (one-step map "
-            "errors ~1e-3 against the exact map), which limits the eigenvalues to a few 1e-2"
+        why="the impact onset jitters on the step grid (one-step map errors ~1e-3 against the exact map at a 0.1 ms "
+            "step), which limits the eigenvalues to a few 1e-2; the preset is the cheapest setting a search found to "
+            "hold it at every coverage point (docs/results/tune/compass-biped.md)"
     ),
 }
 

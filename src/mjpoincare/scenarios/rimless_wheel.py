@@ -66,13 +66,15 @@ PRESETS: dict[str, dict[str, float | int | str]] = {
 TOLERANCES: dict[str, Tolerances] = {
     "accurate": Tolerances(
         bounds={"omega_post_impact": 1e-3, "eigenvalue": 0.01, "impact_coefficient": 1e-3, "step_period": 1e-3},
-        why="soft contact (time constant 0.5 ms) and 50 us steps: the error is first order in both and measured at "
-            "~2e-4 (bench); 1e-3 is the suite's accuracy target"
+        why="the suite's accuracy target; the error is first order in the step and the contact time constant "
+            "(docs/convergence.md), and the preset is the cheapest setting a search found to hold it at every "
+            "coverage point (docs/results/tune/rimless-wheel.md)"
     ),
     "fast": Tolerances(
         bounds={"omega_post_impact": 0.01, "eigenvalue": 0.02, "impact_coefficient": 0.01, "step_period": 0.01},
-        why="4 ms contact time constant and 0.4 ms steps: measured error ~4e-3 (bench), first order in the contact "
-            "time constant; 1e-2 leaves no margin beyond that scaling"
+        why="ten times the accuracy target: the error is first order in the contact time constant, and the preset "
+            "is the cheapest setting a search found to hold it at every coverage point "
+            "(docs/results/tune/rimless-wheel.md)"
     ),
 }
 

@@ -383,11 +383,14 @@ def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray 
 
 
 #: Where a preset must hold (mjpoincare tune): the defaults, six spokes down the fall line (the hardest impacts:
-#: impulse ratio 0.67) and a heavy hub (J = 2: slow multipliers, the largest friction demand at impact).
+#: impulse ratio 0.67), a heavy hub (J = 2: slow multipliers, the largest friction demand at impact), and the ideal
+#: impact mode, which shares the presets.
 COVERAGE = (
     CoveragePoint("defaults", {}, "n = 16, slope 0.125, heading pi/10"),
     CoveragePoint("six spokes", {"spokes": "6", "slope": "0.2", "heading": "0"}, "n = 6: the hardest impacts"),
     CoveragePoint("heavy hub", {"J": "2"}, "J = 2: slow multipliers, mu = 0.99 needed"),
+    CoveragePoint("ideal impacts", {"impact": "ideal"}, "the exact impact law at the exact guard, contact off: "
+                  "MuJoCo's smooth integration alone, judged at its own tolerances"),
 )
 
 RIMLESS_WHEEL_3D = Scenario(
