@@ -96,6 +96,11 @@ def setting_text(value: Value) -> str:
     return f"{value:.12g}" if isinstance(value, float) else str(value)
 
 
+def as_run(settings: Mapping[str, Value]) -> dict[str, Value]:
+    """The settings as a trial runs them: through their ``--set`` text (floats to 12 significant digits)."""
+    return {k: float(setting_text(v)) if isinstance(v, float) else v for k, v in settings.items()}
+
+
 def run_trial(name: str, target: str, settings: Mapping[str, Value]) -> TrialOutcome:
     """Validate scenario ``name`` with ``settings`` at each of its coverage points, judged at ``target``'s
     tolerances, on one rollout thread."""
@@ -282,8 +287,9 @@ def run_study(name: str, target: str, *, trials: int, workers: int, path: Path, 
 def _row(trial: Any) -> dict[str, Any]:
     attrs = trial.user_attrs
     cost, ratio = trial.values if trial.values is not None else (math.nan, math.nan)
+    settings = attrs.get("settings")
     return {"number": trial.number, "state": trial.state.name, "origin": attrs.get("origin", "search"),
-            "settings": attrs.get("settings"), "cpu_s": cost if math.isfinite(cost) else None,
+            "settings": None if settings is None else as_run(settings), "cpu_s": cost if math.isfinite(cost) else None,
             "wall_s": attrs.get("wall_s"), "worst_ratio": ratio if math.isfinite(ratio) else None,
             "worst_check": attrs.get("worst_check"), "point_ratios": attrs.get("point_ratios"),
             "refused": attrs.get("refused")}

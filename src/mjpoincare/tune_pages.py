@@ -31,7 +31,7 @@ def _settings(settings: Mapping[str, Any] | None) -> str:
 
 
 def _row(r: Mapping[str, Any]) -> str:
-    cpu = "refused" if r["cpu_s"] is None else f"{r['cpu_s']:.3g}"
+    cpu = "refused" if r.get("refused") else "stopped" if r["cpu_s"] is None else f"{r['cpu_s']:.3g}"
     wall = "" if r["wall_s"] is None else f"{r['wall_s']:.3g}"
     return (f"| {r['number']} | {r['origin']} | {cpu} | {wall} | {_ratio(r['worst_ratio'])} "
             f"| {table_cell(r['worst_check'] or r.get('refused') or r['state'])} "
@@ -62,7 +62,8 @@ def render_target(study: Mapping[str, Any]) -> list[str]:
                   f"wall) over the coverage points, worst ratio {chosen['worst_ratio']:.3g} at "
                   f"{chosen['worst_check']}.", "", f"Preset `{target}`: `{_settings(study['preset'])}`.", ""]
     baselines = [r for r in study["trials"] if r["origin"] != "search"]
-    lines += ["The scenario's presets as they stood when the study began (enqueued as its first trials):", "", *HEAD,
+    lines += ["Enqueued trials: the scenario's presets as they stood when the study began (origin `preset ...`), and "
+              "settings given with `--enqueue`:", "", *HEAD,
               *[_row(r) for r in baselines], "", "The Pareto front (cost against worst ratio), cheapest first:", "",
               *HEAD, *[_row(r) for r in study["front"]], ""]
     return lines

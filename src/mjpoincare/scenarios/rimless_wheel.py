@@ -59,8 +59,10 @@ PARAMS: tuple[Param, ...] = (
 
 #: Simulator presets (why: docs/scenarios/rimless-wheel.md, "Presets and experiment design").
 PRESETS: dict[str, dict[str, float | int | str]] = {
-    "fast": {"timestep": 4e-4, "solref_timeconst": 4e-3, "integrator": "implicitfast"},
-    "accurate": {"timestep": 5e-5, "solref_timeconst": 5e-4, "integrator": "implicitfast"},
+    "fast": {"timestep": 7.73376637002e-05, "solref_timeconst": 0.000363647327313, "integrator": "implicitfast",
+        "solref_dampratio": 5.16729265603, "foot_radius": 0.000666240781006},
+    "accurate": {"timestep": 2.5e-05, "solref_timeconst": 0.00025, "integrator": "implicitfast",
+        "solref_dampratio": 2.0, "foot_radius": 0.000125},
 }
 
 TOLERANCES: dict[str, Tolerances] = {

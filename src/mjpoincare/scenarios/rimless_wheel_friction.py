@@ -75,10 +75,10 @@ PARAMS: tuple[Param, ...] = (
 #: Contact: the stiffest time constant MuJoCo allows (2 steps) and damping ratio 3 (why, and the measurements behind
 #: every constant of this block: docs/scenarios/rimless-wheel-friction.md, "Presets, thresholds and starts").
 PRESETS: dict[str, dict[str, float | int | str]] = {
-    "fast": {"timestep": 2e-4, "solref_timeconst": 4e-4, "solref_dampratio": 3.0, "integrator": "implicitfast",
-             "cone": "elliptic"},
-    "accurate": {"timestep": 5e-5, "solref_timeconst": 1e-4, "solref_dampratio": 3.0, "integrator": "implicitfast",
-                 "cone": "elliptic"},
+    "fast": {"timestep": 0.0002, "solref_timeconst": 0.0004, "solref_dampratio": 3.0, "integrator": "implicitfast",
+        "cone": "elliptic", "impratio": 10.0, "noslip_iterations": 0, "foot_radius": 0.0005},
+    "accurate": {"timestep": 0.0002, "solref_timeconst": 0.0004, "solref_dampratio": 3.0, "integrator": "implicitfast",
+        "cone": "elliptic", "impratio": 10.0, "noslip_iterations": 0, "foot_radius": 0.0005},
     "coarse": {"timestep": 4e-4, "solref_timeconst": 8e-4, "solref_dampratio": 3.0, "integrator": "implicitfast",
                "cone": "elliptic"},
 }

@@ -56,21 +56,24 @@ PARAMS: tuple[Param, ...] = (
 
 #: Dead-beat peg constraint (note 000, 4.3): time constant = 2 steps, dmin = dmax = 0.9999.
 PRESETS: dict[str, dict[str, float | int | str]] = {
-    "fast": {"timestep": 5e-4, "solref_timeconst": 1e-3, "integrator": "euler", "solimp_dmin": 0.9999,
-             "solimp_dmax": 0.9999, "solimp_width": 1e-3, "iterations": 200, "tolerance": 1e-14},
-    "accurate": {"timestep": 1e-4, "solref_timeconst": 2e-4, "integrator": "rk4", "solimp_dmin": 0.9999,
-                 "solimp_dmax": 0.9999, "solimp_width": 1e-3, "iterations": 200, "tolerance": 1e-14},
+    "fast": {"timestep": 0.00052327833294, "solref_timeconst": 0.00235210706536, "integrator": "rk4",
+        "solimp_dmin": 0.9999, "solimp_dmax": 0.9999, "solimp_width": 0.001, "iterations": 200,
+        "tolerance": 1.23229784369e-07, "solref_dampratio": 0.731598014245},
+    "accurate": {"timestep": 0.0001, "solref_timeconst": 0.0002, "integrator": "rk4", "solimp_dmin": 0.9999,
+        "solimp_dmax": 0.9999, "solimp_width": 0.001, "iterations": 200, "tolerance": 1e-14, "solref_dampratio": 1.0},
 }
 TOLERANCES: dict[str, Tolerances] = {
     "accurate": Tolerances(
         bounds={"sigma4": 1e-6, "energy_loss": 1e-5, "heading": 1e-4, "final_speed": 1e-4},
-        why="RK4 at 0.1 ms with the stance ended by a fractional step: the issue's targets (1e-6 on sigma4, 1e-5 on "
-            "the energy per impact)"
+        why="the suite's targets (1e-6 on sigma4, 1e-5 on the energy per impact), with the stance ended by a "
+            "fractional step; the preset is the cheapest setting a search found to hold them at every coverage point "
+            "(docs/results/tune/slotted-skate.md)"
     ),
     "fast": Tolerances(
         bounds={"sigma4": 1e-3, "energy_loss": 1e-3, "heading": 0.01, "final_speed": 0.01},
-        why="semi-implicit Euler at 0.5 ms with a dead-beat peg constraint: first order in the step (measured on the "
-            "default P1 set: 6e-4 on sigma4 in the unstable backward direction)"
+        why="the error of a first-order step at 0.5 ms (6e-4 on sigma4 in the unstable backward direction of the "
+            "default P1 set, semi-implicit Euler); the preset is the cheapest setting a search found to hold it at "
+            "every coverage point (docs/results/tune/slotted-skate.md)"
     ),
 }
 #: H_k+1/H_k is judged only while |H_k| >= RATIO_FLOOR x the run's largest |H| (why: docs/scenarios/slotted-skate.md)
