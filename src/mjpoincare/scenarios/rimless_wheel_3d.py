@@ -382,12 +382,11 @@ def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray 
     return kept.states(nstep), kept.tagged(nstep)[:, None, :]
 
 
-#: Where a preset must hold (mjpoincare tune): the defaults, six spokes down the fall line (the hardest impacts:
-#: impulse ratio 0.67), a heavy hub (J = 2: slow multipliers, the largest friction demand at impact), and the ideal
-#: impact mode, which shares the presets.
+#: Where a preset must hold (mjpoincare tune): the defaults, a heavy hub (J = 2: slow multipliers, the largest
+#: friction demand at impact), and the ideal impact mode, which shares the presets. Few spokes are no coverage point:
+#: at n = 6, slope 0.2 the planar cycle's wobble multiplier is 3.4 (eqs 33-36), so the wheel falls over.
 COVERAGE = (
     CoveragePoint("defaults", {}, "n = 16, slope 0.125, heading pi/10"),
-    CoveragePoint("six spokes", {"spokes": "6", "slope": "0.2", "heading": "0"}, "n = 6: the hardest impacts"),
     CoveragePoint("heavy hub", {"J": "2"}, "J = 2: slow multipliers, mu = 0.99 needed"),
     CoveragePoint("ideal impacts", {"impact": "ideal"}, "the exact impact law at the exact guard, contact off: "
                   "MuJoCo's smooth integration alone, judged at its own tolerances"),
