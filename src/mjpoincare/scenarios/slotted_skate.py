@@ -352,11 +352,15 @@ def _region_map(grid: str, assignments: Mapping[str, str], preset: str | None, j
     return run_regions(grid, assignments, preset, json_path, output)
 
 
-#: Where a preset must hold (mjpoincare tune): the defaults, the other stability region (slot behind the mass centre)
-#: and a fast slide (20x the slot speed: few steps per stance, the hardest impacts on the pegs).
+#: Where a preset must hold (mjpoincare tune): the defaults, the other stability region (slot behind the mass centre),
+#: the regression gate's two other points (a long slot behind the mass centre; the mirrored defaults) and a fast slide
+#: (20x the slot speed: few steps per stance, the hardest impacts on the pegs).
 COVERAGE = (
     CoveragePoint("defaults", {}, "l0 = 1, delta = 1/3, V0 = 1"),
     CoveragePoint("slot behind", {"l0": "-2"}, "L0 < -Delta: the other stability region"),
+    CoveragePoint("long slot behind", {"l0": "-1.4142135623730951", "delta": "0.7071067811865476"},
+                  "l0 = -sqrt 2, delta = 1/sqrt 2: the gate's point with the slowest backward decay"),
+    CoveragePoint("mirrored", {"l0": "-1", "delta": "0.3333333333333333"}, "l0 = -1: the defaults' mirror"),
     CoveragePoint("fast slide", {"V0": "20"}, "20x the slot speed: few steps per stance"),
 )
 
