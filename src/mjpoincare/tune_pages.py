@@ -42,12 +42,23 @@ HEAD = ["| trial | origin | CPU s | wall s | worst ratio | worst check (point/ch
         "|---|---|---|---|---|---|---|"]
 
 
+def _dimension(d: Mapping[str, Any]) -> str:
+    span = ", ".join(map(str, d["choices"])) if d["choices"] else \
+        f"{d['low']:g} to {d['high']:g}{' (log)' if d['log'] else ''}"
+    return f"| {d['name']} | {span}{' timesteps' if d['per_timestep'] else ''} |"
+
+
 def render_target(study: Mapping[str, Any]) -> list[str]:
     """The page's section of one study (one target preset)."""
     target, chosen = study["target"], study["chosen"]
     lines = [f"## preset `{target}`", "",
              f"Study `{study['study']}`: {len(study['trials'])} trials, front of {len(study['front'])} points. "
-             f"Commands that ran its trials: {', '.join(f'`{c}`' for c in study['commands'])}.", ""]
+             f"Commands that ran its trials: {', '.join(f'`{c}`' for c in study['commands'])}.", "",
+             "Coverage points:", "", "| point | parameters | why |", "|---|---|---|",
+             *(f"| {p['name']} | {table_cell(_settings(p['assignments'])) or 'defaults'} | {table_cell(p['why'])} |"
+               for p in study["coverage"]), "",
+             "Searched settings (the preset's other settings are the scene's own):", "", "| setting | range |",
+             "|---|---|", *(_dimension(d) for d in study["space"]), ""]
     if chosen is None:
         lines += [f"**No trial passes every check at every coverage point at the `{target}` tolerances**: the "
                   "searched space has no preset for this target, and the scenario keeps its own. The front below is "
@@ -62,7 +73,8 @@ def render_target(study: Mapping[str, Any]) -> list[str]:
                   f"wall) over the coverage points, worst ratio {chosen['worst_ratio']:.3g} at "
                   f"{chosen['worst_check']}.", "", f"Preset `{target}`: `{_settings(study['preset'])}`.", ""]
     baselines = [r for r in study["trials"] if r["origin"] != "search"]
-    lines += ["Enqueued trials: the scenario's presets as they stood when the study began (origin `preset ...`), and "
+    lines += [f"![{study['study']}: cost against worst ratio]({study['study']}.png)", "",
+              "Enqueued trials: the scenario's presets as they stood when the study began (origin `preset ...`), and "
               "settings given with `--enqueue`:", "", *HEAD,
               *[_row(r) for r in baselines], "", "The Pareto front (cost against worst ratio), cheapest first:", "",
               *HEAD, *[_row(r) for r in study["front"]], ""]
@@ -81,17 +93,7 @@ def render_page(studies: Sequence[Mapping[str, Any]]) -> str:
              "those validations, and the worst `error / tolerance` over every check of every point (a failed "
              f"zero-tolerance check, a missing value or a diverged run counts as {first['ratio_cap']:g}). The search "
              "is Optuna's multi-objective TPE sampler over the settings below; the preset is the cheapest point of the "
-             f"Pareto front whose worst ratio is at most {first['preset_ratio']:g}.", "",
-             "Coverage points:", "", "| point | parameters | why |", "|---|---|---|"]
-    lines += [f"| {p['name']} | {table_cell(_settings(p['assignments'])) or 'defaults'} | {table_cell(p['why'])} |"
-              for p in first["coverage"]]
-    lines += ["", "Searched settings (the preset's other settings are the scene's own):", "",
-              "| setting | range |", "|---|---|"]
-    for d in first["space"]:
-        span = ", ".join(map(str, d["choices"])) if d["choices"] else \
-            f"{d['low']:g} to {d['high']:g}{' (log)' if d['log'] else ''}"
-        lines.append(f"| {d['name']} | {span}{' timesteps' if d['per_timestep'] else ''} |")
-    lines.append("")
+             f"Pareto front whose worst ratio is at most {first['preset_ratio']:g}.", ""]
     for study in studies:
         lines += render_target(study)
     return "\n".join(lines)

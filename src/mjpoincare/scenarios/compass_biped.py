@@ -73,9 +73,10 @@ PARAMS: tuple[Param, ...] = (
 
 #: Overdamped contact (damping ratio 10; why: docs/scenarios/compass-biped.md, "Presets and start design").
 PRESETS: dict[str, dict[str, float | int | str]] = {
-    "fast": {"timestep": 1e-4, "solref_timeconst": 1e-3, "solref_dampratio": 10.0, "integrator": "implicitfast"},
-    "accurate": {"timestep": 2e-5, "solref_timeconst": 2e-4, "solref_dampratio": 10.0,
-                 "integrator": "implicitfast"},
+    "fast": {"timestep": 0.000146509726573, "solref_timeconst": 0.000410530130666, "solref_dampratio": 8.08755631038,
+        "integrator": "euler", "foot_radius": 0.00104656012678},
+    "accurate": {"timestep": 2e-05, "solref_timeconst": 0.0002, "solref_dampratio": 10.0, "integrator": "implicitfast",
+        "foot_radius": 0.0005},
 }
 TOLERANCES: dict[str, Tolerances] = {
     "accurate": Tolerances(
