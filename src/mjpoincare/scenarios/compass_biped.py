@@ -374,14 +374,16 @@ def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
     return event_clip(model, start, nstep, controller, chunk, setup=controller.configure).states(nstep)
 
 
-#: Where a preset must hold (mjpoincare tune): the defaults and Goswami's walker (m_h/m = 2, 3 degrees: a larger step
-#: angle and faster impacts). As for the rimless wheel, no point lies closer than the defaults to a limit where a
-#: checked quantity vanishes: towards slope 0 the step length goes to 0 while the soft impact's displacement of the foot
-#: does not, so the step length's relative error grows without bound (a study with slope 0.01 as a coverage point found
-#: no setting within the accurate tolerances there).
+#: Where a preset must hold (mjpoincare tune): the defaults, Goswami's walker (m_h/m = 2, 3 degrees: a larger step
+#: angle and faster impacts) and the gate's actuated gait. As for the rimless wheel, no point lies closer than the
+#: defaults to a limit where a checked quantity vanishes: towards slope 0 the step length goes to 0 while the soft
+#: impact's displacement of the foot does not, so the step length's relative error grows without bound (a study with
+#: slope 0.01 as a coverage point found no setting within the accurate tolerances there).
 COVERAGE = (
     CoveragePoint("defaults", {}, "m_h = 10, m = 5, slope 0.04"),
     CoveragePoint("Goswami walker", {"m_h": "2", "m_l": "1", "slope": "0.0524"}, "m_h/m = 2 on 3 degrees"),
+    CoveragePoint("actuated", {"tau_ankle": "0.5", "tau_hip": "0.2"}, "the regression gate's actuated gait: constant "
+                  "ankle and hip torques (003 eq 4.5)"),
 )
 
 COMPASS_BIPED = Scenario(
