@@ -43,9 +43,12 @@ def test_reversals_follow_the_map() -> None:
 
 
 def test_error_is_first_order_in_the_step() -> None:
+    """Semi-implicit Euler with a dead-beat peg (the fast preset before the search) halves sigma4's error with the
+    step."""
     errors = []
     for dt in ("1e-3", "5e-4"):
-        result = run_validation("slotted-skate", {"timestep": dt, "solref_timeconst": str(2 * float(dt))}, "fast")
+        result = run_validation("slotted-skate", {"integrator": "euler", "solref_dampratio": "1", "tolerance": "1e-14",
+                                                  "timestep": dt, "solref_timeconst": str(2 * float(dt))}, "fast")
         errors.append(next(c.error for c in result.checks if c.name == "sigma4_backward"))
     assert 1.6 < errors[0] / errors[1] < 2.5, errors
 
