@@ -73,8 +73,8 @@ PARAMS: tuple[Param, ...] = (
 
 #: Overdamped contact (damping ratio 10; why: docs/scenarios/compass-biped.md, "Presets and start design").
 PRESETS: dict[str, dict[str, float | int | str]] = {
-    "fast": {"timestep": 0.000146509726573, "solref_timeconst": 0.000410530130666, "solref_dampratio": 8.08755631038,
-        "integrator": "euler", "foot_radius": 0.00104656012678},
+    "fast": {"timestep": 1e-4, "solref_timeconst": 1e-3, "solref_dampratio": 10.0, "integrator": "implicitfast",
+             "foot_radius": 5e-4},
     "accurate": {"timestep": 2e-05, "solref_timeconst": 0.0002, "solref_dampratio": 10.0, "integrator": "implicitfast",
         "foot_radius": 0.0005},
 }
@@ -86,9 +86,8 @@ TOLERANCES: dict[str, Tolerances] = {
     ),
     "fast": Tolerances(
         bounds={"fixed_point": 5e-3, "eigenvalues": 0.03, "step_period": 5e-3, "step_length": 5e-3},
-        why="the impact onset jitters on the step grid (one-step map errors ~1e-3 against the exact map at a 0.1 ms "
-            "step), which limits the eigenvalues to a few 1e-2; the preset is the cheapest setting a search found to "
-            "hold it at every coverage point (docs/results/tune/compass-biped.md)"
+        why="1 ms overdamped contact and 0.1 ms steps: the impact onset jitters on the step grid (one-step map "
+            "errors ~1e-3 against the exact map), which limits the eigenvalues to a few 1e-2"
     ),
 }
 
