@@ -96,16 +96,24 @@ def test_margin_rows_measure_the_spread() -> None:
     assert all(r["ratio"] <= MARGIN for r in rows if r["status"] == "gated")
 
 
+def _one_miss() -> tuple[GateCase, Miss, tuple[Miss, ...]]:
+    """A gate case with declared misses (Gait III at the fast preset: a few seconds), its first resolved miss, and its
+    other misses."""
+    missed = case("compass-biped-friction[fast,gait=iii]")
+    miss = next(m for m in missed.misses if m.resolved)
+    return missed, miss, tuple(m for m in missed.misses if m is not miss)
+
+
 def test_margins_show_and_hold_an_expected_miss_by_its_declared_error(capsys: pytest.CaptureFixture[str]) -> None:
     """An expected miss's row carries its declared error and reason, and the table prints the declared error beside
     the measured one; declared twice the measured error, the same miss is stale and loses its hold."""
-    missed = case("rimless-wheel[accurate,spokes=8,slope=0.2]")
-    (miss,) = missed.misses
+    missed, miss, others = _one_miss()
     row = next(r for r in margin_rows([missed], perturb=False) if r["check"] == miss.check)
     assert row["status"] == "declared miss" and row["holds"]
     assert row["resolution"] == pytest.approx(miss.band[1] - miss.band[0])
-    assert row["declared"] == list(miss.bounds) and row["miss"] == miss.reason("accurate")
-    stale = dataclasses.replace(missed, misses=(dataclasses.replace(miss, measured=row["error"] + 2 * miss.spread),))
+    assert row["declared"] == list(miss.bounds) and row["miss"] == miss.reason(missed.preset)
+    stale = dataclasses.replace(missed, misses=(dataclasses.replace(miss, measured=row["error"] + 2 * miss.spread),
+                                                *others))
     assert not next(r["holds"] for r in margin_rows([stale], perturb=False) if r["check"] == miss.check)
     assert main(["margins", "--case", missed.label, "--base-only"]) == 0
     line = next(x for x in capsys.readouterr().out.splitlines() if miss.check in x).split()
@@ -132,11 +140,11 @@ def test_margins_exit_1_on_a_failing_watched_check_and_on_a_drifting_miss(monkey
                                                                           capsys: pytest.CaptureFixture[str]) -> None:
     """Fed a check that fails but is declared watched, or a miss whose declared error has left the run's, margins
     marks the row NOT HELD and exits 1; the gate as declared exits 0 on the same case."""
-    missed = case("rimless-wheel[accurate,spokes=8,slope=0.2]")
-    (miss,) = missed.misses
+    missed, miss, others = _one_miss()
     assert main(["margins", "--case", missed.label, "--base-only"]) == 0
-    watched = dataclasses.replace(missed, misses=(), watched=(Watch(check=miss.check, spread=0.0, why="planted"),))
-    drifting = dataclasses.replace(missed, misses=(dataclasses.replace(miss, measured=3 * miss.bounds[1]),))
+    watched = dataclasses.replace(missed, misses=others,
+                                  watched=(*missed.watched, Watch(check=miss.check, spread=0.0, why="planted")))
+    drifting = dataclasses.replace(missed, misses=(dataclasses.replace(miss, measured=3 * miss.bounds[1]), *others))
     for planted in (watched, drifting):
         monkeypatch.setattr(gate, "GATE", (planted,))
         capsys.readouterr()
