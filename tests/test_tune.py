@@ -53,7 +53,8 @@ def test_without_such_a_point_the_preset_is_the_most_accurate_passing_one_or_non
 @pytest.mark.parametrize("name", list(scenarios.REGISTRY))
 def test_every_preset_is_a_point_of_its_search_space(name: str) -> None:
     """A preset enqueued as a trial gives back the preset's settings (the time constant is searched in timesteps)."""
-    optuna = pytest.importorskip("optuna")
+    require_module("optuna", "optuna")
+    import optuna
     scenario = scenarios.get(name)
     for preset in scenario.presets:
         if preset not in tune.TARGETS:
