@@ -52,3 +52,24 @@ def test_plain_clip_is_trajectory_0_stepped(model: mujoco.MjModel) -> None:
         mujoco.mj_step(model, data)
         mujoco.mj_getState(model, data, expected[k], STATE_SPEC)
     np.testing.assert_allclose(states, expected, rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize("events", [False, True])
+def test_a_rollout_ends_at_the_first_chunk_its_stop_test_accepts(model: mujoco.MjModel, events: bool) -> None:
+    """Adaptive stopping: ``stop`` is asked after every chunk; the rollout ends at the first True."""
+    from mjpoincare.simulate import event_rollout, rollout_batch
+
+    start = initial_states(model, np.zeros((2, model.nq)) + np.array([0, 0, 1, 1, 0, 0, 0]), np.zeros((2, model.nv)))
+    seen: list[int] = []
+
+    def consume(chunk: object, *_: object) -> np.ndarray:
+        seen.append(1)
+        return np.full(2, 10)
+
+    stop = lambda: len(seen) == 3  # noqa: E731
+    if events:
+        report = event_rollout(model, start, 100, consume, chunk_steps=10, threads=1, stop=stop)
+    else:
+        report = rollout_batch(model, start, 100, consume, chunk_steps=10, threads=1, stop=stop)
+    assert len(seen) == 3
+    assert report.steps == 3 * 10 * 2

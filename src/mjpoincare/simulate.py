@@ -361,6 +361,7 @@ def rollout_batch(
     backend: str = "mujoco",
     precision: str = "float64",
     batch: int = 0,
+    stop: Callable[[], bool] | None = None,
 ) -> RolloutReport:
     """Step every initial state in ``state0`` (B, nstate) for ``nstep`` steps, in native chunks.
 
@@ -369,7 +370,8 @@ def rollout_batch(
     Trajectories whose time does not advance by exactly one timestep per step (MuJoCo reset them after an
     instability) or that contain NaN/inf are flagged in ``diverged``; their rows after the divergence are set to NaN
     before ``consume`` sees them, so no sample is taken from a reset state. ``batch``: the trajectories MJX and
-    Warp step (:func:`open_batch`).
+    Warp step (:func:`open_batch`). ``stop`` (optional) is asked after each chunk has been consumed; when it answers
+    True the rollout ends there (adaptive stopping, :mod:`mjpoincare.analysis.adaptive_stopping`).
     """
     start = perturbed_starts(state0, model.nq, model.nv, start_perturbation)
     with captured_mujoco_log() as log:
@@ -379,6 +381,8 @@ def rollout_batch(
                 n = min(chunk_steps, nstep - done)
                 consume(_chunk_of(rollout.run_chunk(n), model.nq, model.nv))
                 done += n
+                if stop is not None and stop():
+                    break
         rollout.report.warnings += log
     return rollout.report
 
@@ -397,6 +401,7 @@ def event_rollout(
     backend: str = "mujoco",
     precision: str = "float64",
     batch: int = 0,
+    stop: Callable[[], bool] | None = None,
 ) -> RolloutReport:
     """Batched rollout with a controller that acts at events, without Python between steps.
 
@@ -417,7 +422,7 @@ def event_rollout(
     acts on the step from recorded row k to k + 1). A time-varying feedforward (e.g. a reference trajectory in
     the phase since the last event, which the controller tracks) thus needs no Python between steps; rows
     after an event are discarded and the next chunk's control starts from the restart row.
-    ``start_perturbation``, ``batch``: as in :func:`rollout_batch`.
+    ``start_perturbation``, ``batch``, ``stop``: as in :func:`rollout_batch`.
     """
     batch_size = state0.shape[0]
     nq, nv = model.nq, model.nv
@@ -444,6 +449,8 @@ def event_rollout(
                         rollout.set_states(np.array([b]), state[None, :])
                 rollout.set_states(np.nonzero(done)[0], before[done])
                 kept += np.where(done, 0, restart)
+                if stop is not None and stop():
+                    break
         rollout.report.warnings += log
     return rollout.report
 

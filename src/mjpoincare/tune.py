@@ -13,6 +13,11 @@ reports two objectives, both minimised:
   included). A failed check whose tolerance is 0 (a count or a category), a missing value and a diverged run count
   as :data:`RATIO_CAP`, so the sampler still ranks them behind every finite ratio.
 
+A trial gives up at the first coverage point where a check fails (a worst ratio above 1): such settings cannot be a
+preset, whatever the other points give. It is recorded as pruned, with the point and check that failed it and the CPU
+seconds spent until then, and the sampler ranks it behind every finished trial. The points run in the order of their
+mean ratio over the study's finished trials, the hardest first, so that a failing trial fails early.
+
 The study is Optuna's (multi-objective TPE sampler with constant liar for parallel workers) in an SQLite file: a
 study can be resumed (``--resume``), shared and run by ``--workers`` processes at once. The first trials are the
 scenario's current presets, so that the front shows where they stand. The Pareto front is Optuna's
@@ -81,7 +86,8 @@ class TrialOutcome:
         wall_s: their wall seconds.
         worst_ratio: the largest ``error / tolerance`` (the accuracy objective).
         worst_check: where it is, ``point/check``.
-        point_ratios: each coverage point's worst ratio and its check.
+        point_ratios: each coverage point's worst ratio and its check, for the points that ran.
+        gave_up: the trial stopped at a point that failed (``worst_ratio`` > ``give_up``), before the others ran.
     """
 
     cpu_s: float
@@ -89,6 +95,7 @@ class TrialOutcome:
     worst_ratio: float
     worst_check: str
     point_ratios: Mapping[str, tuple[float, str]]
+    gave_up: bool = False
 
 
 def setting_text(value: Value) -> str:
@@ -101,24 +108,40 @@ def as_run(settings: Mapping[str, Value]) -> dict[str, Value]:
     return {k: float(setting_text(v)) if isinstance(v, float) else v for k, v in settings.items()}
 
 
-def run_trial(name: str, target: str, settings: Mapping[str, Value]) -> TrialOutcome:
-    """Validate scenario ``name`` with ``settings`` at each of its coverage points, judged at ``target``'s
-    tolerances, on one rollout thread."""
+def run_trial(name: str, target: str, settings: Mapping[str, Value], *, order: Sequence[str] = (),
+              give_up: float = math.inf) -> TrialOutcome:
+    """Validate scenario ``name`` with ``settings`` at each of its coverage points (those named in ``order`` first,
+    in that order), judged at ``target``'s tolerances, on one rollout thread; stop after the first point whose worst
+    ratio exceeds ``give_up``."""
     scenario = scenarios.get(name)
     overrides = {k: setting_text(v) for k, v in settings.items()} | {"threads": "1"}
+    rank = {point: k for k, point in enumerate(order)}
+    points = sorted(scenario.coverage, key=lambda point: rank.get(point.name, len(rank)))
     cpu = wall = 0.0
     point_ratios: dict[str, tuple[float, str]] = {}
-    for point in scenario.coverage:
+    for point in points:
         cpu0, wall0 = time.process_time(), time.perf_counter()
         result = run_validation(name, {**point.assignments, **overrides}, preset=target)
         cpu += time.process_time() - cpu0
         wall += time.perf_counter() - wall0
         ratio, check = max((check_ratio(c), c.name) for c in result.checks)
         point_ratios[point.name] = (ratio, check)
+        if ratio > give_up:
+            break
     worst_point = max(point_ratios, key=lambda k: point_ratios[k][0])
     ratio, check = point_ratios[worst_point]
     return TrialOutcome(cpu_s=cpu, wall_s=wall, worst_ratio=ratio, worst_check=f"{worst_point}/{check}",
-                        point_ratios=point_ratios)
+                        point_ratios=point_ratios, gave_up=len(point_ratios) < len(points))
+
+
+def hardest_first(trials: Sequence[Any]) -> list[str]:
+    """Coverage point names by their mean worst ratio (capped at 10) over ``trials`` (Optuna trials with
+    ``point_ratios``), the largest first."""
+    ratios: dict[str, list[float]] = {}
+    for trial in trials:
+        for point, (ratio, _) in trial.user_attrs.get("point_ratios", {}).items():
+            ratios.setdefault(point, []).append(min(float(ratio), 10.0))
+    return sorted(ratios, key=lambda point: -sum(ratios[point]) / len(ratios[point]))
 
 
 def target_space(scenario: scenarios.Scenario, target: str) -> tuple[sim_settings.Dimension, ...]:
@@ -180,8 +203,10 @@ def _objective(name: str, target: str) -> Any:
 
     def objective(trial: Any) -> tuple[float, float]:
         settings = suggest_settings(trial, space)
+        complete = _optuna().trial.TrialState.COMPLETE
+        order = hardest_first(trial.study.get_trials(deepcopy=False, states=(complete,)))
         try:
-            outcome = run_trial(name, target, settings)
+            outcome = run_trial(name, target, settings, order=order, give_up=1.0)
         except ParameterError as err:  # settings the scenario refuses (e.g. a time constant MuJoCo would clamp)
             trial.set_user_attr("refused", str(err))
             return math.inf, RATIO_CAP
@@ -189,6 +214,10 @@ def _objective(name: str, target: str) -> Any:
         trial.set_user_attr("wall_s", outcome.wall_s)
         trial.set_user_attr("worst_check", outcome.worst_check)
         trial.set_user_attr("point_ratios", {k: list(v) for k, v in outcome.point_ratios.items()})
+        if outcome.gave_up:
+            trial.set_user_attr("cpu_s_until_failure", outcome.cpu_s)
+            trial.set_user_attr("ratio_at_failure", outcome.worst_ratio)
+            raise _optuna().TrialPruned(f"fails at {outcome.worst_check} (ratio {outcome.worst_ratio:.3g})")
         return outcome.cpu_s, outcome.worst_ratio
 
     return objective
@@ -286,10 +315,11 @@ def run_study(name: str, target: str, *, trials: int, workers: int, path: Path, 
 
 def _row(trial: Any) -> dict[str, Any]:
     attrs = trial.user_attrs
-    cost, ratio = trial.values if trial.values is not None else (math.nan, math.nan)
+    cost, ratio = trial.values if trial.values is not None else (math.nan, attrs.get("ratio_at_failure", math.nan))
     settings = attrs.get("settings")
     return {"number": trial.number, "state": trial.state.name, "origin": attrs.get("origin", "search"),
             "settings": None if settings is None else as_run(settings), "cpu_s": cost if math.isfinite(cost) else None,
+            "cpu_s_until_failure": attrs.get("cpu_s_until_failure"),
             "wall_s": attrs.get("wall_s"), "worst_ratio": ratio if math.isfinite(ratio) else None,
             "worst_check": attrs.get("worst_check"), "point_ratios": attrs.get("point_ratios"),
             "refused": attrs.get("refused")}

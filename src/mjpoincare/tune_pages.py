@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import sys
 from collections.abc import Mapping, Sequence
 from pathlib import Path
@@ -31,11 +32,30 @@ def _settings(settings: Mapping[str, Any] | None) -> str:
 
 
 def _row(r: Mapping[str, Any]) -> str:
-    cpu = "refused" if r.get("refused") else "stopped" if r["cpu_s"] is None else f"{r['cpu_s']:.3g}"
+    if r.get("refused"):
+        cpu = "refused"
+    elif r.get("cpu_s_until_failure") is not None:
+        cpu = f"gave up after {r['cpu_s_until_failure']:.3g}"
+    else:
+        cpu = "stopped" if r["cpu_s"] is None else f"{r['cpu_s']:.3g}"
     wall = "" if r["wall_s"] is None else f"{r['wall_s']:.3g}"
     return (f"| {r['number']} | {r['origin']} | {cpu} | {wall} | {_ratio(r['worst_ratio'])} "
             f"| {table_cell(r['worst_check'] or r.get('refused') or r['state'])} "
             f"| {table_cell(_settings(r['settings']))} |")
+
+
+def best_per_point(rows: Sequence[Mapping[str, Any]]) -> dict[str, dict[str, Any]]:
+    """For each coverage point, the trial (finished or given up) with the smallest worst ratio there, the cheaper on a
+    tie: what the search found for a point that no preset holds."""
+    best: dict[str, dict[str, Any]] = {}
+    for row in rows:
+        for point, (ratio, check) in (row.get("point_ratios") or {}).items():
+            cost = row["cpu_s"] if row["cpu_s"] is not None else math.inf
+            known = best.get(point)
+            if known is None or (ratio, cost) < (known["ratio"], known["cost"]):
+                best[point] = {"trial": row["number"], "ratio": ratio, "check": check, "cost": cost,
+                               "settings": row["settings"]}
+    return {point: {k: v for k, v in entry.items() if k != "cost"} for point, entry in best.items()}
 
 
 HEAD = ["| trial | origin | CPU s | wall s | worst ratio | worst check (point/check) | settings |",
@@ -78,6 +98,14 @@ def render_target(study: Mapping[str, Any]) -> list[str]:
               "settings given with `--enqueue`:", "", *HEAD,
               *[_row(r) for r in baselines], "", "The Pareto front (cost against worst ratio), cheapest first:", "",
               *HEAD, *[_row(r) for r in study["front"]], ""]
+    best = best_per_point(study["trials"])
+    if best:
+        lines += ["The best trial at each coverage point (the smallest worst ratio there; a point where it is above 1 "
+                  "has no setting in the searched space that passes it):", "",
+                  "| point | trial | worst ratio | check | settings |", "|---|---|---|---|---|",
+                  *(f"| {p['name']} | {best[p['name']]['trial']} | {best[p['name']]['ratio']:.3g} | "
+                    f"{best[p['name']]['check']} | {table_cell(_settings(best[p['name']]['settings']))} |"
+                    for p in study["coverage"] if p["name"] in best), ""]
     return lines
 
 
@@ -91,9 +119,11 @@ def render_page(studies: Sequence[Mapping[str, Any]]) -> str:
              "Each trial runs the scenario's validation at every coverage point with the trial's settings (one rollout "
              "thread) and is judged at the target preset's tolerances. Objectives, both minimised: the CPU seconds of "
              "those validations, and the worst `error / tolerance` over every check of every point (a failed "
-             f"zero-tolerance check, a missing value or a diverged run counts as {first['ratio_cap']:g}). The search "
-             "is Optuna's multi-objective TPE sampler over the settings below; the preset is the cheapest point of the "
-             f"Pareto front whose worst ratio is at most {first['preset_ratio']:g}.", ""]
+             f"zero-tolerance check, a missing value or a diverged run counts as {first['ratio_cap']:g}). A trial "
+             "gives up at the first point where a check fails (ratio above 1; the points run hardest first): it "
+             "cannot be a preset, and it is shown with the CPU seconds it took to fail. The search is Optuna's "
+             "multi-objective TPE sampler over the settings below; the preset is the cheapest point of the Pareto "
+             f"front whose worst ratio is at most {first['preset_ratio']:g}.", ""]
     for study in studies:
         lines += render_target(study)
     return "\n".join(lines)

@@ -39,6 +39,7 @@ import mujoco
 import numpy as np
 
 from mjpoincare.analysis import checks
+from mjpoincare.analysis.adaptive_stopping import FitSettling, StoppingRule, fit_spread
 from mjpoincare.analysis.compass_biped_stance import stance_rows
 from mjpoincare.analysis.compass_gait import crossing_steps, swing_foot_report
 from mjpoincare.analysis.eigenvalues import match_eigenvalues
@@ -105,7 +106,7 @@ TOLERANCES: dict[str, Tolerances] = {
     ),
 }
 
-STEPS = 8  # heel strikes per trajectory
+STEPS = 8  # heel strikes per trajectory, at most (a stable gait's batch stops earlier once its fit settles: STOPPING)
 STARTS = 16  # perturbed starts around the fixed point (plus the fixed point itself)
 PERTURBATION = 0.03  # as compass-biped: size x (timestep / 20 us)^(1/3), shrunk as |lambda|max -> 1
 SETTLE = 3  # steps of the unperturbed trajectory skipped before per-step averages
@@ -120,6 +121,9 @@ CHUNK_SECONDS = 0.05
 FIT_DEGREE = 3
 #: Type-B gaits: starts inside the impact border, fitted linearly (why: the same docs section)
 BORDER_DEGREE = 1
+#: A stable gait's batch stops once more steps no longer sharpen its fit (:mod:`mjpoincare.analysis.adaptive_stopping`);
+#: first look at SETTLE + 2 samples per trajectory, so that trajectory 0 has settled stances to check.
+STOPPING = StoppingRule(min_samples=SETTLE + 2)
 
 
 def gait_name(p: Values) -> str:
@@ -259,7 +263,8 @@ def initial_section_states(g: theory.Gait, timestep: float) -> np.ndarray:
 
 
 def _run(p: Values, s: Values, model: mujoco.MjModel, starts: np.ndarray, steps: int,
-         wrap: bool = False) -> tuple[FrictionGaitController, RolloutReport, KeptRows | None]:
+         wrap: bool = False, settling: FitSettling | None = None
+         ) -> tuple[FrictionGaitController, RolloutReport, KeptRows | None]:
     g = gait(p)
     pd = (float(p["kp"]), float(p["kd"])) if gait_name(p) == "III" else None
     radius = float(s["foot_radius"])
@@ -270,7 +275,8 @@ def _run(p: Values, s: Values, model: mujoco.MjModel, starts: np.ndarray, steps:
     report = event_rollout(model, post_impact_states(model, g.biped, starts, radius),
                            nstep, kept if kept is not None else controller, **rollout_options(s), chunk_steps=chunk,
                            control=(lambda t0: controller.control(t0, chunk)) if pd is not None else None,
-                           setup=controller.configure)
+                           setup=controller.configure,
+                           stop=None if settling is None else lambda: settling(controller.samples))
     return controller, report, kept
 
 
@@ -283,7 +289,9 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     tol = at_preset(TOLERANCES, COMPASS_BIPED_FRICTION.name, preset)
     why = tol.why
     steps, degree, settle = design(g)
-    c, report, _ = _run(p, s, model, initial_section_states(g, model.opt.timestep), steps)
+    settling = None if unstable(g) else FitSettling(STOPPING, lambda seqs: fit_spread(
+        fit_return_map(*sample_pairs(seqs), degree=degree, seed=seed), tol["fixed_point"], tol["eigenvalues"]))
+    c, report, _ = _run(p, s, model, initial_section_states(g, model.opt.timestep), steps, settling=settling)
     out: list[checks.Check] = []
     extras: dict[str, object] = {"gait": name, "mu": friction(p), "analytic_pattern": theory.describe(g.record)}
     y_star_th, _ = theory.legs_parallel(g)
@@ -311,16 +319,19 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
                             "error well above it is MuJoCo's map, not the sampling); " + why))
     ys, dts, lengths, works = crossing_steps(c.samples, c.sample_times, c.strikes, first=1, step_work=c.step_work)
     rec = g.record
-    period_sim = regress_at(y_star, ys, dts) if len(dts) > 4 else math.nan
-    length_sim = regress_at(y_star, ys, lengths) if len(lengths) > 4 else math.nan
+    regression = min(cb.STEP_REGRESSION_DEGREE, degree)  # a type-B gait's linear fit: affine
+    period_sim = regress_at(y_star, ys, dts, regression)
+    length_sim = regress_at(y_star, ys, lengths, regression)
     out.append(checks.relative("step_period", rec.period, period_sim, tol["step_period"], "s",
-                               "time between legs-parallel crossings, regressed at the fitted fixed point"))
+                               f"time between legs-parallel crossings, regressed (degree {regression}) at the fitted "
+                               "fixed point"))
     out.append(checks.relative("step_length", rec.step_length, length_sim, tol["step_length"], "m",
-                               "distance between successive stance feet (002 S), regressed at the fitted fixed point"))
+                               f"distance between successive stance feet (002 S), regressed (degree {regression}) at "
+                               "the fitted fixed point"))
     out.append(checks.relative("speed", theory.average_speed(rec), length_sim / period_sim, tol["speed"], "m/s",
                                "average speed S/T (002 Sec. 5)"))
     if name in ("I", "II", "III"):
-        work_sim = regress_at(y_star, ys, works) if len(works) > 4 else math.nan
+        work_sim = regress_at(y_star, ys, works, regression)
         cmt = work_sim / (g.biped.total_mass * g.biped.g * length_sim)
         out.append(checks.relative("cost_of_transport", theory.cost_of_transport(g.biped, rec), cmt,
                                    tol["cost_of_transport"], "", "c_mt = W/(M_tot g S) (002 eq 29), W = sum "
@@ -331,6 +342,8 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
                           float(s["foot_radius"]))[settle:]
     out += stance_checks(g, name, stances, model.opt.timestep, float(s["solref_timeconst"]), tol, extras)
     extras["fit"] = fit.to_dict()
+    if settling is not None:
+        extras["adaptive_stopping"] = settling.to_dict()
     extras["reported"] = {"swing_foot_depth": swing_foot_report(c.swing_low, -g.record.min_swing_height)}
     extras["analytic"] = {"z": g.z, "eigenvalues": g.eigenvalues, "legs_parallel": y_star_th}
     grid = np.linspace(float(x[:, 0].min()), float(x[:, 0].max()), 2)
