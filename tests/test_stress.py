@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+from dataclasses import replace
 from pathlib import Path
 
 import pytest
@@ -41,7 +42,9 @@ def test_refused_case_is_reported_not_raised() -> None:
 
 @pytest.mark.mujoco
 def test_case_runs_with_diagnostics() -> None:
-    row = run_case("slotted-skate", StressCase("rk4", {"integrator": "rk4"}, "integrator"))
+    # a 2 ms step (the peg's time constant at 2 steps): the diagnostics' mechanism in a quarter of the preset's time
+    row = run_case("slotted-skate", StressCase("rk4", {"integrator": "rk4", "timestep": "2e-3",
+                                                      "solref_timeconst": "4e-3"}, "integrator"))
     assert row["verdict"] == "accurate"
     assert row["max_penetration_m"] == 0.0  # contact is disabled in the skate: only the peg constraint acts
     assert row["max_kinetic_energy_J"] == pytest.approx(0.5 * (1.0 + 1.5**2 * 0.1**2 * (1 + 1.0)), rel=0.1)
@@ -62,13 +65,19 @@ def test_stress_cli_refuses_unknown_scenario(tmp_path: Path) -> None:
 
 
 def test_stress_json_is_strict(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    """The report is written whole, as strict JSON (NaN becomes null)."""
+    """The report is written whole, as strict JSON (NaN becomes null). Of the edges the skate declares, it keeps the
+    two that run in half a second together and the two it must refuse (its other edges take 15 s)."""
     from mjpoincare import stress
 
     monkeypatch.setattr(stress, "generic_cases", lambda scenario: [])
+    skate = scenarios.get("slotted-skate")
+    cases = tuple(c for c in skate.stress_cases if c.expect == "refused" or c.name in ("fast slide", "short slot"))
+    assert len(cases) == 4 and {c.expect for c in cases} == {"run", "refused"}
+    monkeypatch.setitem(scenarios.REGISTRY, skate.name, replace(skate, stress_cases=cases))
     out = tmp_path / "stress.json"
     monkeypatch.setattr(stress, "LADDER", ())
     assert main(["stress", "slotted-skate", "--soak", "0", "--json", str(out)]) == 0
     report = json.loads(out.read_text())
-    assert {r["case"] for r in report["cases"]} == {c.name for c in scenarios.get("slotted-skate").stress_cases}
+    assert {r["case"] for r in report["cases"]} == {c.name for c in cases}
+    assert {r["verdict"] == "refused" for r in report["cases"]} == {True, False}
     assert report["largest_stable_timestep"] is None or math.isnan(report["largest_stable_timestep"])

@@ -13,6 +13,11 @@ from mjpoincare.cli import main
 from mjpoincare.params import ParameterError
 from mjpoincare.sweep import crossing, parse_values
 
+#: Coarse steps for the sweeps, which test the command rather than accuracy (a tenth to a third of a validation's time
+#: at the fast preset; every check passes there): the wheel's contact time constant, and the skate's peg's, at 2 steps.
+WHEEL_COARSE = ["--set", "timestep=8e-4", "--set", "solref_timeconst=1.6e-3"]
+SKATE_COARSE = ["--set", "timestep=2e-3", "--set", "solref_timeconst=4e-3"]
+
 
 def test_parse_values() -> None:
     assert parse_values("0.07, 0.072") == ["0.07", "0.072"]
@@ -30,7 +35,8 @@ def test_crossing_interpolates_and_extrapolates() -> None:
 @pytest.mark.mujoco
 def test_wheel_sweep_over_slope(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     out = tmp_path / "sweep.json"
-    code = main(["sweep", "rimless-wheel", "--param", "slope", "--values", "0.08,0.12", "--json", str(out)])
+    code = main(["sweep", "rimless-wheel", "--param", "slope", "--values", "0.08,0.12", *WHEEL_COARSE,
+                 "--json", str(out)])
     rows = json.loads(out.read_text())["rows"]
     assert code == (0 if all(r["passed"] for r in rows) else 1)  # each row's verdict is the gate's to assert
     assert [r["slope"] for r in rows] == [0.08, 0.12]
@@ -42,7 +48,7 @@ def test_wheel_sweep_over_slope(tmp_path: Path, capsys: pytest.CaptureFixture[st
 @pytest.mark.mujoco
 def test_parallel_sweep_resumes_from_its_results_file(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     out = tmp_path / "sweep.json"
-    args = ["sweep", "rimless-wheel", "--param", "slope", "--json", str(out)]
+    args = ["sweep", "rimless-wheel", "--param", "slope", *WHEEL_COARSE, "--json", str(out)]
     code = main([*args, "--values", "0.08,0.1", "--workers", "2"])
     first = json.loads(out.read_text())
     assert code == (0 if all(r["passed"] for r in first["rows"]) else 1)
@@ -61,7 +67,7 @@ def test_parallel_sweep_resumes_from_its_results_file(tmp_path: Path, capsys: py
 def test_dask_engine_gives_the_same_rows(tmp_path: Path) -> None:
     require_module("dask.distributed", "dask")
     local, dask = tmp_path / "local.json", tmp_path / "dask.json"
-    args = ["sweep", "slotted-skate", "--param", "Omega0", "--values", "0.1,0.2"]
+    args = ["sweep", "slotted-skate", "--param", "Omega0", "--values", "0.1,0.2", *SKATE_COARSE]
     code = main([*args, "--json", str(local)])
     assert main([*args, "--json", str(dask), "--engine", "dask", "--workers", "2"]) == code
     strip = [{k: v for k, v in r.items() if k != "wall_s"} for r in json.loads(local.read_text())["rows"]]

@@ -36,7 +36,7 @@ import time
 import warnings
 from collections.abc import Mapping, Sequence
 from concurrent.futures import ProcessPoolExecutor, wait
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from multiprocessing import get_context
 from pathlib import Path
 from typing import Any
@@ -86,8 +86,9 @@ class TrialOutcome:
         wall_s: their wall seconds.
         worst_ratio: the largest ``error / tolerance`` (the accuracy objective).
         worst_check: where it is, ``point/check``.
-        point_ratios: each coverage point's worst ratio and its check, for the points that ran.
+        point_ratios: each judged coverage point's worst ratio and its check, for the points that ran.
         gave_up: the trial stopped at a point that failed (``worst_ratio`` > ``give_up``), before the others ran.
+        miss_ratios: the same at the points declared misses at the target (outside both objectives).
     """
 
     cpu_s: float
@@ -96,6 +97,7 @@ class TrialOutcome:
     worst_check: str
     point_ratios: Mapping[str, tuple[float, str]]
     gave_up: bool = False
+    miss_ratios: Mapping[str, tuple[float, str]] = field(default_factory=dict)
 
 
 def setting_text(value: Value) -> str:
@@ -108,30 +110,43 @@ def as_run(settings: Mapping[str, Value]) -> dict[str, Value]:
     return {k: float(setting_text(v)) if isinstance(v, float) else v for k, v in settings.items()}
 
 
+def _ratio_at(name: str, point: Any, overrides: Mapping[str, str], target: str) -> tuple[float, str, float, float]:
+    """(worst ratio, its check, CPU s, wall s) of the validation of ``name`` at coverage ``point``."""
+    cpu0, wall0 = time.process_time(), time.perf_counter()
+    result = run_validation(name, {**point.assignments, **overrides}, preset=target)
+    cpu, wall = time.process_time() - cpu0, time.perf_counter() - wall0
+    ratio, check = max((check_ratio(c), c.name) for c in result.checks)
+    return ratio, check, cpu, wall
+
+
 def run_trial(name: str, target: str, settings: Mapping[str, Value], *, order: Sequence[str] = (),
               give_up: float = math.inf) -> TrialOutcome:
-    """Validate scenario ``name`` with ``settings`` at each of its coverage points (those named in ``order`` first,
-    in that order), judged at ``target``'s tolerances, on one rollout thread; stop after the first point whose worst
-    ratio exceeds ``give_up``."""
+    """Validate scenario ``name`` with ``settings`` at each of its coverage points judged at ``target`` (those named
+    in ``order`` first, in that order), at ``target``'s tolerances, on one rollout thread; stop after the first
+    point whose worst ratio exceeds ``give_up``. The points that are declared misses at ``target`` run after the
+    others (unless the trial gave up): their ratios are recorded, outside both objectives."""
     scenario = scenarios.get(name)
     overrides = {k: setting_text(v) for k, v in settings.items()} | {"threads": "1"}
     rank = {point: k for k, point in enumerate(order)}
-    points = sorted(scenario.coverage, key=lambda point: rank.get(point.name, len(rank)))
+    judged = sorted((p for p in scenario.coverage if target not in p.miss_at),
+                    key=lambda point: rank.get(point.name, len(rank)))
     cpu = wall = 0.0
     point_ratios: dict[str, tuple[float, str]] = {}
-    for point in points:
-        cpu0, wall0 = time.process_time(), time.perf_counter()
-        result = run_validation(name, {**point.assignments, **overrides}, preset=target)
-        cpu += time.process_time() - cpu0
-        wall += time.perf_counter() - wall0
-        ratio, check = max((check_ratio(c), c.name) for c in result.checks)
+    for point in judged:
+        ratio, check, point_cpu, point_wall = _ratio_at(name, point, overrides, target)
+        cpu, wall = cpu + point_cpu, wall + point_wall
         point_ratios[point.name] = (ratio, check)
         if ratio > give_up:
             break
     worst_point = max(point_ratios, key=lambda k: point_ratios[k][0])
     ratio, check = point_ratios[worst_point]
+    gave_up = len(point_ratios) < len(judged)
+    misses: dict[str, tuple[float, str]] = {}
+    for point in () if gave_up else (p for p in scenario.coverage if target in p.miss_at):
+        miss_ratio, miss_check, *_ = _ratio_at(name, point, overrides, target)
+        misses[point.name] = (miss_ratio, miss_check)
     return TrialOutcome(cpu_s=cpu, wall_s=wall, worst_ratio=ratio, worst_check=f"{worst_point}/{check}",
-                        point_ratios=point_ratios, gave_up=len(point_ratios) < len(points))
+                        point_ratios=point_ratios, gave_up=gave_up, miss_ratios=misses)
 
 
 def hardest_first(trials: Sequence[Any]) -> list[str]:
@@ -214,6 +229,7 @@ def _objective(name: str, target: str) -> Any:
         trial.set_user_attr("wall_s", outcome.wall_s)
         trial.set_user_attr("worst_check", outcome.worst_check)
         trial.set_user_attr("point_ratios", {k: list(v) for k, v in outcome.point_ratios.items()})
+        trial.set_user_attr("miss_ratios", {k: list(v) for k, v in outcome.miss_ratios.items()})
         if outcome.gave_up:
             trial.set_user_attr("cpu_s_until_failure", outcome.cpu_s)
             trial.set_user_attr("ratio_at_failure", outcome.worst_ratio)
@@ -322,7 +338,7 @@ def _row(trial: Any) -> dict[str, Any]:
             "cpu_s_until_failure": attrs.get("cpu_s_until_failure"),
             "wall_s": attrs.get("wall_s"), "worst_ratio": ratio if math.isfinite(ratio) else None,
             "worst_check": attrs.get("worst_check"), "point_ratios": attrs.get("point_ratios"),
-            "refused": attrs.get("refused")}
+            "miss_ratios": attrs.get("miss_ratios"), "refused": attrs.get("refused")}
 
 
 def choose(front: Sequence[Mapping[str, Any]], limit: float = PRESET_RATIO) -> tuple[Mapping[str, Any] | None, str]:
@@ -351,8 +367,8 @@ def summary(study: Any) -> dict[str, Any]:
     return {"scenario": scenario.name, "target": target, "study": study.study_name,
             "commands": study.user_attrs.get("commands", []),
             "objectives": ["cpu_s", "worst_ratio"], "preset_ratio": PRESET_RATIO, "ratio_cap": RATIO_CAP,
-            "coverage": [{"name": p.name, "assignments": dict(p.assignments), "why": p.why}
-                         for p in scenario.coverage],
+            "coverage": [{"name": p.name, "assignments": dict(p.assignments), "why": p.why,
+                          "miss": target in p.miss_at} for p in scenario.coverage],
             "space": [{"name": d.name, "low": d.low, "high": d.high, "log": d.log, "choices": list(d.choices),
                        "per_timestep": d.per_timestep} for d in target_space(scenario, target)],
             "trials": rows, "front": front, "chosen": chosen, "holds": holds, "preset": preset}

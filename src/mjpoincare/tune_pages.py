@@ -49,7 +49,8 @@ def best_per_point(rows: Sequence[Mapping[str, Any]]) -> dict[str, dict[str, Any
     tie: what the search found for a point that no preset holds."""
     best: dict[str, dict[str, Any]] = {}
     for row in rows:
-        for point, (ratio, check) in (row.get("point_ratios") or {}).items():
+        measured = {**(row.get("point_ratios") or {}), **(row.get("miss_ratios") or {})}
+        for point, (ratio, check) in measured.items():
             cost = row["cpu_s"] if row["cpu_s"] is not None else math.inf
             known = best.get(point)
             if known is None or (ratio, cost) < (known["ratio"], known["cost"]):
@@ -75,8 +76,12 @@ def render_target(study: Mapping[str, Any]) -> list[str]:
              f"Study `{study['study']}`: {len(study['trials'])} trials, front of {len(study['front'])} points. "
              f"Commands that ran its trials: {', '.join(f'`{c}`' for c in study['commands'])}.", "",
              "Coverage points:", "", "| point | parameters | why |", "|---|---|---|",
-             *(f"| {p['name']} | {table_cell(_settings(p['assignments'])) or 'defaults'} | {table_cell(p['why'])} |"
+             *(f"| {p['name']}{' (declared miss)' if p.get('miss') else ''} | "
+               f"{table_cell(_settings(p['assignments'])) or 'defaults'} | {table_cell(p['why'])} |"
                for p in study["coverage"]), "",
+             *(["A declared miss is a point no setting is known to pass at this target: each trial that passes the "
+                "others runs it too, outside both objectives, and its best trial is listed at the end.", ""]
+               if any(p.get("miss") for p in study["coverage"]) else []),
              "Searched settings (the preset's other settings are the scene's own):", "", "| setting | range |",
              "|---|---|", *(_dimension(d) for d in study["space"]), ""]
     if chosen is None:
@@ -100,8 +105,8 @@ def render_target(study: Mapping[str, Any]) -> list[str]:
               *HEAD, *[_row(r) for r in study["front"]], ""]
     best = best_per_point(study["trials"])
     if best:
-        lines += ["The best trial at each coverage point (the smallest worst ratio there; a point where it is above 1 "
-                  "has no setting in the searched space that passes it):", "",
+        lines += ["The best trial at each coverage point (the smallest worst ratio there; where it is above 1, none of "
+                  "the study's trials passes the point):", "",
                   "| point | trial | worst ratio | check | settings |", "|---|---|---|---|---|",
                   *(f"| {p['name']} | {best[p['name']]['trial']} | {best[p['name']]['ratio']:.3g} | "
                     f"{best[p['name']]['check']} | {table_cell(_settings(best[p['name']]['settings']))} |"

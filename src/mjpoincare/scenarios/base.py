@@ -151,11 +151,15 @@ class CoveragePoint:
         name: short label (tables, the study's JSON).
         assignments: ``--set``-style parameter values on top of the scenario's defaults.
         why: what makes the point hard (a bound it sits near, a gait, a mode).
+        miss_at: the target presets at which the point is a declared miss (no setting is known to pass it): a trial
+            still runs it, after the judged points, and the study reports its best trial there, but it counts in
+            neither objective.
     """
 
     name: str
     assignments: Mapping[str, str]
     why: str
+    miss_at: tuple[str, ...] = ()
 
 
 class RegionMapRun(Protocol):

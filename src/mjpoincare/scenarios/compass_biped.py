@@ -72,12 +72,13 @@ PARAMS: tuple[Param, ...] = (
     Param("tau_hip", 0.0, "constant hip torque between the legs, N m (003 eq 4.5, B = (-1, 1))", float, -1e3, 1e3),
 )
 
-#: Overdamped contact (damping ratio 10; why: docs/scenarios/compass-biped.md, "Presets and start design").
+#: Both read off the preset search's studies (docs/results/tune/compass-biped.md); over-damped contact (why:
+#: docs/scenarios/compass-biped.md, "Presets and start design").
 PRESETS: dict[str, dict[str, float | int | str]] = {
-    "fast": {"timestep": 1e-4, "solref_timeconst": 1e-3, "solref_dampratio": 10.0, "integrator": "implicitfast",
-             "foot_radius": 5e-4},
-    "accurate": {"timestep": 2e-05, "solref_timeconst": 0.0002, "solref_dampratio": 10.0, "integrator": "implicitfast",
-        "foot_radius": 0.0005},
+    "fast": {"timestep": 0.000116503446827, "solref_timeconst": 0.00031594507064, "solref_dampratio": 7.60403309648,
+             "integrator": "euler", "foot_radius": 0.00104004415299},
+    "accurate": {"timestep": 2.5e-05, "solref_timeconst": 5.4e-05, "solref_dampratio": 5.89,
+                 "integrator": "implicitfast", "foot_radius": 0.000484},
 }
 TOLERANCES: dict[str, Tolerances] = {
     "accurate": Tolerances(
@@ -297,7 +298,8 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
                             "the exact pre-impact state): the new foot reaches the slope 2 steps after the release "
                             "and its contact reverses the trailing foot within the next step, 3 |a| dt^2 from rest; "
                             "measured over 250 releases each: mean 3.1 |a| dt^2, max 5.6 (fast), mean 2.9, max 5.9 "
-                            "(accurate; the spread is the foot's speed at release, up to ~1e-3 m/s either way). A "
+                            "(20 us steps, 0.2 ms contact; the spread is the foot's speed at release, up to ~1e-3 m/s "
+                            "either way; a stiffer contact catches the foot sooner). A "
                             "deeper dip: the foot was released steps early, or kept falling after the heel strike, "
                             "whose impact law (003 eqs 4.15-4.17) has it lift off unloaded"))
     exact_depth = -theory.lowest_swing_height(bp, x_star)
