@@ -41,7 +41,7 @@ SCALING ?=
 WORKERS ?= 1
 RELEASE_WORKERS ?= 2
 PRESET ?= fast
-TUNE_SCENARIOS ?= rimless-wheel rimless-wheel-friction slotted-skate rimless-wheel-3d compass-biped
+TUNE_SCENARIOS ?= rimless-wheel rimless-wheel-friction slotted-skate rimless-wheel-3d compass-biped compass-biped-friction
 TUNE_TRIALS ?= 16
 BACKENDS_OUT ?= docs/results/backends
 

@@ -22,9 +22,8 @@ The study is Optuna's (multi-objective TPE sampler with constant liar for parall
 study can be resumed (``--resume``), shared and run by ``--workers`` processes at once. The first trials are the
 scenario's current presets, so that the front shows where they stand. The Pareto front is Optuna's
 (``study.best_trials``). The preset for the target is the cheapest front point whose worst ratio is at most
-:data:`PRESET_RATIO`. If none is, the study says so: the preset is then the front point with the smallest worst
-ratio if that one passes every check (within the tolerances, without the margin), else none is chosen; the front
-shows the best that was found.
+:data:`PRESET_RATIO`. If none is, the study says so: the preset is then the cheapest front point that passes every
+check (within the tolerances, without the margin), else none is chosen; the front shows the best that was found.
 """
 
 from __future__ import annotations
@@ -343,15 +342,14 @@ def _row(trial: Any) -> dict[str, Any]:
 
 def choose(front: Sequence[Mapping[str, Any]], limit: float = PRESET_RATIO) -> tuple[Mapping[str, Any] | None, str]:
     """The preset's trial and how it holds: the cheapest front point whose worst ratio is at most ``limit``
-    (``"margin"``); else the front point with the smallest worst ratio if that passes every check (``"no margin"``:
-    within the tolerances, but not by the factor ``1 / limit``); else None (``"none"``)."""
+    (``"margin"``); else the cheapest front point that passes every check (``"no margin"``: within the tolerances,
+    but not by the factor ``1 / limit``; a more expensive point would buy accuracy the target does not ask for
+    without reaching the margin either); else None (``"none"``)."""
     rated = [r for r in front if r["worst_ratio"] is not None and r["cpu_s"]]
-    passing = [r for r in rated if r["worst_ratio"] <= limit]
-    if passing:
-        return min(passing, key=lambda r: r["cpu_s"]), "margin"
-    best = min(rated, key=lambda r: r["worst_ratio"], default=None)
-    if best is not None and best["worst_ratio"] <= 1.0:
-        return best, "no margin"
+    for bound, holds in ((limit, "margin"), (1.0, "no margin")):
+        passing = [r for r in rated if r["worst_ratio"] <= bound]
+        if passing:
+            return min(passing, key=lambda r: r["cpu_s"]), holds
     return None, "none"
 
 

@@ -91,9 +91,8 @@ def render_target(study: Mapping[str, Any]) -> list[str]:
     else:
         how = (f"the cheapest front point whose worst ratio is at most {study['preset_ratio']:g}"
                if study["holds"] == "margin" else
-               f"**no trial holds every check within {study['preset_ratio']:g} of its tolerance**; this is the front "
-               "point with the smallest worst ratio, which passes every check at every coverage point without that "
-               "margin")
+               f"**no trial holds every check within {study['preset_ratio']:g} of its tolerance**; this is the "
+               "cheapest front point that passes every check at every coverage point, without that margin")
         lines += [f"Chosen: trial {chosen['number']}, {how}: {chosen['cpu_s']:.3g} CPU s ({chosen['wall_s']:.3g} s "
                   f"wall) over the coverage points, worst ratio {chosen['worst_ratio']:.3g} at "
                   f"{chosen['worst_check']}.", "", f"Preset `{target}`: `{_settings(study['preset'])}`.", ""]
