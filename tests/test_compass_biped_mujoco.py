@@ -20,14 +20,15 @@ def test_switched_off_swing_foot_dips_as_the_exact_swing() -> None:
     """The swing foot passes through the slope mid-swing, as the exact model's does (003 Sec. 4.1 ignores it). On
     every swing of the trajectory from the fixed point, its depth below the stance foot is the exact swing's (from
     the post-impact state its legs-parallel sample pulls back to, legs l - r to the slope) within (r/l) x the exact
-    gait's depth: MuJoCo's r = 0.5 mm foot spheres are point feet only to O(r/l). A foot whose contact stayed on
+    gait's depth: MuJoCo's foot spheres (radius r) are point feet only to O(r/l). A foot whose contact stayed on
     would stop at the slope. The run's deepest dip below the slope is reported without a verdict, in the table and
     the JSON (the run's verdicts are the gate's: tests/test_gate.py)."""
     result = gate.case("compass-biped[fast]").run()
     swing = result.extras["swing_foot"]
     r_over_l = result.settings["foot_radius"] / (result.params["a"] + result.params["b"])
     below, exact = swing["depth_below_stance_foot"], swing["exact_depth_same_swing"]
-    assert len(below) == len(exact) == cb.STEPS + 1  # every swing, the last one after the last heel strike
+    # every swing the run walked (the batch stops once its fit settles), the last one after the last heel strike
+    assert len(below) == len(exact) and cb.STOPPING.min_samples <= len(below) <= cb.STEPS + 1
     assert max(abs(m - e) for m, e in zip(below, exact, strict=True)) <= r_over_l * swing["exact_depth"]
     reported = result.extras["reported"]["swing_foot_depth"]
     assert reported["unit"] == "m" and reported["value"] >= max(swing["depth"])  # perturbed starts included

@@ -79,8 +79,8 @@ MASS = 1.0  # kg; every checked quantity is independent of it
 #: Simulator presets (both impact modes), read off the preset search's studies (docs/results/tune/rimless-wheel-3d.md;
 #: why: docs/scenarios/rimless-wheel-3d.md, "Presets").
 PRESETS: dict[str, dict[str, float | int | str]] = {
-    "fast": {"timestep": 2e-4, "solref_timeconst": 4e-4, "solref_dampratio": 3.0, "solimp_dmin": 0.1,
-             "integrator": "rk4"},
+    "fast": {"timestep": 0.0002, "solref_timeconst": 0.0004, "solref_dampratio": 3.0, "solimp_dmin": 0.1,
+             "foot_radius": 0.0005, "integrator": "rk4", "cone": "elliptic", "impratio": 10.0, "noslip_iterations": 0},
     "accurate": {"timestep": 0.0002, "solref_timeconst": 0.0004, "solref_dampratio": 3.0, "solimp_dmin": 0.1,
                  "foot_radius": 0.0005, "integrator": "rk4", "cone": "elliptic", "impratio": 10.0,
                  "noslip_iterations": 0},
