@@ -17,6 +17,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
+from functools import lru_cache
 from itertools import combinations_with_replacement
 from typing import Any
 
@@ -162,19 +163,33 @@ def _monomials(dim: int, degree: int) -> list[tuple[int, ...]]:
     return terms
 
 
+@lru_cache(maxsize=64)
+def _exponents(terms: tuple[tuple[int, ...], ...], dim: int) -> np.ndarray:
+    """``(p, d)`` integer exponents of the monomials ``terms`` (read-only)."""
+    out = np.zeros((len(terms), dim), dtype=int)
+    for row, term in enumerate(terms):
+        for var in term:
+            out[row, var] += 1
+    out.setflags(write=False)
+    return out
+
+
 def _features(z: np.ndarray, terms: list[tuple[int, ...]]) -> np.ndarray:
     """Regression matrix ``(N, p)`` of the monomials evaluated at the rows of ``z`` ``(N, d)``."""
-    columns = [np.prod(z[:, list(term)], axis=1) for term in terms]
-    return np.stack(columns, axis=1)
+    powers = _exponents(tuple(terms), z.shape[1])
+    return np.prod(z[:, None, :] ** powers[None, :, :], axis=2)
 
 
 def _feature_gradient(z: np.ndarray, terms: list[tuple[int, ...]]) -> np.ndarray:
-    """Derivative ``(p, d)`` of the monomials with respect to ``z`` at the single point ``z``."""
-    grad = np.zeros((len(terms), z.size))
-    for row, term in enumerate(terms):
-        for position, var in enumerate(term):
-            rest = term[:position] + term[position + 1 :]
-            grad[row, var] += np.prod(z[list(rest)])
+    """Derivative ``(p, d)`` of the monomials with respect to ``z`` at the single point ``z``: column j is
+    e_j z_j^(e_j - 1) times the other factors, for each monomial with exponents e."""
+    powers = _exponents(tuple(terms), z.size)
+    grad = np.zeros(powers.shape)
+    for j in range(z.size):
+        has = powers[:, j] > 0
+        lowered = powers[has].copy()
+        lowered[:, j] -= 1
+        grad[has, j] = powers[has, j] * np.prod(z[None, :] ** lowered, axis=1)
     return grad
 
 
