@@ -575,11 +575,11 @@ def regress_at(point: np.ndarray, samples: np.ndarray, values: np.ndarray, degre
     """A per-step quantity read at the fixed point: polynomial least squares (total degree ``degree``; 1: affine)
     of ``values`` (n,) on the section samples ``samples`` (n, d), evaluated at ``point`` (d,): e.g. a gait's step
     period and length from the steps of starts around its fixed point. An affine fit of a curved quantity is biased
-    by the samples' spread about ``point``; degree 2 removes that bias at first order. NaN unless there are more than
-    twice as many samples as the polynomial has terms."""
+    by the samples' spread about ``point``; degree 2 removes that bias at first order. NaN unless there are more
+    samples than the polynomial has terms."""
     samples = np.asarray(samples, float).reshape(len(values), -1)
     terms = _monomials(samples.shape[1], degree)
-    if len(values) <= 2 * len(terms):
+    if len(values) <= len(terms):
         return float("nan")
     design = _features(samples - point, terms)
     coef, *_ = np.linalg.lstsq(design, values, rcond=None)
