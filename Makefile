@@ -59,7 +59,7 @@ validate: $(STAMP)
 	$(BIN)/mjpoincare validate
 
 test: $(STAMP)
-	$(BIN)/ruff check src analysis models tests noxfile.py
+	$(BIN)/ruff check src analysis models tests docs/scripts noxfile.py
 	$(BIN)/python -m pytest -q
 	$(BIN)/nox -s oldest
 
