@@ -26,9 +26,9 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
-from mjpoincare.analysis.returnmap import ReturnMapFit
+from mjpoincare.analysis.returnmap import ReturnMapFit, fit_return_map, sample_pairs
 
-__all__ = ["FitSettling", "StoppingRule", "fit_spread"]
+__all__ = ["FitSettling", "StoppingRule", "fit_spread", "return_map_settling"]
 
 
 @dataclass(frozen=True)
@@ -95,3 +95,12 @@ class FitSettling:
         return {"min_samples": self.rule.min_samples, "settled": self.rule.settled, "gain": self.rule.gain,
                 "looks": [{"samples": k, "spread": u if np.isfinite(u) else None} for k, u in self.history],
                 "reason": self.reason}
+
+
+def return_map_settling(rule: StoppingRule, *, degree: int, seed: int, fixed_point_tolerance: float,
+                        eigenvalue_tolerance: float) -> FitSettling:
+    """The stop test of a batch whose samples feed :func:`~mjpoincare.analysis.returnmap.fit_return_map` at
+    ``degree`` (bootstrap seed ``seed``): its :func:`fit_spread` against the two tolerances."""
+    return FitSettling(rule, lambda sequences: fit_spread(
+        fit_return_map(*sample_pairs(sequences), degree=degree, seed=seed), fixed_point_tolerance,
+        eigenvalue_tolerance))

@@ -44,6 +44,7 @@ from mjpoincare import scenarios
 from mjpoincare import settings as sim_settings
 from mjpoincare.analysis.checks import Check
 from mjpoincare.params import ParameterError, Value, resolve
+from mjpoincare.scenarios.base import CoveragePoint
 from mjpoincare.validation import resolve_inputs, run_validation
 
 TARGETS = ("accurate", "fast")
@@ -109,7 +110,8 @@ def as_run(settings: Mapping[str, Value]) -> dict[str, Value]:
     return {k: float(setting_text(v)) if isinstance(v, float) else v for k, v in settings.items()}
 
 
-def _ratio_at(name: str, point: Any, overrides: Mapping[str, str], target: str) -> tuple[float, str, float, float]:
+def _ratio_at(name: str, point: CoveragePoint, overrides: Mapping[str, str], target: str
+              ) -> tuple[float, str, float, float]:
     """(worst ratio, its check, CPU s, wall s) of the validation of ``name`` at coverage ``point``."""
     cpu0, wall0 = time.process_time(), time.perf_counter()
     result = run_validation(name, {**point.assignments, **overrides}, preset=target)

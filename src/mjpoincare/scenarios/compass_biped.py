@@ -28,7 +28,7 @@ import numpy as np
 
 from mjpoincare import settings as sim_settings
 from mjpoincare.analysis import checks
-from mjpoincare.analysis.adaptive_stopping import FitSettling, StoppingRule, fit_spread
+from mjpoincare.analysis.adaptive_stopping import FitSettling, StoppingRule, return_map_settling
 from mjpoincare.analysis.compass_gait import crossing_steps, swing_foot_detail, swing_foot_report
 from mjpoincare.analysis.eigenvalues import match_eigenvalues
 from mjpoincare.analysis.returnmap import fit_return_map, regress_at, sample_pairs
@@ -208,15 +208,6 @@ def _run(model: mujoco.MjModel, bp: theory.CompassBiped, starts: np.ndarray, ste
     return controller, report
 
 
-def settling(tol: Tolerances, seed: int) -> FitSettling:
-    """The fitting batch's stop test: the cubic legs-parallel fit's spread against the fixed-point and eigenvalue
-    tolerances (the fixed point's is stated for the post-impact state, which the exact swing flow maps the
-    legs-parallel one to at about the same size)."""
-    return FitSettling(STOPPING, lambda seqs: fit_spread(fit_return_map(*sample_pairs(seqs), degree=FIT_DEGREE,
-                                                                        seed=seed),
-                                                         tol["fixed_point"], tol["eigenvalues"]))
-
-
 def _simulate(p: Values, s: Values, settle: FitSettling | None = None
               ) -> tuple[GaitController, RolloutReport, theory.CompassBiped, mujoco.MjModel]:
     bp = biped(p)
@@ -252,7 +243,10 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     """Simulate the perturbed gaits until their fit settles, fit the legs-parallel return map and check it against
     the theory."""
     tol = at_preset(TOLERANCES, COMPASS_BIPED.name, preset)
-    settle = settling(tol, seed)
+    # the fixed point's tolerance is stated for the post-impact state, which the exact swing flow maps the fitted
+    # legs-parallel one to at about the same size
+    settle = return_map_settling(STOPPING, degree=FIT_DEGREE, seed=seed, fixed_point_tolerance=tol["fixed_point"],
+                                 eigenvalue_tolerance=tol["eigenvalues"])
     controller, report, bp, model = _simulate(p, s, settle)
     why = tol.why
     x_star = theory.fixed_point(bp)

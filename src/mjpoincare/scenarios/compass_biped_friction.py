@@ -39,7 +39,7 @@ import mujoco
 import numpy as np
 
 from mjpoincare.analysis import checks
-from mjpoincare.analysis.adaptive_stopping import FitSettling, StoppingRule, fit_spread
+from mjpoincare.analysis.adaptive_stopping import FitSettling, StoppingRule, return_map_settling
 from mjpoincare.analysis.compass_biped_stance import stance_rows
 from mjpoincare.analysis.compass_gait import crossing_steps, swing_foot_report
 from mjpoincare.analysis.eigenvalues import match_eigenvalues
@@ -296,8 +296,9 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     tol = at_preset(TOLERANCES, COMPASS_BIPED_FRICTION.name, preset)
     why = tol.why
     steps, degree, settle = design(g)
-    settling = None if unstable(g) else FitSettling(STOPPING, lambda seqs: fit_spread(
-        fit_return_map(*sample_pairs(seqs), degree=degree, seed=seed), tol["fixed_point"], tol["eigenvalues"]))
+    settling = None if unstable(g) else return_map_settling(
+        STOPPING, degree=degree, seed=seed, fixed_point_tolerance=tol["fixed_point"],
+        eigenvalue_tolerance=tol["eigenvalues"])
     c, report, _ = _run(p, s, model, initial_section_states(g, model.opt.timestep), steps, settling=settling)
     out: list[checks.Check] = []
     extras: dict[str, object] = {"gait": name, "mu": friction(p), "analytic_pattern": theory.describe(g.record)}
