@@ -46,10 +46,13 @@ class StoppingRule:
     gain: float = 0.9
 
 
-def fit_spread(fit: ReturnMapFit, fixed_point_tolerance: float, eigenvalue_tolerance: float) -> float:
+def fit_spread(fit: ReturnMapFit, fixed_point_tolerance: float, eigenvalue_tolerance: float, *,
+               relative: bool = False) -> float:
     """``u``: the largest 95 % bootstrap half-width (2 std) of the fitted fixed point's coordinates and multipliers,
-    each over its tolerance (``inf`` when the bootstrap gave no spread)."""
-    point = 2.0 * float(np.max(fit.fixed_point_std)) / fixed_point_tolerance
+    each over its tolerance (``inf`` when the bootstrap gave no spread). With ``relative``, the fixed point's
+    tolerance is relative: it is scaled by the fitted fixed point's largest coordinate magnitude."""
+    scale = float(np.max(np.abs(fit.fixed_point))) if relative else 1.0
+    point = 2.0 * float(np.max(fit.fixed_point_std)) / (fixed_point_tolerance * scale)
     multipliers = 2.0 * float(np.max(np.abs(fit.eigenvalue_std))) / eigenvalue_tolerance
     spread = max(point, multipliers)
     return spread if np.isfinite(spread) else np.inf
@@ -98,9 +101,10 @@ class FitSettling:
 
 
 def return_map_settling(rule: StoppingRule, *, degree: int, seed: int, fixed_point_tolerance: float,
-                        eigenvalue_tolerance: float) -> FitSettling:
+                        eigenvalue_tolerance: float, relative: bool = False) -> FitSettling:
     """The stop test of a batch whose samples feed :func:`~mjpoincare.analysis.returnmap.fit_return_map` at
-    ``degree`` (bootstrap seed ``seed``): its :func:`fit_spread` against the two tolerances."""
+    ``degree`` (bootstrap seed ``seed``): its :func:`fit_spread` against the two tolerances (``relative``: as
+    there)."""
     return FitSettling(rule, lambda sequences: fit_spread(
         fit_return_map(*sample_pairs(sequences), degree=degree, seed=seed), fixed_point_tolerance,
-        eigenvalue_tolerance))
+        eigenvalue_tolerance, relative=relative))

@@ -70,3 +70,11 @@ def test_the_spread_is_the_largest_95_percent_half_width_in_tolerances() -> None
     u = fit_spread(fit, 1e-3, 1e-2)
     expected = max(2 * np.max(fit.fixed_point_std) / 1e-3, 2 * np.max(np.abs(fit.eigenvalue_std)) / 1e-2)
     assert u == pytest.approx(expected) and math.isfinite(u)
+
+
+def test_a_relative_fixed_point_tolerance_scales_with_the_fitted_fixed_point() -> None:
+    rng = np.random.default_rng(1)
+    x = rng.uniform(1.0, 3.0, size=(40, 1))
+    fit = fit_return_map(x, 2.0 + 0.5 * (x - 2.0) + 1e-3 * rng.normal(size=x.shape), degree=1, seed=0)
+    absolute = fit_spread(fit, 1e-3 * abs(float(fit.fixed_point[0])), 1e-2)
+    assert fit_spread(fit, 1e-3, 1e-2, relative=True) == pytest.approx(absolute)

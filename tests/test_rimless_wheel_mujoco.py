@@ -127,3 +127,20 @@ def test_model_file_is_the_default_wheel() -> None:
     assert len(feet) == 10
     np.testing.assert_allclose(rebuilt.opt.gravity, [9.81 * np.sin(0.1), 0, -9.81 * np.cos(0.1)])
     assert theory.rolling_fixed_point(rw.wheel(params)) > 0
+
+
+@pytest.mark.parametrize("slope", ["0.08", "0.25"])
+def test_the_basin_grid_stops_once_every_outcome_is_settled_and_its_outcomes_are_those_of_the_full_run(
+        slope: str) -> None:
+    """Stopping at the first window where every start stands or rolls for good changes no outcome, and saves steps."""
+    _, _, p, s = resolve_inputs("rimless-wheel", {**COARSE, "slope": slope}, "fast")
+    w, model = rw.wheel(p), rw.build(p, s)
+    speeds = theory.basin_initial_speeds(w)
+    outcomes, steps = [], []
+    for until_decided in (True, False):
+        rec, report = rw._simulate(model, w, speeds, rw.BASIN_SECONDS, s, until_decided=until_decided)
+        outcomes.append(list(rw._tail_outcomes(w, rec)))
+        steps.append(report.steps)
+    assert outcomes[0] == outcomes[1]
+    assert set(outcomes[0]) <= {"standing", "rolling"}
+    assert steps[0] < steps[1]

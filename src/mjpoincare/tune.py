@@ -16,7 +16,8 @@ reports two objectives, both minimised:
 A trial gives up at the first coverage point where a check fails (a worst ratio above 1): such settings cannot be a
 preset, whatever the other points give. It is recorded as pruned, with the point and check that failed it and the CPU
 seconds spent until then, and the sampler ranks it behind every finished trial. The points run in the order of their
-mean ratio over the study's finished trials, the hardest first, so that a failing trial fails early.
+mean ratio over the study's finished trials (a pruned trial counts at the points it ran), the hardest first, so
+that a failing trial fails early.
 
 The study is Optuna's (multi-objective TPE sampler with constant liar for parallel workers) in an SQLite file: a
 study can be resumed (``--resume``), shared and run by ``--workers`` processes at once. The first trials are the
@@ -207,7 +208,31 @@ def storage_url(path: Path) -> str:
 
 
 def _storage(url: str) -> Any:
-    return _optuna().storages.RDBStorage(url, engine_kwargs={"connect_args": {"timeout": 120}})
+    storage = _optuna().storages.RDBStorage(url, engine_kwargs={"connect_args": {"timeout": 120}})
+    _write_locked_transactions(storage.engine)
+    return storage
+
+
+def _write_locked_transactions(engine: Any) -> None:
+    """Make every transaction on the SQLite ``engine`` take the database's write lock when it begins.
+
+    Optuna hands an enqueued trial to a worker by reading it as WAITING and then writing RUNNING, relying on a row
+    lock (``SELECT ... FOR UPDATE``) that SQLite lacks; and Python's sqlite3 runs the read outside any transaction.
+    Two workers could then both take one enqueued trial, and the second fails when it reports it. ``BEGIN
+    IMMEDIATE`` (SQLAlchemy's documented pysqlite recipe) serialises the read and the write; a worker waits up to
+    the connection timeout for the lock.
+    """
+    from sqlalchemy import event
+
+    def no_implicit_transactions(dbapi_connection: Any, _record: Any) -> None:
+        dbapi_connection.isolation_level = None
+
+    def begin_immediate(connection: Any) -> None:
+        connection.exec_driver_sql("BEGIN IMMEDIATE")
+
+    event.listen(engine, "connect", no_implicit_transactions)
+    event.listen(engine, "begin", begin_immediate)
+    engine.dispose()  # connections opened before the listeners would keep the old behaviour
 
 
 def _sampler(seed: int) -> Any:
@@ -219,8 +244,8 @@ def _objective(name: str, target: str) -> Any:
 
     def objective(trial: Any) -> tuple[float, float]:
         settings = suggest_settings(trial, space)
-        complete = _optuna().trial.TrialState.COMPLETE
-        order = hardest_first(trial.study.get_trials(deepcopy=False, states=(complete,)))
+        state = _optuna().trial.TrialState
+        order = hardest_first(trial.study.get_trials(deepcopy=False, states=(state.COMPLETE, state.PRUNED)))
         try:
             outcome = run_trial(name, target, settings, order=order, give_up=1.0)
         except ParameterError as err:  # settings the scenario refuses (e.g. a time constant MuJoCo would clamp)

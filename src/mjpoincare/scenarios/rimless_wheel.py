@@ -22,6 +22,7 @@ import numpy as np
 
 from mjpoincare import settings as sim_settings
 from mjpoincare.analysis import checks
+from mjpoincare.analysis.adaptive_stopping import FitSettling, StoppingRule, return_map_settling
 from mjpoincare.analysis.outcomes import classify_outcomes
 from mjpoincare.analysis.period_regression import period_at
 from mjpoincare.analysis.returnmap import fit_return_map, sample_pairs
@@ -83,10 +84,19 @@ TOLERANCES: dict[str, Tolerances] = {
 #: Floor on the hub's radius of gyration / leg_length (kappa >= 1e-4; why: docs/scenarios/rimless-wheel.md).
 MIN_GYRATION = 1e-2
 
-FIT_STEPS = 6  # impacts per fitting trajectory: beta^12 of the initial offset remains (0.016 for n = 8)
+FIT_STEPS = 6  # impacts per fitting trajectory, at most: beta^12 of the initial offset remains (0.016 for n = 8)
+#: The fitting batch stops once more impacts no longer sharpen the fit (:mod:`mjpoincare.analysis.adaptive_stopping`);
+#: 3 samples per trajectory give the step period's quadratic regression in two speeds 12 pairs for its 6 terms.
+STOPPING = StoppingRule(min_samples=3)
+FIT_DEGREE = 2  # the map omega+ -> omega+ is fitted as a quadratic
 FIT_BATCH = 6
-BASIN_SECONDS = 6.0  # the slowest standing case of the default grid settles after 3.3 s
-TAIL_SECONDS = 1.0  # final window classified by the basin check; also the rollout chunk length
+BASIN_SECONDS = 6.0  # at most; the slowest standing case of the default grid settles after 3.3 s
+#: Forward impacts with no backward motion between or after them that make rolling a settled outcome: the first
+#: of them was followed by a whole step, so its post-impact speed exceeded omega_f, and the return map (increasing,
+#: with omega* its only fixed point) keeps every later one above it (003 Sec. 3.3, Def. 3.20).
+ROLLING_IMPACTS = 2
+TAIL_SECONDS = 1.0  # final window classified by the basin check
+TAIL_CHUNKS = 4  # rollout chunks per tail window: the basin grid's outcome is looked at every quarter window
 #: All feet this far (x leg_length) above the ground = flight (a centimetre, above MuJoCo's ~1 mm impact hop).
 FLIGHT_CLEARANCE = 1e-2
 
@@ -181,7 +191,8 @@ class _Recorder:
         self.mid = Crossings.empty(3)
         self.impacts = Crossings.empty(1)
         self.max_clearance = np.zeros(batch)
-        self.tail: Chunk | None = None
+        self.window: list[Chunk] = []  # the last TAIL_CHUNKS chunks
+        self.last_backward = np.full(batch, -np.inf)  # time of each trajectory's last sample with omega <= 0
 
     def __call__(self, chunk: Chunk) -> None:
         w = self.w
@@ -192,17 +203,39 @@ class _Recorder:
         self.impacts = self.impacts.concat(wrap_events(chunk.time, psi, w.alpha))
         clearance = chunk.qpos[:, :, self.z.qpos] - (w.leg_length - self.radius) * np.cos(psi) - self.radius
         self.max_clearance = np.fmax(self.max_clearance, np.nanmax(clearance, axis=1))
-        self.tail = chunk
+        self.window = [*self.window, chunk][-TAIL_CHUNKS:]
+        backward = chunk.qvel[:, :, self.pitch.dof] <= 0.0
+        last = backward.shape[1] - 1 - np.argmax(backward[:, ::-1], axis=1)
+        rows = np.arange(len(last))
+        self.last_backward = np.where(backward.any(axis=1), chunk.time[rows, last], self.last_backward)
+
+    def settled(self) -> np.ndarray:
+        """Per trajectory: its outcome can no longer change. Standing over the last tail window (the rocking only
+        decays, 003 Sec. 3.3), or rolling over it after ROLLING_IMPACTS forward impacts with no backward motion."""
+        if self.tail is None:
+            return np.zeros(len(self.last_backward), bool)
+        outcome = _tail_outcomes(self.w, self)
+        forward = np.bincount(self.impacts.trajectory[self.impacts.time > self.last_backward[self.impacts.trajectory]],
+                              minlength=len(self.last_backward))
+        return (outcome == "standing") | ((outcome == "rolling") & (forward >= ROLLING_IMPACTS))
+
+    @property
+    def tail(self) -> Chunk | None:
+        """The last tail window (TAIL_CHUNKS chunks, each chunk's repeated row 0 dropped), or None before it."""
+        if len(self.window) < TAIL_CHUNKS:
+            return None
+        parts = [self.window[0]] + [Chunk(c.time[:, 1:], c.qpos[:, 1:], c.qvel[:, 1:]) for c in self.window[1:]]
+        return Chunk(*(np.concatenate([getattr(c, f) for c in parts], axis=1) for f in ("time", "qpos", "qvel")))
 
 
 def _chunk(model: mujoco.MjModel) -> int:
-    """Steps per native rollout chunk: one tail window."""
-    return max(1, round(TAIL_SECONDS / model.opt.timestep))
+    """Steps per native rollout chunk: a TAIL_CHUNKS-th of a tail window."""
+    return max(1, round(TAIL_SECONDS / TAIL_CHUNKS / model.opt.timestep))
 
 
 def _whole_chunks(model: mujoco.MjModel, seconds: float) -> int:
-    """Steps covering ``seconds`` in whole chunks, so that the last chunk is a full tail window."""
-    return _chunk(model) * math.ceil(seconds / (_chunk(model) * model.opt.timestep))
+    """Steps covering ``seconds`` (at least one tail window) in whole chunks."""
+    return _chunk(model) * max(TAIL_CHUNKS, math.ceil(seconds / (_chunk(model) * model.opt.timestep)))
 
 
 def _fit_seconds(w: theory.RimlessWheel) -> float:
@@ -211,22 +244,38 @@ def _fit_seconds(w: theory.RimlessWheel) -> float:
 
 
 def _simulate(model: mujoco.MjModel, w: theory.RimlessWheel, omega0: np.ndarray, seconds: float,
-              s: Values) -> tuple[_Recorder, RolloutReport]:
+              s: Values, *, until_decided: bool = False, settling: FitSettling | None = None
+              ) -> tuple[_Recorder, RolloutReport]:
+    """Roll the starts ``omega0`` for ``seconds``; with ``until_decided``, end at the first tail window in which
+    every start's outcome is settled (:meth:`_Recorder.settled`); with ``settling``, once it says the post-impact
+    samples so far are enough."""
     radius = float(s["foot_radius"])
     recorder = _Recorder(model, w, len(omega0), radius)
+    stop = None
+    if settling is not None:
+        def stop() -> bool:
+            return settling([post[:, None] for post in _post_impact_samples(w, recorder, len(omega0))])
+    elif until_decided:
+        def stop() -> bool:
+            return bool(recorder.settled().all())
     report = rollout_batch(model, post_impact_states(model, w, omega0, radius), _whole_chunks(model, seconds),
-                           recorder, **rollout_options(s), chunk_steps=_chunk(model))
+                           recorder, **rollout_options(s), chunk_steps=_chunk(model), stop=stop)
     return recorder, report
+
+
+def _post_impact_samples(w: theory.RimlessWheel, rec: _Recorder, batch: int) -> list[np.ndarray]:
+    """Each trajectory's post-impact speeds, pulled back from its mid-stance crossings along the sticking stance
+    flow (003 eq 3.5, 002 eq 13)."""
+    return [np.asarray(theory.post_impact_speed(w, w.slope, seq[:, 0]), float) for seq in rec.mid.sequences(batch)]
 
 
 def _fit_checks(w: theory.RimlessWheel, rec: _Recorder, batch: int, tol: Tolerances,
                 why: str, seed: int) -> tuple[list[checks.Check], dict[str, object]]:
     gamma, alpha = w.slope, w.alpha
-    mid_speed = [seq[:, 0] for seq in rec.mid.sequences(batch)]
     times = rec.mid.times(batch)
-    post = [np.asarray(theory.post_impact_speed(w, gamma, m), float) for m in mid_speed]
+    post = _post_impact_samples(w, rec, batch)
     x, x_next = sample_pairs(post)
-    fit = fit_return_map(x, x_next, degree=2, seed=seed)
+    fit = fit_return_map(x, x_next, degree=FIT_DEGREE, seed=seed)
     star_sim = float(fit.fixed_point[0])
     eig_sim = complex(fit.eigenvalues[0])
     pre = np.asarray(theory.phase_speed(w, x[:, 0], gamma + alpha), float)
@@ -254,16 +303,21 @@ def _fit_checks(w: theory.RimlessWheel, rec: _Recorder, batch: int, tol: Toleran
                  "return_map": plot.to_dict()}
 
 
-def _basin_checks(w: theory.RimlessWheel, rec: _Recorder, omega0: np.ndarray) -> tuple[list[checks.Check],
-                                                                                        dict[str, object]]:
+def _tail_outcomes(w: theory.RimlessWheel, rec: _Recorder) -> np.ndarray:
+    """Each start's outcome over the last recorded window (:func:`classify_outcomes`)."""
     tail = rec.tail
     assert tail is not None
     runaway = 1.5 * math.sqrt(w.gravity / w.leg_length)
     psi = wrap_phase(tail.qpos[:, :, rec.pitch.qpos], w.alpha)
     clearance = tail.qpos[:, :, rec.z.qpos] - (w.leg_length - rec.radius) * np.cos(psi) - rec.radius
-    simulated = classify_outcomes(tail.qvel[:, :, rec.pitch.dof], clearance,
-                                  rest_speed=0.05 * theory.rolling_fixed_point(w), runaway_speed=runaway,
-                                  flight_clearance=FLIGHT_CLEARANCE * w.leg_length)
+    return classify_outcomes(tail.qvel[:, :, rec.pitch.dof], clearance,
+                             rest_speed=0.05 * theory.rolling_fixed_point(w), runaway_speed=runaway,
+                             flight_clearance=FLIGHT_CLEARANCE * w.leg_length)
+
+
+def _basin_checks(w: theory.RimlessWheel, rec: _Recorder, omega0: np.ndarray) -> tuple[list[checks.Check],
+                                                                                        dict[str, object]]:
+    simulated = _tail_outcomes(w, rec)
     predicted = []
     for om in omega0:
         outcome = theory.predicted_outcome(w, float(om))
@@ -292,7 +346,10 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     tol = at_preset(TOLERANCES, RIMLESS_WHEEL.name, preset)
     why = tol.why
     fit_speeds = theory.fit_initial_speeds(w, FIT_BATCH)
-    fit_rec, fit_report = _simulate(model, w, fit_speeds, _fit_seconds(w), s)
+    settle = return_map_settling(STOPPING, degree=FIT_DEGREE, seed=seed,
+                                 fixed_point_tolerance=tol["omega_post_impact"],
+                                 eigenvalue_tolerance=tol["eigenvalue"], relative=True)
+    fit_rec, fit_report = _simulate(model, w, fit_speeds, _fit_seconds(w), s, settling=settle)
     try:
         fit_checks, extras = _fit_checks(w, fit_rec, len(fit_speeds), tol, why, seed)
     except ValueError as err:  # too few samples: a diverged or stalled run
@@ -300,9 +357,10 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
                                       tol["omega_post_impact"], "rad/s", f"no return map: {err}")]
         extras = {}
     basin_speeds = theory.basin_initial_speeds(w)
-    basin_rec, basin_report = _simulate(model, w, basin_speeds, BASIN_SECONDS, s)
+    basin_rec, basin_report = _simulate(model, w, basin_speeds, BASIN_SECONDS, s, until_decided=True)
     basin_checks, basin_extras = _basin_checks(w, basin_rec, basin_speeds)
     extras.update(basin_extras)
+    extras["adaptive_stopping"] = settle.to_dict()
     extras["analytic"] = {
         "region": theory.region(w), "beta": w.beta, "omega_forward_threshold": theory.forward_threshold(w),
         "existence_bound": theory.existence_bound(w.spokes, w.gyration, w.leg_length),
