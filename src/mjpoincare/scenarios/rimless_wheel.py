@@ -60,8 +60,8 @@ PARAMS: tuple[Param, ...] = (
 
 #: Simulator presets (why: docs/scenarios/rimless-wheel.md, "Presets and experiment design").
 PRESETS: dict[str, dict[str, float | int | str]] = {
-    "fast": {"timestep": 7.73376637002e-05, "solref_timeconst": 0.000363647327313, "integrator": "implicitfast",
-        "solref_dampratio": 5.16729265603, "foot_radius": 0.000666240781006},
+    "fast": {"timestep": 0.000925480824676, "solref_timeconst": 0.00194042995546, "integrator": "implicitfast",
+        "solref_dampratio": 1.36478083041, "foot_radius": 0.000109265647622},
     "accurate": {"timestep": 2.5e-05, "solref_timeconst": 0.00025, "integrator": "implicitfast",
         "solref_dampratio": 2.0, "foot_radius": 0.000125},
 }
