@@ -5,8 +5,11 @@ gate's cached runs (:func:`mjpoincare.gate.case`), so no validation runs twice i
 
 from __future__ import annotations
 
+import ast
 import importlib
 import json
+import subprocess
+import sys
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
@@ -80,3 +83,15 @@ def test_validation_json_round_trips(name: str, preset: str, tmp_path: Path) -> 
     write_json(payload, str(tmp_path / "result.json"))
     assert json.loads((tmp_path / "result.json").read_text()) == payload
     assert [c["name"] for c in payload["checks"]] == [c.name for c in result.checks]
+
+
+def test_looking_up_a_scenario_imports_that_scenario_only() -> None:
+    """The registry imports a scenario's module on first lookup: a command that runs one loads no other."""
+    code = ("import sys; from mjpoincare import scenarios; scenarios.get('rimless-wheel'); "
+            "print(sorted(m for m in sys.modules if m.startswith('mjpoincare.scenarios.')))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    loaded = set(ast.literal_eval(out))
+    assert "mjpoincare.scenarios.rimless_wheel" in loaded
+    assert not loaded & {f"mjpoincare.scenarios.{m}" for m in ("compass_biped", "compass_biped_friction",
+                                                               "slotted_skate", "rimless_wheel_3d",
+                                                               "rimless_wheel_friction")}

@@ -16,8 +16,6 @@ sets two reference figures beside it:
 from __future__ import annotations
 
 import math
-import os
-import sys
 import time
 from collections.abc import Mapping
 from pathlib import Path
@@ -27,7 +25,7 @@ import mujoco
 import numpy as np
 from mujoco import rollout as mj_rollout
 
-from mjpoincare import scenarios
+from mjpoincare import progress, scenarios
 from mjpoincare.analysis.checks import jsonable
 from mjpoincare.params import Value
 from mjpoincare.peers.compare import bench_block
@@ -106,14 +104,16 @@ def run_bench(name: str, assignments: Mapping[str, str], output: str, json_path:
     configs = [c for c in SWEEP if not quick or c[0] in QUICK]
     rows: list[dict[str, Any]] = []
     accuracy = scenario.accuracy_checks
-    for label, overrides in configs:
-        merged = {**{k: str(v) for k, v in overrides.items()}, **assignments}
-        result = run_validation(name, merged, None)
-        by_name = {c.name: c for c in result.checks}
-        rows.append({"config": label, "settings": overrides, "wall_s": result.timing["wall_s"],
-                     "steps_per_s": result.timing["steps_per_s"], "stable": by_name["stable"].passed,
-                     **{f"{c}_error": by_name[c].error for c in accuracy}})
-        _progress(f"{label}: {rows[-1]['wall_s']:.2f} s")
+    with progress.bar(len(configs), f"bench {name}", unit="config") as bar:
+        for label, overrides in configs:
+            merged = {**{k: str(v) for k, v in overrides.items()}, **assignments}
+            result = run_validation(name, merged, None)
+            by_name = {c.name: c for c in result.checks}
+            rows.append({"config": label, "settings": overrides, "wall_s": result.timing["wall_s"],
+                         "steps_per_s": result.timing["steps_per_s"], "stable": by_name["stable"].passed,
+                         **{f"{c}_error": by_name[c].error for c in accuracy}})
+            bar.set_postfix_str(f"{label}: {rows[-1]['wall_s']:.2f} s")
+            bar.update(1)
     key = f"{accuracy[0]}_error"
     front = pareto_front([r["wall_s"] for r in rows], [r[key] for r in rows])
     for row, flag in zip(rows, front, strict=True):
@@ -142,18 +142,20 @@ def _timed(name: str, assignments: Mapping[str, str], accuracy: tuple[str, ...])
 def run_skips(name: str, assignments: Mapping[str, str], json_path: str | None) -> int:
     """Each skip of :data:`SKIPS` measured on scenario ``name``: speed and error with and without it."""
     scenario = scenarios.get(name)
-    resolve_inputs(name, assignments, None)
     _, _, params, settings = resolve_inputs(name, assignments, None)
     contact_off = bool(scenario.build(params, settings).opt.disableflags & int(mujoco.mjtDisableBit.mjDSBL_CONTACT))
     rows = []
-    for label, what, on, off in SKIPS:
-        if (label == "contact disabled") != contact_off and "unskip" in off:
-            continue  # only the scenes that skip contact detection entirely can undo it; the others filter pairs
-        with_skip = _timed(name, {**on, **assignments}, scenario.accuracy_checks)
-        without = _timed(name, {**off, **assignments}, scenario.accuracy_checks)
-        rows.append({"skip": label, "what": what, "with": with_skip, "without": without,
-                     "speedup": without["wall_s"] / with_skip["wall_s"]})
-        _progress(f"{label}: x{rows[-1]['speedup']:.2f}")
+    skips = [(label, what, on, off) for label, what, on, off in SKIPS
+             # only the scenes that skip contact detection entirely can undo it; the others filter pairs
+             if (label == "contact disabled") == contact_off or "unskip" not in off]
+    with progress.bar(len(skips), f"skips {name}", unit="skip") as bar:
+        for label, what, on, off in skips:
+            with_skip = _timed(name, {**on, **assignments}, scenario.accuracy_checks)
+            without = _timed(name, {**off, **assignments}, scenario.accuracy_checks)
+            rows.append({"skip": label, "what": what, "with": with_skip, "without": without,
+                         "speedup": without["wall_s"] / with_skip["wall_s"]})
+            bar.set_postfix_str(f"{label}: x{rows[-1]['speedup']:.2f}")
+            bar.update(1)
     key = scenario.accuracy_checks[0]
     lines = [f"{name}: what each skip buys (default preset, best of 2 validations; error = {key})",
              "| skip | what | wall with / without (s) | speedup | error with | error without |",
@@ -188,12 +190,6 @@ def format_table(rows: list[dict[str, Any]], accuracy: tuple[str, ...], raw: dic
         lines.append(f"| rtol={ref['rtol']:g} | {ref['wall_s']:.2f} | "
                      + " | ".join(f"{ref[k]:.2e}" for k in metrics) + " |")
     return "\n".join(lines)
-
-
-def _progress(message: str) -> None:
-    """One line per finished configuration on an interactive terminal; silent in CI and pipes."""
-    if sys.stderr.isatty() and not os.environ.get("CI"):
-        print(message, file=sys.stderr)
 
 
 def _plot(rows: list[dict[str, Any]], reference: list[dict[str, float]], key: str, path: str, name: str,

@@ -24,9 +24,7 @@ holds. A rung that raised or diverged stays in the table and the file; the analy
 from __future__ import annotations
 
 import math
-import os
 import re
-import sys
 import time
 from collections.abc import Mapping, Sequence
 from dataclasses import asdict
@@ -35,6 +33,7 @@ from typing import Any
 
 import numpy as np
 
+from mjpoincare import progress
 from mjpoincare.analysis.checks import Check, jsonable
 from mjpoincare.analysis.convergence import ANALYTIC_FLOOR, SANE_ORDER, Verdict, analyze
 from mjpoincare.parallel import check_engine, run_jobs
@@ -219,13 +218,13 @@ def converge(name: str, assignments: Mapping[str, str], preset: str | None = Non
     point_set = _point_assignments(assignments, workers)
     began = time.perf_counter()
     jobs = [(name, o, point_set, preset, seed) for o in todo]
-    for row in run_jobs(ladder_rung, jobs, workers=workers, engine=engine, scheduler=scheduler):
-        rows[row["key"]] = row
-        if json_path and json_path != "-":
-            write_json(jsonable({**header, "rows": list(rows.values())}), json_path)
-        if sys.stderr.isatty() and not os.environ.get("CI"):
-            print(f"[{len(rows)}/{len(wanted)}] {row['key']}: {row['failed'] or 'done'} ({row['wall_s']:.1f} s)",
-                  file=sys.stderr)
+    with progress.bar(len(wanted), "converge", unit="rung", initial=len(wanted) - len(todo)) as bar:
+        for row in run_jobs(ladder_rung, jobs, workers=workers, engine=engine, scheduler=scheduler):
+            rows[row["key"]] = row
+            if json_path and json_path != "-":
+                write_json(jsonable({**header, "rows": list(rows.values())}), json_path)
+            bar.set_postfix_str(f"{row['key']}: {row['failed'] or 'done'}")
+            bar.update(1)
     skipped = sorted({n for r in rows.values() for n in r["not_applicable"]})
     return jsonable({**header, "axes": list(axes), "points": points, "rows": list(rows.values()),
                      "ladders": {a: [rung_key(o) for o in rungs] for a, rungs in plan.items()},

@@ -20,7 +20,6 @@ from __future__ import annotations
 import json
 import math
 import os
-import sys
 import time
 from collections.abc import Mapping, Sequence
 from pathlib import Path
@@ -28,6 +27,7 @@ from typing import Any
 
 import numpy as np
 
+from mjpoincare import progress
 from mjpoincare.analysis.checks import jsonable
 from mjpoincare.parallel import check_engine, run_jobs
 from mjpoincare.params import ParameterError
@@ -124,13 +124,13 @@ def run_sweep(name: str, param: str, values: list[str], assignments: Mapping[str
     rows = [r for r in done if r["value"] in set(values)]
     start = time.perf_counter()
     jobs = [(name, param, value, point_set, preset) for value in todo]
-    for row in run_jobs(sweep_point, jobs, workers=workers, engine=engine, scheduler=scheduler):
-        rows.append(row)
-        if json_path and json_path != "-":
-            write_json(jsonable({**header, "rows": rows}), json_path)
-        if sys.stderr.isatty() and not os.environ.get("CI"):
-            print(f"[{len(rows)}/{len(values)}] {param}={row['value']}: {'pass' if row['passed'] else 'FAIL'} "
-                  f"({row['wall_s']:.1f} s)", file=sys.stderr)
+    with progress.bar(len(values), f"sweep {param}", unit="point", initial=len(rows)) as bar:
+        for row in run_jobs(sweep_point, jobs, workers=workers, engine=engine, scheduler=scheduler):
+            rows.append(row)
+            if json_path and json_path != "-":
+                write_json(jsonable({**header, "rows": rows}), json_path)
+            bar.set_postfix_str(f"{param}={row['value']}: {'pass' if row['passed'] else 'FAIL'}")
+            bar.update(1)
     wall = time.perf_counter() - start
     rows.sort(key=lambda r: values.index(r["value"]))
     names = list(dict.fromkeys(n for r in rows for n in r["errors"]))  # rows may carry different checks

@@ -30,8 +30,6 @@ check (within the tolerances, without the margin), else none is chosen; the fron
 from __future__ import annotations
 
 import math
-import os
-import sys
 import time
 import warnings
 from collections.abc import Mapping, Sequence
@@ -41,7 +39,7 @@ from multiprocessing import get_context
 from pathlib import Path
 from typing import Any
 
-from mjpoincare import scenarios
+from mjpoincare import progress, scenarios
 from mjpoincare import settings as sim_settings
 from mjpoincare.analysis.checks import Check
 from mjpoincare.params import ParameterError, Value, resolve
@@ -280,13 +278,6 @@ def _finished(study: Any) -> int:
     return len(study.get_trials(deepcopy=False, states=states))
 
 
-def _progress(total: int, initial: int, label: str) -> Any:
-    from tqdm import tqdm
-
-    quiet = not sys.stderr.isatty() or os.environ.get("CI", "").lower() in ("1", "true", "yes")
-    return tqdm(total=total, initial=initial, desc=label, unit="trial", disable=quiet, file=sys.stderr)
-
-
 def enqueued_params(scenario: scenarios.Scenario, assignments: Mapping[str, str]) -> dict[str, Value]:
     """``--enqueue``'s settings as trial parameters (checked as settings; the settings it leaves out are sampled)."""
     space = {d.name: d for d in scenario.search_space}
@@ -338,7 +329,7 @@ def run_study(name: str, target: str, *, trials: int, workers: int, path: Path, 
     if remaining and command:
         study.set_user_attr("commands", [*study.user_attrs.get("commands", []), command])
     shares = [remaining // workers + (k < remaining % workers) for k in range(workers)]
-    with _progress(trials, trials - remaining, label) as bar:
+    with progress.bar(trials, label, unit="trial", initial=trials - remaining) as bar:
         if workers == 1:
             _work(url, name, target, remaining, seed)
         elif remaining:

@@ -98,7 +98,7 @@ STEPS = 10  # heel strikes per trajectory, at most (adaptive stopping ends the b
 #: Initial offsets from the fixed point on the 3-D post-impact section: STARTS random directions (fixed seed), of
 #: size PERTURBATION, x (timestep / 20 us)^(1/3) below 20 us, shrunk to a third as |lambda|max -> 1 (how the size
 #: and the count were chosen: docs/scenarios/compass-biped.md, "Presets and start design").
-STARTS = 24
+STARTS = 16
 PERTURBATION = 0.03
 #: Steps of free fall the released trailing foot is allowed before its dip fails ``trailing_foot_release``: twice the
 #: controller's release lead (the new foot is predicted at the slope 2 steps ahead; see :func:`release_tolerance`).
@@ -106,7 +106,7 @@ RELEASE_FALL_STEPS = 4
 CHUNK_SECONDS = 0.05  # native steps between controller looks: 5x fewer Python calls than 10 ms, same results
 FIT_DEGREE = 3  # cubic: over the +-0.03 spread a quadratic fit's Jacobian absorbs the cubic terms (see STARTS)
 #: The fitting batch stops once more steps no longer sharpen the fit (:mod:`mjpoincare.analysis.adaptive_stopping`);
-#: first look at 4 samples per trajectory: 75 pairs for the cubic fit's 20 coefficients per coordinate.
+#: first look at 4 samples per trajectory: 48 pairs for the cubic fit's 20 coefficients per coordinate.
 STOPPING = StoppingRule(min_samples=4)
 STEP_REGRESSION_DEGREE = 2  # per-step quantities regressed on the section state (an affine one is biased by the spread)
 

@@ -4,14 +4,13 @@
 from __future__ import annotations
 
 import math
-import os
-import sys
 import time
 from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
 
+from mjpoincare import progress
 from mjpoincare.analysis.checks import jsonable
 from mjpoincare.analysis.force_ratio import critical_ratio, ratio_profile
 from mjpoincare.analysis.stick_slip_phases import Steps, fit_midstance_map, outcome, settled_rows
@@ -192,16 +191,15 @@ def run_mu_sweep(values: Sequence[str], assignments: Mapping[str, str], preset: 
             for r in part]
     refs.sort(key=lambda r: r["mu"])
     ref_wall = time.perf_counter() - start
-    tty = sys.stderr.isatty() and not os.environ.get("CI")
     per_rollout = mu_per_rollout(s)
-    for k in range(0, len(refs), per_rollout):
-        batch = refs[k : k + per_rollout]
-        rows += sweep_batch(p, s, preset_name, batch)
-        if json_path and json_path != "-":
-            write_json(jsonable({**header, "rows": sorted(rows, key=lambda r: r["mu"])}), json_path)
-        if tty:
-            print(f"[{len(rows)}/{len(mus)}] mu {batch[0]['mu']:.4g}..{batch[-1]['mu']:.4g} "
-                  f"({time.perf_counter() - start:.0f} s)", file=sys.stderr)
+    with progress.bar(len(mus), "mu sweep", unit="mu", initial=len(rows)) as bar:
+        for k in range(0, len(refs), per_rollout):
+            batch = refs[k : k + per_rollout]
+            rows += sweep_batch(p, s, preset_name, batch)
+            if json_path and json_path != "-":
+                write_json(jsonable({**header, "rows": sorted(rows, key=lambda r: r["mu"])}), json_path)
+            bar.set_postfix_str(f"mu {batch[0]['mu']:.4g}..{batch[-1]['mu']:.4g}")
+            bar.update(len(batch))
     rows.sort(key=lambda r: r["mu"])
     w = friction_wheel(p)
     summary = sweep_summary(rows, theory.gait_boundaries(w.kappa, w.spokes, w.slope))
