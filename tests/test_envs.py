@@ -3,9 +3,14 @@ parameterised model, the reward's sign and the input check."""
 
 from __future__ import annotations
 
+import itertools
+import unittest
+
+import dm_env
 import numpy as np
 import pytest
 from dm_control.rl import control
+from dm_env import test_utils
 
 from mjpoincare import envs, scenarios
 from mjpoincare.params import ParameterError
@@ -28,7 +33,7 @@ def test_environment_contract(name: str) -> None:
         spec[key].validate(value)
     action_spec = env.action_spec()
     assert action_spec.shape == (env.physics.model.nu,)
-    action = np.zeros(action_spec.shape, action_spec.dtype)  # generate_value() is the minimum: -1e10 N m here
+    action = action_spec.generate_value()  # the minimum: the largest torque the spec allows, on every actuator
     action_spec.validate(action)
     t0 = env.physics.data.time
     for _ in range(STEPS):
@@ -102,3 +107,60 @@ def test_bad_parameter_raises(values: dict, named: str) -> None:
 def test_unknown_scenario_raises() -> None:
     with pytest.raises(ParameterError, match="unknown scenario"):
         envs.load("no-such-system")
+
+
+#: Random in-spec actions each environment is stepped with, over episodes cut short so that several end.
+RANDOM_STEPS = 3000
+SHORT_EPISODE = 0.05  # s
+
+
+@pytest.mark.parametrize("name", scenarios.REGISTRY)
+def test_random_actions_within_the_spec_keep_the_dm_env_contract(name: str) -> None:
+    """Thousands of steps under random actions inside ``action_spec()`` raise nothing, stay finite, and each episode
+    runs FIRST (no reward, no discount), MID (reward, discount 1), ..., LAST at its time limit, then restarts."""
+    env = envs.load(name, environment_kwargs={"time_limit": SHORT_EPISODE})
+    spec = env.action_spec()
+    assert np.all(np.isfinite(spec.minimum)) and np.all(np.isfinite(spec.maximum))
+    rng = np.random.default_rng(0)
+    step = env.reset()
+    types, episodes = [step.step_type], 0
+    assert step.reward is None and step.discount is None
+    for _ in range(RANDOM_STEPS):
+        action = rng.uniform(spec.minimum, spec.maximum).astype(spec.dtype)
+        step = env.step(action)
+        types.append(step.step_type)
+        if step.first():
+            assert step.reward is None and step.discount is None
+            continue
+        assert np.isfinite(step.reward) and step.discount == 1.0
+        assert all(np.all(np.isfinite(v)) for v in step.observation.values())
+        episodes += step.last()
+    assert episodes >= 2
+    first, mid, last = dm_env.StepType.FIRST, dm_env.StepType.MID, dm_env.StepType.LAST
+    allowed = {(first, mid), (mid, mid), (mid, last), (last, first)}
+    assert all(pair in allowed for pair in itertools.pairwise(types))
+
+
+def test_biped_actions_are_bounded_by_the_walkers_weight_torque() -> None:
+    """The bipeds' actuators have no control range in the validation model; the environment bounds them by the
+    walker's weight times its extent and MuJoCo clamps to it."""
+    env = envs.load("compass-biped")
+    model = env.physics.model.ptr
+    limit = envs.weight_torque(model)
+    assert limit == pytest.approx(20.0 * 9.81 * model.stat.extent, rel=1e-3)
+    assert np.all(env.action_spec().maximum == limit) and np.all(env.action_spec().minimum == -limit)
+    env.reset()
+    env.physics.set_control([0.0, 0.0, 10 * limit])
+    env.physics.forward()
+    assert env.physics.named.data.qfrc_actuator["leg1"] == pytest.approx(limit)
+
+
+def _conformance_case(name: str) -> type:
+    """dm_env's own conformance tests (reset, step after reset, a longer action sequence) for one environment."""
+    return type(f"TestDmEnvConformance_{name.replace('-', '_')}", (test_utils.EnvironmentTestMixin, unittest.TestCase),
+                {"make_object_under_test": lambda self: envs.load(name)})
+
+
+for _name in scenarios.REGISTRY:
+    _case = _conformance_case(_name)
+    globals()[_case.__name__] = _case

@@ -15,7 +15,8 @@ row per episode.
   horizontal speed.
 * Actions: one per model actuator. Only the compass bipeds have any: ``ankle0``, ``ankle1`` on the leg hinges and
   ``hip`` on the ``leg1 - leg0`` tendon. The MJCF builds them with zero gain (the validation drives them through
-  their biases), so the environment sets a unit gain: an action is a torque, N m, unbounded (with ``gait=iii`` of
+  their biases), so the environment sets a unit gain: an action is a torque, N m, within +-:func:`weight_torque`
+  (the system's weight times its extent; MuJoCo clamps to it) (with ``gait=iii`` of
   ``compass-biped-friction`` the ankles keep the PD bias ``-kp q - kd q_dot`` the scenario builds in, and an ankle
   action is the PD's reference term ``kp q_ref + kd q_ref_dot``). The others have an empty action.
 
@@ -156,6 +157,25 @@ def _unit_gains(model: mujoco.MjModel) -> None:
             model.actuator_gainprm[i, 0] = 1.0
 
 
+def weight_torque(model: mujoco.MjModel) -> float:
+    """The system's weight times its extent, N m: the largest torque its own weight can exert about a point within
+    its size (for the compass bipeds, holding the whole walker on one horizontal leg: 196 N m at the defaults)."""
+    return float(model.body_subtreemass[0] * np.linalg.norm(model.opt.gravity) * model.stat.extent)
+
+
+def _limit_controls(model: mujoco.MjModel) -> None:
+    """Bound every actuator without a control range to +-:func:`weight_torque` (MuJoCo clamps ``ctrl`` to it).
+
+    The papers' torques lie far inside: the actuated compass gait's 0.5 and 0.2 N m (Kiša 2020 Sec. 4), Gait I's
+    constant torques and Gait III's PD reference terms, tens of N m at most (Gamus & Or 2015 eqs 29-30).
+    """
+    limit = weight_torque(model)
+    for i in range(model.nu):
+        if not model.actuator_ctrllimited[i]:
+            model.actuator_ctrllimited[i] = 1
+            model.actuator_ctrlrange[i] = (-limit, limit)
+
+
 def load(name: str, preset: str | None = None, environment_kwargs: Mapping[str, Any] | None = None,
          task_kwargs: Mapping[str, Any] | None = None, **values: Value) -> control.Environment:
     """The dm_control environment of scenario ``name``.
@@ -175,6 +195,7 @@ def load(name: str, preset: str | None = None, environment_kwargs: Mapping[str, 
     scenario, _, params, settings = resolve_inputs(name, values, preset)
     model, batches = scenario.probe(params, settings)
     _unit_gains(model)
+    _limit_controls(model)
     physics = Physics.from_model(wrapper.MjModel(model))
     task = SystemTask(scenario.track_body, batches[0][0], source=scenario.source, **dict(task_kwargs or {}))
     kwargs = {"time_limit": DEFAULT_TIME_LIMIT, **dict(environment_kwargs or {})}
