@@ -1,6 +1,8 @@
 # Two commands do all the set-up on a fresh machine:
-#   make validate   creates .venv, installs mjpoincare from the lock, runs the default validation and prints the table
-#   make test       creates .venv, installs mjpoincare with its dev tools from the lock, runs ruff and pytest
+#   make validate   creates .venv-core, installs mjpoincare alone (its core dependencies) from the lock, runs the default
+#                   validation and prints the table
+#   make test       creates .venv, installs mjpoincare with every extra and its dev tools from the lock, runs ruff and
+#                   pytest (the other targets below use that .venv too)
 # The lock (requirements/lock.txt) pins every dependency for every Python >= 3.10 and platform (uv's universal
 # resolution); pip installs through it as constraints, so CI and a new user get the versions the suite was tested on.
 #   make lock         regenerate requirements/lock.txt from pyproject.toml
@@ -29,6 +31,8 @@ PYTHON ?= python3
 VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
+CORE := .venv-core
+CORE_STAMP := $(CORE)/.installed
 LOCK := requirements/lock.txt
 LATEST := .venv-latest
 
@@ -48,15 +52,24 @@ BACKENDS_OUT ?= docs/results/backends
 .PHONY: validate test test-latest lock margins results results-render backends gpu-check bench gate clean releases \
 	releases-render bisect tune tune-render
 
+PYTHON_CHECK := $(PYTHON) -c 'import sys; sys.exit(0 if sys.version_info >= (3, 10) else "mjpoincare needs Python >= 3.10")'
+
 $(STAMP): pyproject.toml $(LOCK)
-	@$(PYTHON) -c 'import sys; sys.exit(0 if sys.version_info >= (3, 10) else "mjpoincare needs Python >= 3.10")'
+	@$(PYTHON_CHECK)
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 	$(BIN)/python -m pip install --quiet --constraint $(LOCK) -e ".[dev,peers,mjx,warp]"
 	touch $(STAMP)
 
-validate: $(STAMP)
-	$(BIN)/mjpoincare validate
+$(CORE_STAMP): pyproject.toml $(LOCK)
+	@$(PYTHON_CHECK)
+	$(PYTHON) -m venv $(CORE)
+	$(CORE)/bin/python -m pip install --quiet --upgrade pip
+	$(CORE)/bin/python -m pip install --quiet --constraint $(LOCK) -e .
+	touch $(CORE_STAMP)
+
+validate: $(CORE_STAMP)
+	$(CORE)/bin/mjpoincare validate
 
 test: $(STAMP)
 	$(BIN)/ruff check src analysis models tests docs/scripts noxfile.py
