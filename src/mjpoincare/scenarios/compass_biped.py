@@ -75,8 +75,8 @@ PARAMS: tuple[Param, ...] = (
 #: Both read off the preset search's studies (docs/results/tune/compass-biped.md); over-damped contact (why:
 #: docs/scenarios/compass-biped.md, "Presets and start design").
 PRESETS: dict[str, dict[str, float | int | str]] = {
-    "fast": {"timestep": 0.000116503446827, "solref_timeconst": 0.00031594507064, "solref_dampratio": 7.60403309648,
-             "integrator": "euler", "foot_radius": 0.00104004415299},
+    "fast": {"timestep": 8.72679790015e-05, "solref_timeconst": 0.000436830906143, "solref_dampratio": 4.37663471602,
+             "integrator": "implicitfast", "foot_radius": 0.000256709130874},
     "accurate": {"timestep": 2.5e-05, "solref_timeconst": 5.4e-05, "solref_dampratio": 5.89,
                  "integrator": "implicitfast", "foot_radius": 0.000484},
 }
