@@ -162,8 +162,8 @@ def run_all(scenarios: Sequence[str], presets: Sequence[str], batch: int, maps: 
                 if again or not (out / "json" / f"{name}.json").exists()]
     running: list[subprocess.Popen[bytes]] = []
     for command in commands:
-        while len(running) >= workers:
-            running[0].wait()
+        while len(running) >= workers:  # a slot frees when any run ends, not only the oldest
+            time.sleep(0.5)
             running = [p for p in running if p.poll() is None]
         print(" ".join(command[3:]), flush=True)
         running.append(subprocess.Popen(command))
