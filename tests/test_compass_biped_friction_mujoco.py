@@ -1,4 +1,4 @@
-"""Regression: MuJoCo's compass biped with Coulomb friction against Gamus & Or (2015) Secs. 4-5 (seed 002).
+"""Regression: MuJoCo's compass biped with Coulomb friction against Gamus & Or (2015) Secs. 4-5 (002).
 
 Gaits A (passive, 1 deg, mu = 1), I (constant torques, level ground, mu = 0.2), III (PD tracking of Gait C with
 phase reset, fed as native control, level ground, mu = 0.2), B (passive, mu = 0.14, slip+ -> stick -> slip-) and

@@ -19,7 +19,8 @@ def test_fast_validation_passes() -> None:
     result = gate.case("slotted-skate[fast]").run()
     assert result.extras["impacts"] > 60
     collisions = next(c for c in result.checks if c.name == "collisions_before_reversal")
-    assert collisions.analytic == [15, 11, 8]  # P1 backward starts (B.6; the note: 11 at Omega0 = 0.1)
+    # P1 backward starts (B.6; docs/theory/slotted-skate.md Sec. 3.4: 11 at Omega0 = 0.1)
+    assert collisions.analytic == [15, 11, 8]
 
 
 @pytest.mark.parametrize("l0", [1.0, -1.0])

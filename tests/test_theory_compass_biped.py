@@ -1,7 +1,6 @@
 """Compass-gait theory (003 Kiša 2020 Ch. 4; Goswami et al. 1996/98) against independent point-mass mechanics
 (Lagrangian by finite differences, angular momenta by cross products, Newton's law by differentiated momentum)
-and against the numbers of the reference card (docs/notes/003-rimless-wheel-and-compass-gait.md, Sec. 2.6, computed by
-separate scripts)."""
+and against the numbers of the derivation page (docs/theory/rimless-wheel-and-compass-gait.md, Sec. 2.6)."""
 
 from __future__ import annotations
 
@@ -257,7 +256,7 @@ def test_goswami_fixed_point_and_eigenvalues(goswami_gait):
 
 def test_goswami_literature_state_at_g_9_8():
     """Goswami's [theta_ns, theta_s, dtheta_ns, dtheta_s] = [-0.3234, 0.2187, -0.3772, -1.0918] (counter-clockwise
-    positive, g = 9.8; card Sec. 2.6, "as recalled"), mapped to the thesis' order and sign."""
+    positive, g = 9.8; derivation page Sec. 2.6, values as commonly quoted), mapped to the thesis' order and sign."""
     x = cb.fixed_point(cb.goswami(g=9.8))
     assert x == pytest.approx([-0.2187, 0.3234, 1.0918, 0.3772], abs=1e-4)
     assert cb.step_period(cb.goswami(g=9.8), x) == pytest.approx(0.73472, abs=1e-5)
@@ -279,7 +278,7 @@ def test_energy_balance_per_step(gait, request):
 )
 def test_contact_validity(gait, n_min, n_max, mu, request):
     """Stance-foot force from the rate of change of the point masses' total momentum (central differences along
-    an independent solve_ivp swing), against StepResult and the card's ranges."""
+    an independent solve_ivp swing), against StepResult and the derivation page's ranges (Sec. 2.6)."""
     bp, x, res = request.getfixturevalue(gait)
 
     def rhs(_t, y):
@@ -311,7 +310,8 @@ def test_contact_validity(gait, n_min, n_max, mu, request):
 
 
 def test_legs_parallel_section_is_conjugate(kisa_gait):
-    """003 eq 4.20 section: card y* and time; same multipliers as the post-impact section."""
+    """003 eq 4.20 section: the derivation page's y* and time (Sec. 2.6); same multipliers as the post-impact
+    section."""
     bp, x, _ = kisa_gait
     y, t = cb.legs_parallel_state(bp, x)
     assert y == pytest.approx([-0.0116109, 0.3953236, -1.8322910], abs=1e-7)
@@ -338,7 +338,7 @@ def test_default_guess_reaches_slope_range(slope):
 
 
 def test_period_doubling_slope():
-    """First flip bifurcation of the Goswami walker (card Sec. 2.6: 4.3909 deg = 0.076636 rad); about 2 s."""
+    """First flip bifurcation of the Goswami walker (derivation page Sec. 2.6: 4.3909 deg = 0.076636 rad); about 2 s."""
     slope = cb.period_doubling_slope(10.0, 5.0, 0.5, 0.5, 0.07, 0.08)
     assert slope == pytest.approx(0.076636, abs=2e-6)
     lam = cb.eigenvalues(cb.goswami(slope))

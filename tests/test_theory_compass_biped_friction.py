@@ -1,6 +1,6 @@
 """Compass biped with Coulomb friction (002 Gamus & Or 2015, Secs. 4-5, eqs 27-30, Appendix A): the eq-27 model
-against its Lagrangian, the passive Gaits A, B, C and the actuated Gaits I, II, III against reference card 002
-Sec. 3 and the paper, and Gait A against the independent passive compass biped of 003 Ch. 4
+against its Lagrangian, the passive Gaits A, B, C and the actuated Gaits I, II, III against the derivation page
+docs/theory/stick-slip.md, Sec. 3, and the paper, and Gait A against the independent passive compass biped of 003 Ch. 4
 (analysis.theory.compass_biped)."""
 
 from __future__ import annotations
@@ -38,7 +38,7 @@ def _jac(bp: FrictionBiped, q: np.ndarray, h: float = 1e-6) -> np.ndarray:
 
 @pytest.mark.parametrize("seed", [0, 1, 2])
 def test_eq27_matrices_follow_from_the_lagrangian(seed):
-    """M, B, G of 002 eq 27 (as printed, card Sec. 3.1) from the point masses alone: M = sum m J^T J,
+    """M, B, G of 002 eq 27 (as printed, derivation page Sec. 3.1) from the point masses alone: M = sum m J^T J,
     B = sum m J^T (d2p/dt2 at qdd = 0) (second directional derivative along qd), G = dV/dq with V the heights."""
     rng = np.random.default_rng(seed)
     bp = replace(PAPER, slope=0.3 * rng.uniform(-1, 1))
@@ -83,7 +83,7 @@ def test_validate_names_the_parameter():
         cf.ConstantTorque(1.0, 1.0, "other")
 
 
-# --- passive Gait A (002 Sec. 4.1, card Sec. 3.2) ----------------------------------------------------------
+# --- passive Gait A (002 Sec. 4.1, derivation page Sec. 3.2) -----------------------------------------------
 
 
 def test_gait_a():
@@ -99,7 +99,7 @@ def test_gait_a():
     assert rec.step_length == pytest.approx(2 * PAPER.l * math.sin(g.z[0]), rel=1e-12)
     assert rec.period == pytest.approx(0.74462, rel=1e-4)
     assert cf.average_speed(rec) == pytest.approx(0.63302, rel=1e-4)
-    # the impact removes what the slope supplies: (2m + m_h) g S sin(alpha) (card: 0.80618 J, paper 0.806 J)
+    # the impact removes what the slope supplies: (2m + m_h) g S sin(alpha) (page: 0.80618 J, paper 0.806 J)
     assert rec.impact_loss == pytest.approx(0.80618, rel=1e-4)
     assert rec.impact_loss == pytest.approx(TOTAL_WEIGHT * rec.step_length * math.sin(ALPHA), rel=1e-8)
     assert rec.friction_work == pytest.approx(0.0, abs=1e-9)
@@ -132,9 +132,10 @@ def test_gait_a_equals_the_passive_compass_biped_of_issue_6():
 
 
 def test_scuffing_is_ignored_on_both_sides():
-    """002 Sec. 4.1 says the scuffing collision is at theta1 = theta2, card 002 Sec. 7 item 12 says theta2 = -theta1:
-    the swing foot dips below the ground between the two. Gait A: theta1 = theta2 < 0 (foot behind), then legs
-    parallel; Gait C: legs parallel with theta1 > 0, then theta1 = theta2 > 0 (foot emerging ahead, late swing)."""
+    """002 Sec. 4.1 says the scuffing collision is at theta1 = theta2, while the legs pass parallel at theta2 = -theta1
+    (derivation page Sec. 7 item 12): the swing foot dips below the ground between the two. Gait A:
+    theta1 = theta2 < 0 (foot behind), then legs parallel; Gait C: legs parallel with theta1 > 0, then
+    theta1 = theta2 > 0 (foot emerging ahead, late swing)."""
     a = cf.paper_gait("A", math.inf)
     (t1, p1, q1), (t2, p2, q2) = cf.scuffing_crossings(a.biped, a.z)
     assert t1 < t2 and p1 == pytest.approx(q1, abs=1e-9) and p1 < 0.0 and p2 == pytest.approx(-q2, abs=1e-9)
@@ -146,7 +147,7 @@ def test_scuffing_is_ignored_on_both_sides():
     assert -1e-3 < c.record.min_swing_height < 0.0 and c.record.late_swing
 
 
-# --- passive Gait B (002 Sec. 4.2, Fig. 4.2b; card Sec. 3.2 table) ----------------------------------------
+# --- passive Gait B (002 Sec. 4.2, Fig. 4.2b; derivation page Sec. 3.2 table) -----------------------------
 
 
 def test_gait_b():
@@ -201,7 +202,7 @@ def test_gait_b_loses_stability_near_mu_011():
     g = cf.paper_gait("B", 0.11)
     assert g.spectral_radius == pytest.approx(1.0030, rel=1e-3)
     mu = cf.stability_loss_mu(g.biped, g.z[:3], 0.11, 0.115, mu_step=0.005)
-    assert mu == pytest.approx(0.11035, abs=1e-4)  # card 0.1104 (linear interpolation), paper "~0.11"
+    assert mu == pytest.approx(0.11035, abs=1e-4)  # page Sec. 3.2: 0.1104 (linear interpolation), paper "~0.11"
 
 
 # --- passive Gait C (002 Sec. 4.2, Fig. 4.2) ---------------------------------------------------------------
@@ -278,7 +279,7 @@ def test_gait_i_loses_stability_near_mu_0103():
     g = cf.paper_gait("I", 0.11)
     assert g.spectral_radius == pytest.approx(0.9588, rel=1e-3)
     mu = cf.stability_loss_mu(g.biped, g.z[:3], 0.11, 0.10, g.actuation)
-    assert mu == pytest.approx(0.10350, abs=1e-4)  # card ~0.103; paper "stable for mu > 0.11"
+    assert mu == pytest.approx(0.10350, abs=1e-4)  # page Sec. 3.3; paper "stable for mu > 0.11"
 
 
 def test_gait_ii():

@@ -20,7 +20,8 @@ def paper_wheel(spokes: int = 10, kappa: float = KAPPA_PAPER, slope_deg: float =
     return RimlessWheel(spokes, math.radians(slope_deg), gyration=math.sqrt(kappa))
 
 
-# --- 003 Sec. 1.6 numeric instantiation: (n, gamma, region, omega_f, omega_b, omega*, -omega_f/c, T*) -------
+# --- docs/theory/rimless-wheel-and-compass-gait.md Sec. 1.6: (n, gamma, region, omega_f, omega_b, omega*, -omega_f/c,
+# T*) ---------------------------------------------------------------------------------------------------------------
 TABLE_16 = [
     (8, math.pi / 15, 5, 0.57318, -1.85759, 1.76695, -0.81060, 0.41762),
     (8, math.pi / 8, 2, 0.0, -2.39720, 2.39720, 0.0, 0.28806),
@@ -84,7 +85,7 @@ def test_no_flight_bound_table():
     expected = {5: 0.248587, 6: 0.266954, 8: 0.262076, 10: 0.239978, 12: 0.216104, 16: 0.175727, 20: 0.146163}
     for n, gamma_fly in expected.items():
         assert rw.no_flight_bound(n) == pytest.approx(gamma_fly, abs=6e-7)
-    # kappa = 0: the condition of 003 Sec. 1.9 is 4 sin g sin a / sin^2 2a = cos(g + a) at the bound
+    # kappa = 0: the condition of derivation page Sec. 1.9 is 4 sin g sin a / sin^2 2a = cos(g + a) at the bound
     g, a = rw.no_flight_bound(8), ALPHA8
     assert 4 * math.sin(g) * math.sin(a) / math.sin(2 * a) ** 2 == pytest.approx(math.cos(g + a), rel=1e-10)
 
@@ -200,7 +201,7 @@ def test_return_map_derivative_by_finite_differences():
     assert rw.return_map_derivative(w, 0.0) == pytest.approx(rw.standing_multiplier(w))
 
 
-# 003 Sec. 1.8 post-impact sequences (gamma, sequence)
+# docs/theory/rimless-wheel-and-compass-gait.md Sec. 1.8 post-impact sequences (gamma, sequence)
 FIGS = [
     (0.025, [1.660746, 1.251689, 0.985418, -0.696796, 0.492709, -0.348398]),
     (math.pi / 7, [3.918914, 3.307060, 2.953986, 2.760566, 2.658584, 2.606097]),
@@ -226,7 +227,7 @@ def test_first_impact_from_mid_swing_state():
 
 
 def test_figure_radial_forces():
-    # 003 Sec. 1.8 last column is the spoke (radial) force N/(mg) = f_n/(mg cos psi);
+    # derivation page Sec. 1.8: the last column is the spoke (radial) force N/(mg) = f_n/(mg cos psi);
     # here the minima sit at psi = +-alpha
     for gamma, seq, radial in (
         (math.pi / 7, [3.918914, 3.307060, 2.953986, 2.760566], [-1.113, -0.887, -0.775]),
@@ -354,7 +355,7 @@ def test_hybrid_sequence_and_flight_flag():
         expected.append(float(rw.return_map(w, expected[-1])))
     np.testing.assert_allclose(res.omega_post, expected[1:], atol=1e-9)
     assert res.kinds == ("backward", "backward", "rock", "forward", "forward", "forward")
-    assert res.outcome == "rolling" and res.flight  # first stance has f_n < 0 (003 Sec. 1.8)
+    assert res.outcome == "rolling" and res.flight  # first stance has f_n < 0 (derivation page Sec. 1.8)
     expected_fn = [rw.excursion_min_normal_force(w, om) for om in expected[:-1]]
     np.testing.assert_allclose(res.min_normal_force, expected_fn, atol=1e-8)
     stopped = hy.simulate_hybrid(w, -3.551090, 6, stop_on_flight=True)
@@ -362,7 +363,7 @@ def test_hybrid_sequence_and_flight_flag():
 
 
 def test_hybrid_zeno_standing():
-    # 003 Sec. 1.5: alpha = pi/8, gamma = 0.025, omega0 = 0.5 rocks to rest at t ~ 0.950 s
+    # derivation page Sec. 1.5: alpha = pi/8, gamma = 0.025, omega0 = 0.5 rocks to rest at t ~ 0.950 s
     res = hy.simulate_hybrid(RimlessWheel(8, 0.025), 0.5, 200)
     assert res.outcome == "standing"
     assert res.t_impacts[-1] == pytest.approx(0.950, abs=2e-3)

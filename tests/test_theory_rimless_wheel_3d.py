@@ -1,5 +1,5 @@
-"""3D rimless wheel theory (001 = Coleman, Chatterjee & Ruina 1997) against the reference note's oracles
-(docs/notes/001-rimless-wheel-3d.md, Sec. 3-4) and against the independent 3D hybrid integrator."""
+"""3D rimless wheel theory (001 = Coleman, Chatterjee & Ruina 1997) against the derivation page's oracles
+(docs/theory/rimless-wheel-3d.md, Sec. 3-4) and against the independent 3D hybrid integrator."""
 
 from __future__ import annotations
 
@@ -15,7 +15,7 @@ TABLE2 = RimlessWheel3D(16, 0.125, 0.5, math.pi / 10)  # 001 Sec. 8.1 / Table 2 
 
 
 def wheel(n: int, alpha: float, psi: float, J: float) -> RimlessWheel3D:
-    """A wheel from a note-table row, ordered (n, alpha, psi, J) as printed."""
+    """A wheel from a row of the derivation page's tables, ordered (n, alpha, psi, J) as printed."""
     return RimlessWheel3D(n, alpha, J, psi)
 
 
@@ -24,7 +24,7 @@ def approx6(v: float) -> object:
     return pytest.approx(v, rel=1e-5, abs=5e-7)
 
 
-# Note Sec. 4 table: (n, alpha, psi, J), then gamma, mu, mu^2, thd+, thd-, thd(0), T_step, gamma_c, |bank*|,
+# Derivation page Sec. 4 table: (n, alpha, psi, J), then gamma, mu, mu^2, thd+, thd-, thd(0), T_step, gamma_c, |bank*|,
 # Pt/Pn (in-plane, see impact_friction_ratio), Nmin, max|Ft/N|. The printed psi 0.31416/0.52360 are pi/10, pi/6.
 ORACLE = [
     ((16, 0.125, math.pi / 10, 0.5), (0.118852, 0.949253, 0.901081, 0.749614, 0.789688, 0.753210, 0.517724,
@@ -64,7 +64,7 @@ def test_closed_forms_against_note_table(params, values):
     assert th.existence_threshold(w.spokes, w.J) == approx6(gamma_c)
     assert abs(th.planar_bank(w.slope, w.heading)) == approx6(bank)
     assert math.copysign(1.0, w.bank) == -math.copysign(1.0, w.heading) or w.heading == 0.0  # eq 12 sign, R=RzRxRy
-    b = w.beta  # the note's Pt/Pn column is the in-plane ratio sin b cos b/(J + cos^2 b)
+    b = w.beta  # the page's Pt/Pn column is the in-plane ratio sin b cos b/(J + cos^2 b)
     assert math.sin(b) * math.cos(b) / (w.J + math.cos(b) ** 2) == pytest.approx(values[9], abs=5e-5)
 
 
@@ -159,7 +159,7 @@ def test_hybrid_fixed_point_and_contact_requirements(params, values):
     assert rec.time == pytest.approx(th.step_period(w), rel=1e-9)
     assert rec.min_normal_force == pytest.approx(values[10], abs=5e-4)
     assert rec.max_friction_ratio == pytest.approx(values[11], abs=5e-5)
-    # impulse: slope-frame ratio (closed form), which equals the note's in-plane column only at psi = 0
+    # impulse: slope-frame ratio (closed form), which equals the page's in-plane column only at psi = 0
     assert rec.impulse_ratio == pytest.approx(th.impact_friction_ratio(w), rel=1e-9)
     if w.heading == 0.0:
         assert rec.impulse_ratio == pytest.approx(values[9], abs=5e-5)
@@ -169,7 +169,7 @@ def test_hybrid_fixed_point_and_contact_requirements(params, values):
 
 
 def test_table2_banked_impulse_ratio_correction():
-    assert th.impact_friction_ratio(TABLE2) == pytest.approx(0.13662, abs=5e-6)  # note prints 0.1309 (in-plane)
+    assert th.impact_friction_ratio(TABLE2) == pytest.approx(0.13662, abs=5e-6)  # in-plane ratio 0.1309 (page Sec. 1)
 
 
 def test_impact_matrix_equals_vector_law():
@@ -197,7 +197,7 @@ def test_euler_helpers_round_trip():
         assert np.allclose(q, [psi, phi, theta, *rates], atol=1e-13)
 
 
-# Note Sec. 4 3D eigenvalue table: (n, alpha, psi, J), |lambda3|, arg lambda3, lambda5, lambda2.
+# Derivation page Sec. 4 3D eigenvalue table: (n, alpha, psi, J), |lambda3|, arg lambda3, lambda5, lambda2.
 EIGEN_ROWS = [
     ((16, 0.125, math.pi / 10, 0.5), 0.98837, 0.39895, 0.96133, 0.90108),  # Table 2 numerical row
     ((16, 0.125, 0.0, 0.5), 0.98907, 0.41245, 0.95997, 0.90108),
@@ -211,7 +211,7 @@ EIGEN_ROWS = [
 def test_3d_eigenvalues_against_note(params, modulus, angle, lam5, lam2):
     w = wheel(*params)
     e = hy.eigenvalues_3d(w)
-    tol = 1e-5  # the note prints 5 decimals (rounding 5e-6); finite-difference noise is ~1e-8
+    tol = 1e-5  # the page prints 5 decimals (rounding 5e-6); finite-difference noise is ~1e-8
     assert abs(e.heading - 1.0) < 1e-7
     assert e.wobble_modulus == pytest.approx(modulus, abs=tol)
     assert e.wobble_angle == pytest.approx(angle, abs=tol)
@@ -232,7 +232,7 @@ def test_table2_rectangular_pair_and_lambda2_column():
 
 
 def test_real_wobble_pair_when_disk_criterion_fails():
-    w = RimlessWheel3D(16, 0.9 / 16, 0.5, 0.0)  # note: 1.38094, 1, 0.90108, 0.90086, 0.75488
+    w = RimlessWheel3D(16, 0.9 / 16, 0.5, 0.0)  # page Sec. 4: 1.38094, 1, 0.90108, 0.90086, 0.75488
     e = hy.eigenvalues_3d(w)
     assert e.wobble == pytest.approx((1.38094, 0.75488), abs=1e-5)
     assert e.wobble_modulus == pytest.approx(1.38094, abs=1e-5)
@@ -301,7 +301,7 @@ def test_stability_thresholds_eqs_33_36():
     assert th.asymptotic_coefficients(RimlessWheel3D(n, s.lambda5 / n, J))[2] == pytest.approx(0.0, abs=1e-12)
     alpha_min = th.minimum_stable_slope_asymptotic(16, J, math.pi / 10)
     assert alpha_min == pytest.approx(math.pi / (2.5 * 16 * math.cos(math.pi / 10)))
-    # note's exact thresholds (lambda5 = 1): n alpha = 1.30927 at psi = 0, alpha = 0.086051 at psi = pi/10 (n = 16)
+    # the page's exact thresholds (lambda5 = 1): n alpha = 1.30927 at psi = 0, alpha = 0.086051 at psi = pi/10 (n = 16)
     for alpha, psi in [(1.30927 / 16, 0.0), (0.086051, math.pi / 10)]:
         assert hy.eigenvalues_3d(RimlessWheel3D(16, alpha, J, psi)).lambda5 == pytest.approx(1.0, abs=5e-5)
         assert alpha_min * math.cos(math.pi / 10) / math.cos(psi) < alpha  # finite n needs a steeper slope
@@ -348,7 +348,7 @@ def test_fig4_350_impacts():
     final = hy.simulate(w, x0, 350)[-1]
     assert final[0] == pytest.approx(0.2875, abs=5e-5)  # eq 21
     assert final[1] == pytest.approx(-0.0356, abs=5e-5)
-    assert final[4] == pytest.approx(0.75272, abs=5e-5)  # note's nonlinear value (eq 21 prints 0.7529)
+    assert final[4] == pytest.approx(0.75272, abs=5e-5)  # the page's nonlinear value (eq 21 prints 0.7529)
     # the new planar cycle at the final heading (eqs 12, 14), up to the residual wobble |lambda3|^350 ~ 0.017
     settled = RimlessWheel3D(16, 0.125, 0.5, float(final[0]))
     assert final[1] == pytest.approx(settled.bank, abs=5e-5)

@@ -1,6 +1,6 @@
-"""Rimless wheel with Coulomb friction (002 Gamus & Or 2015, Sec. 3 and Appendix A) against the oracles of reference
-card 002 Sec. 5, the generic Appendix-A machinery against the closed forms, and the two step implementations
-against each other."""
+"""Rimless wheel with Coulomb friction (002 Gamus & Or 2015, Sec. 3 and Appendix A) against the oracles of the
+derivation page docs/theory/stick-slip.md, Sec. 5, the generic Appendix-A machinery against the closed forms, and
+the two step implementations against each other."""
 
 from __future__ import annotations
 
@@ -23,7 +23,7 @@ def paper(mu: float) -> FrictionWheel:
     return FrictionWheel(10, KAPPA, ALPHA, mu)
 
 
-# --- closed forms (reference card 002 Sec. 1 tables) ---------------------------------------------------------
+# --- closed forms (derivation page Sec. 1 tables) -------------------------------------------------------------
 
 
 def test_paper_set_closed_forms():
@@ -67,7 +67,7 @@ def test_eq21_closed_form_equals_the_scan():
 
 
 # n, kappa, alpha (deg), beta, theta_dot*, theta_dot^-, step time, mu_c, mu_c at (+1: +phi, -1: -phi), sigma~,
-# alpha_min (deg), alpha_max (deg), theta_dot_min, theta_dot_max (reference card 002 Sec. 1 "Other parameter sets").
+# alpha_min (deg), alpha_max (deg), theta_dot_min, theta_dot_max (derivation page Sec. 1 "Other parameter sets").
 OTHER_SETS = [
     (10, 1 / 3, 5, 0.856763, 0.545285, 0.636448, 1.18308, 0.24414, -1, -0.23742, 1.400, 14.713, 0.22641, 1.07793),
     (10, 1 / 3, 14, 0.856763, 0.908475, 1.060358, 0.66043, 2.73769, 1, -0.23742, 1.400, 14.713, 0.06980, 0.94292),
@@ -221,7 +221,7 @@ def test_impact_law_limits():
     assert rf.slipping_impact(edge, 1.0, 0.0, -1.0).x_dot == pytest.approx(0.0, abs=1e-14)
     gain0 = (KAPPA - math.sin(PHI) ** 2) / (KAPPA + math.sin(PHI) ** 2)
     assert rf.slipping_impact(paper(0.0), 1.0, 0.0, -1.0).theta_dot == pytest.approx(gain0, rel=1e-12)
-    # 0.80158 = 0.775514/0.967486 of the card's own D table (its text says 0.8017)
+    # 0.80158 = 0.775514/0.967486 of the Type D table (derivation page Sec. 2)
     assert rf.slipping_impact(paper(0.2), 1.0, 1.0, -1.0).theta_dot == pytest.approx(0.80158, abs=1e-5)
     assert rf.slipping_impact(paper(0.3), 1.0, 1.0, -1.0).theta_dot == pytest.approx(0.9570, abs=1e-4)
 
@@ -280,7 +280,7 @@ def test_sticking_map_is_eq15_for_large_mu(theta_dot):
     assert rec.midstance[0] == pytest.approx(rw.phase_speed(rf.rigid_wheel(w), theta_dot, ALPHA), rel=1e-10)
 
 
-# --- gaits (reference card 002 Sec. 2 tables and Sec. 5 oracles) ------------------------------------------------
+# --- gaits (derivation page Sec. 2 tables and Sec. 5 oracles) ----------------------------------------------------
 
 
 def test_type_a():
@@ -444,7 +444,7 @@ def test_basin_outcome():
     assert steps_b > steps_a > 0
 
 
-# --- gait-type boundaries in mu (reference card 002 Sec. 5, atol 2e-3) -----------------------------------------
+# --- gait-type boundaries in mu (derivation page Sec. 5, atol 2e-3) ---------------------------------------------
 
 
 def test_gait_boundaries():

@@ -1,7 +1,6 @@
-"""Slotted-skate theory (seed 000, Coleman & Holmes 1999) against an independent rigid-body reference
+"""Slotted-skate theory (000, Coleman & Holmes 1999) against an independent rigid-body reference
 (stance ODE + Cartesian impulse at the new peg, ``simulate_exact``), impulse algebra done here from momentum
-balance, and the numbers of the reference card (docs/notes/000-slotted-skate.md, Sec. 3, computed by separate
-scripts)."""
+balance, and the numbers of the derivation page (docs/theory/slotted-skate.md, Sec. 3)."""
 
 from __future__ import annotations
 
@@ -14,7 +13,7 @@ from mjpoincare.analysis.theory import slotted_skate as ss
 from mjpoincare.analysis.theory.slotted_skate import SlottedSkate
 
 R1000 = math.sqrt(1000.0)
-#: Note Sec. 3.1 parameter sets.
+#: Derivation page Sec. 3.1 parameter sets.
 P = {
     "P1": SlottedSkate(1.0, 1.0 / 3.0),
     "P2": SlottedSkate(-1.0, 1.0 / 3.0),
@@ -24,7 +23,7 @@ P = {
     "P6": SlottedSkate(-0.5, 1.0),
     "P7": SlottedSkate(1.0, 0.01),
 }
-#: Note Sec. 3.1: sigma4 for V* > 0 and V* < 0 (exact fractions where the card gives them).
+#: Derivation page Sec. 3.1: sigma4 for V* > 0 and V* < 0 (exact fractions where the page gives them).
 SIGMA4 = {
     "P1": (21 / 25, 7 / 6),
     "P2": (15 / 13, 5 / 6),
@@ -43,7 +42,7 @@ STAB = {
     "P6": ("stable", "stable"),
     "P7": ("stable", "unstable"),
 }
-#: Note Sec. 3.1, last column: d theta+/d H at |V*| = 1.
+#: Derivation page Sec. 3.1, last column: d theta+/d H at |V*| = 1.
 DTHETA_DH = {
     "P1": 0.1418971,
     "P2": 0.1973956,
@@ -53,7 +52,7 @@ DTHETA_DH = {
     "P6": 0.9272952,
     "P7": 0.0049751,
 }
-#: Note Sec. 3.3 (V0 = 1, theta0 = 0): Omega0, E1, H1, theta1, tau1, reversals, V_f, theta_f.
+#: Derivation page Sec. 3.3 (V0 = 1, theta0 = 0): Omega0, E1, H1, theta1, tau1, reversals, V_f, theta_f.
 TRAJ = {
     "P1": (0.1, 0.509856, 0.168, 0.02833952298, 0.3328393669, 0, 1.009466066, 0.1762614878),
     "P2": (0.1, 0.509467455621, 0.230769230769, 0.03955633471, 0.3339502421, 1, -0.8868760894, 4.687297688),
@@ -88,7 +87,7 @@ def test_validate_messages(L0: float, Delta: float, msg: str) -> None:
 
 
 def test_validate_accepts_any_finite_L0() -> None:
-    """L0 is signed (seed 000 Sec. 3): a skate with any finite L0 passes the check and has a map, in both
+    """L0 is signed (000 Sec. 3): a skate with any finite L0 passes the check and has a map, in both
     directions."""
     for l0 in (-50.0, -1.0, 0.0, 2.5):
         sk = SlottedSkate(l0, 0.7)
@@ -213,7 +212,8 @@ def test_stance_closed_forms_against_exact() -> None:
 @pytest.mark.parametrize("name", list(P))
 @pytest.mark.parametrize("forward", [True, False])
 def test_sigma4_and_C1_from_exact_reference(name: str, forward: bool) -> None:
-    """H_{k+1}/H_k of the exact reference = (3.10) = note's fractions, at finite amplitude; E_{k+1} - E_k = C1 H_k^2."""
+    """H_{k+1}/H_k of the exact reference = (3.10) = the page's fractions, at finite amplitude;
+    E_{k+1} - E_k = C1 H_k^2."""
     sk = P[name]
     s4 = ss.sigma4(sk, forward)
     assert s4 == pytest.approx(SIGMA4[name][0 if forward else 1], rel=1e-11)
@@ -266,8 +266,8 @@ def test_stability_criteria_match_sigma4_on_grid() -> None:
 
 
 def test_long_slot_unstable_bands() -> None:
-    """Note Sec. 2: for Delta > 4 the forward motion is unstable for x in ((-3-s)/4, (-3+s)/4) and the backward one
-    for x in ((-1-s)/4, (-1+s)/4), s = sqrt(1 - 16/Delta^2)."""
+    """Derivation page Sec. 2: for Delta > 4 the forward motion is unstable for x in ((-3-s)/4, (-3+s)/4) and the
+    backward one for x in ((-1-s)/4, (-1+s)/4), s = sqrt(1 - 16/Delta^2)."""
     delta = 10.0
     s = math.sqrt(1 - 16 / delta**2)
     for x, fwd_stable in [((-3 - s) / 4 - 1e-3, True), (-0.75, False), ((-3 + s) / 4 + 1e-3, True)]:
@@ -278,7 +278,7 @@ def test_long_slot_unstable_bands() -> None:
     assert ss.stability(SlottedSkate(0.0, 1.0))["backward"] == "neutral"
 
 
-# --------------------------------------------------------------------------------------------- note's oracles
+# --------------------------------------------------------------------------------------------- the page's oracles
 
 
 @pytest.mark.parametrize("name", list(TRAJ))
@@ -297,7 +297,7 @@ def test_trajectory_oracles(name: str) -> None:
 
 
 def test_final_energy_b10_b12() -> None:
-    """Note Sec. 3.3 E_f (B.10) and V_f (B.12), both directions; B.12 mirrored form against B.10."""
+    """Derivation page Sec. 3.3 E_f (B.10) and V_f (B.12), both directions; B.12 mirrored form against B.10."""
     for name, ef in (("P1", 0.509510869565), ("P3", 0.371868686869), ("P7", 0.509975432396)):
         sk = P[name]
         q = ss.initial_state(sk, 1.0, 0.1)
@@ -313,8 +313,8 @@ def test_final_energy_b10_b12() -> None:
 
 
 def test_symmetric_basins_b13() -> None:
-    """Note Sec. 3.4: P6, H = 1 (Omega0 = 0.8): spin boundaries V_n = 0.6^n/sqrt(5); V0 in (V_{k+1}, V_k) reverses
-    k + 1 times and |V_f| = V0 (B.12)."""
+    """Derivation page Sec. 3.4: P6, H = 1 (Omega0 = 0.8): spin boundaries V_n = 0.6^n/sqrt(5); V0 in
+    (V_{k+1}, V_k) reverses k + 1 times and |V_f| = V0 (B.12)."""
     sk = P["P6"]
     c1, c2 = ss.C1(sk, True), ss.sigma4(sk, True)
     cp = 1 + sk.Delta**2 / 4
@@ -347,7 +347,8 @@ def test_two_turning_points_needs_max_not_min() -> None:
 
 
 def test_smooth_limit() -> None:
-    """(4.1): exact (1/Delta) ln sigma4 at L0 = 1 (note Sec. 3.4), corrected series O(Delta^3), printed O(Delta^2)."""
+    """(4.1): exact (1/Delta) ln sigma4 at L0 = 1 (derivation page Sec. 3.4), corrected series O(Delta^3), printed
+    O(Delta^2)."""
     exact = {0.1: -0.5105517080, 0.05: -0.5057463943, 0.01: -0.5012293067}
     for dl, val in exact.items():
         sk = SlottedSkate(1.0, dl)

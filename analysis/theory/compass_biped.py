@@ -1,6 +1,6 @@
 """Passive compass-gait biped on a slope: swing dynamics, heel-strike impact and the period-1 gait.
 
-Sources: seed 003 = Kiša (2020), *Mathematical modelling of walking robots*, MSc thesis, Ch. 4,
+Sources: 003 = Kiša (2020), *Mathematical modelling of walking robots*, MSc thesis, Ch. 4,
 eqs (4.2)-(4.20) and Fig. 18; the same model as Goswami, Thuilot & Espiau (1996/1998), "A study of the
 passive gait of a compass-like biped robot" (benchmark parameters m_h/m = 2, a = b, l = 1, slope 3 deg).
 

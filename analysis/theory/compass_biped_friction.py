@@ -1,8 +1,9 @@
 """Compass biped with Coulomb friction: stick-slip stance, frictional heel strike, passive and actuated gaits.
 
-Source: seed 002 = Gamus & Or (2015), "Dynamic bipedal walking under stick-slip transitions", SIAM J. Appl. Dyn.
+Source: 002 = Gamus & Or (2015), "Dynamic bipedal walking under stick-slip transitions", SIAM J. Appl. Dyn.
 Syst., Sec. 4 (passive CB on a slope, eq 27, Figs 4.1-4.2), Sec. 5 (actuated CB on level ground, eqs 28-30,
-Figs 5.1-5.2) and Appendix A (eqs 31-40); re-derivation with numbers in reference card 002 Secs. 3, 4 and 7. The
+Figs 5.1-5.2) and Appendix A (eqs 31-40); re-derivation with numbers on the derivation page
+docs/theory/stick-slip.md, Secs. 3, 4 and 7. The
 stance and impact machinery is the model-agnostic :mod:`mjpoincare.analysis.theory.stick_slip`; this module only
 supplies the matrices of eq 27, the actuation, the heel-strike guard, the relabelling and the shooting. It never
 imports mujoco.
@@ -33,7 +34,7 @@ Actuation (002 Sec. 5), stated as the generalised force Q on (theta1, theta2):
 * :class:`ConstantTorque` (eq 28, Gaits I/II): 002 prints E = [[1, 0, 0, 0], [1, 1, 0, 0]]^T, i.e.
   Q = (tau1 + tau2, tau2); this is the Jacobian of a physical ankle torque on theta1 and a hip torque on the
   inter-leg angle theta1 + theta2. With the reported Gait I torques tau1 = -2.73, tau2 = 0.54 it gives
-  Q1 = -2.19 N m, and the biped falls backwards on its first step (tests; reference card 002 Sec. 3.3). The torques
+  Q1 = -2.19 N m, and the biped falls backwards on its first step (tests; derivation page Sec. 3.3). The torques
   fit the "gravity replacement" Q1 = g K (sin(theta1 + alpha) - sin(theta1)) ~ +2.19 cos(theta1),
   Q2 = g m b (sin(alpha - theta2) + sin(theta2)) ~ +0.547 cos(theta2) of alpha = 1 deg only with the effective
   E_eff = [[-1, 0, 0, 0], [-1, 1, 0, 0]]^T: Q = (-tau1 - tau2, tau2) (default ``convention="effective"``). The same
@@ -52,11 +53,12 @@ W, W~ or the coupling of M, so the stick-slip machinery is used unchanged (stick
 
 Gaits (002 Secs. 4-5; :func:`paper_gait`, seeds in :data:`GAIT_SEEDS`, values in the tests):
 
-* A (sticking throughout) and B (sticking impact, slip+ -> stick -> slip-) reproduce reference card 002 Sec. 3.2;
-  B loses stability at mu = 0.11035 (card 0.1104, 002 "~0.11"). Gait A equals the passive biped of
+* A (sticking throughout) and B (sticking impact, slip+ -> stick -> slip-): the values of the derivation page,
+  Sec. 3.2; B loses stability at mu = 0.11035 (linear interpolation of the page's table: 0.1104; 002 "~0.11").
+  Gait A equals the passive biped of
   :mod:`.compass_biped` (003 Ch. 4) in that module's angles.
-* C (slipping impact with forward slip, slip+ -> stick, stuck before the heel strike) was not found by reference
-  card 002; it is found here by :func:`search_gaits` (grid on the pre-impact section, then Newton): unstable
+* C (slipping impact with forward slip, slip+ -> stick, stuck before the heel strike) is found here by
+  :func:`search_gaits` (grid on the pre-impact section, then Newton): unstable
   (|lambda|max 1.82 at mu = 0.14, 1.53 at 0.2), impact angle 4.53 deg at mu = 0.14 (002: "4 deg" in Fig. 4.2a)
   and 6.52 deg at 0.2, coexisting with B and with A above mu_c, as 002 says. The 4-D map has one multiplier ~0
   (the slip -> stick transition collapses x_dot, like the rimless wheel's Type C). Continued upwards, the branch
@@ -67,7 +69,7 @@ Gaits (002 Secs. 4-5; :func:`paper_gait`, seeds in :data:`GAIT_SEEDS`, values in
   heel-strike guard that stops at the legs-parallel crossing rejects the orbit (:func:`heel_strike_guard`,
   :func:`heel_strike_after_scuff`, ``StepRecord.late_swing``). And theta1_dot+ is tiny (0.044 rad/s at mu = 0.14),
   so perturbed orbits roll back.
-* I (E_eff, -2.73/0.54) reproduces card Sec. 3.3; stability is lost at mu = 0.10350 (card ~0.103; 002 "stable
+* I (E_eff, -2.73/0.54): the derivation page's Sec. 3.3 table; stability is lost at mu = 0.10350 (002 "stable
   for mu > 0.11").
 * II (-0.69/0.12, E_eff, slipping impact): unstable on [0.09, 0.2], c_mt = 0.0044 as in 002; W = 0.120 J (002
   0.1), S = 0.279 m (002 0.23). The energy split is not 002's: friction work -0.005 J and impact loss 0.116 J at
@@ -80,12 +82,12 @@ Gaits (002 Secs. 4-5; :func:`paper_gait`, seeds in :data:`GAIT_SEEDS`, values in
   002's "< 0.5 for all mu". Pure PD tracking of Gait A on level ground (no feedforward) found no gait: the biped
   rolls back after a few steps.
 
-Corrections to 002 found here (reference card 002 Sec. 7 items 3-5, 12-14 agree):
+Corrections to 002 found here (also on the derivation page, Sec. 7 items 3-5, 12-14):
 
 * (34) sign, (39) Gamma~ = (s mu, 1)^T, W q_dot = 0 (not W = 0): see :mod:`mjpoincare.analysis.theory.stick_slip`.
 * Sec. 5 / (28): E and the reported torques are sign-inconsistent (above).
-* Sec. 4.1 says the scuffing collision is "where theta1 = theta2"; reference card 002 says theta2 = -theta1. The
-  swing foot crosses the ground line twice before the heel strike and is below it in between
+* Sec. 4.1 says the scuffing collision is "where theta1 = theta2", while the legs pass parallel at
+  theta2 = -theta1. The swing foot crosses the ground line twice before the heel strike and is below it in between
   (:func:`scuffing_crossings`): along Gait A first at theta1 = theta2 < 0 (foot behind the stance foot), then at
   theta2 = -theta1 (legs parallel); along Gait C first at theta2 = -theta1 (theta1 > 0), then at
   theta1 = theta2 > 0 (foot ahead, emerging). Both statements name one end of that interval; the heel strike is the
@@ -125,7 +127,7 @@ Matrix = NDArray[np.float64]
 NQ = 4
 #: Printed actuation matrix of 002 eq 28 (rows theta1, theta2, x, y; columns tau1, tau2).
 E_PRINTED = np.array([[1.0, 0.0], [1.0, 1.0], [0.0, 0.0], [0.0, 0.0]])
-#: Effective actuation matrix that reproduces 002's Gait I (reference card 002 Sec. 3.3).
+#: Effective actuation matrix that reproduces 002's Gait I (derivation page docs/theory/stick-slip.md, Sec. 3.3).
 E_EFFECTIVE = np.array([[-1.0, 0.0], [-1.0, 1.0], [0.0, 0.0], [0.0, 0.0]])
 #: Longest stance integrated (s) before a step counts as "stalled" (002's period is ~0.75 s).
 T_MAX = 5.0
@@ -1168,7 +1170,8 @@ def critical_friction(bp: FrictionBiped, z_star: ArrayLike, actuation: Actuation
 
 
 def cost_of_transport(bp: FrictionBiped, record: StepRecord) -> float:
-    """Specific cost c_mt = W_act/(M_tot g S) (002 eq 29 with the total weight, reference card 002 Sec. 7 item 14)."""
+    """Specific cost c_mt = W_act/(M_tot g S) (002 eq 29 with the total weight; docs/theory/stick-slip.md, Sec. 7
+    item 14)."""
     return record.actuator_work / (bp.total_mass * bp.g * record.step_length)
 
 

@@ -1,7 +1,7 @@
 """Closed-form theory of the planar rimless wheel on a slope (sticking contact, plastic impacts).
 
-Sources: seed 003 = Kiša (2020), *Mathematical modelling of walking robots*, MSc thesis, Sec. 3,
-eqs (3.2)-(3.18); seed 002 = Gamus & Or (2015), "Dynamic bipedal walking under stick-slip transitions",
+Sources: 003 = Kiša (2020), *Mathematical modelling of walking robots*, MSc thesis, Sec. 3,
+eqs (3.2)-(3.18); 002 = Gamus & Or (2015), "Dynamic bipedal walking under stick-slip transitions",
 SIAM J. Appl. Dyn. Syst., Sec. 3.1, eqs (12)-(26).
 
 Conventions (SI units): ``theta`` is the stance spoke's angle from the true vertical, clockwise positive, so

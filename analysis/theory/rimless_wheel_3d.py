@@ -1,8 +1,8 @@
 """Closed-form theory of the 3D rimless spoked wheel rolling down a slope (plastic impacts, pivoting stance foot).
 
-Source: seed 001 = Coleman, Chatterjee & Ruina (1997), "Motions of a rimless spoked wheel: a simple 3D system with
-impacts", Dyn. Stab. Sys. 12(3) (the OCR is garbled; every formula here was re-derived, see
-``docs/notes/001-rimless-wheel-3d.md``). Equation numbers are the paper's.
+Source: 001 = Coleman, Chatterjee & Ruina (1997), "Motions of a rimless spoked wheel: a simple 3D system with
+impacts", Dyn. Stab. Sys. 12(3) (several printed equations are illegible; every formula here was re-derived, see the
+derivation page ``docs/theory/rimless-wheel-3d.md``). Equation numbers are the paper's.
 
 Units and conventions: m = l = g = 1, so rates are in sqrt(g/l) and times in sqrt(l/g). The wheel is one rigid
 planar body (hub + n massless spokes of length 1, point feet); ``J`` = D/(m l^2) is the polar (axle) moment, the
@@ -29,32 +29,32 @@ Derivations (re-done here, all checked against the independent hybrid integrator
 * Planar return map (eq 11): omega_{k+1}^2 = mu^2 (omega_k^2 + 4 sin beta sin gamma/(1+J)), affine in the
   squared rate, multiplier mu^2 (= lambda2 of the 3D map).
 
-Corrections (where this module disagrees with the OCR or with the reference note):
+Corrections (where this module disagrees with the paper as printed; the derivation page carries them too):
 
-* Eq 1: the in-plane central moment is D/2 (OCR "6/4 D"); the example needs J = 1/2.
+* Eq 1: the in-plane central moment is D/2 (printed "6/4 D"); the example needs J = 1/2.
 * Eq 6: the rate order is (psi_dot, phi_dot, theta_dot), and in the R = Rz Rx Ry convention the (2,1) entry is
-  -2 sin(2pi/n) cos(phi)/(2+J) and the (3,1) entry +2 J sin^2(pi/n) sin(phi)/((1+J)(2+J)). The OCR's printed
+  -2 sin(2pi/n) cos(phi)/(2+J) and the (3,1) entry +2 J sin^2(pi/n) sin(phi)/((1+J)(2+J)). The paper's printed
   entries use the diametral moment K = J/2: 1 + (2/(1+K))(cos^2(pi/n) - 1) = 1 - 4 sin^2(pi/n)/(2+J) and
-  mu = 1 + (2/(1+2K))(cos^2(pi/n) - 1). This agrees with the note (derived by hand and checked to 1e-12 against
-  the vector law in the tests).
+  mu = 1 + (2/(1+2K))(cos^2(pi/n) - 1). This agrees with the derivation page (derived by hand and checked to 1e-12
+  against the vector law in the tests).
 * Eq 10: the last term has a minus sign: 1 - cos(beta) cos(gamma_c) - ((1+mu^2)/(1-mu^2)) sin(beta) sin(gamma_c)
   = 0 (it is "post-impact energy just clears the top" with the fixed point of eq 11 substituted).
 * Eq 12: tan phi* = sin psi tan alpha in magnitude; the sign in this convention is negative
-  (phi* = -atan(sin psi tan alpha)). Eq 13: sin gamma = sin alpha cos psi (the OCR's sinh is garbled).
-* Eq 32: lambda2 ~ 1 - 4 pi^2 eps^2/(1+J) (OCR "1 - (4 eps^2 + 2 eps^4)"); the pair is
+  (phi* = -atan(sin psi tan alpha)). Eq 13: sin gamma = sin alpha cos psi (the printed sinh does not hold).
+* Eq 32: lambda2 ~ 1 - 4 pi^2 eps^2/(1+J) (printed "1 - (4 eps^2 + 2 eps^4)"); the pair is
   1 + f1 eps^2/2 +- eps sqrt(f0) with the f0, f1, f2 of :func:`asymptotic_coefficients`. Only f0 is derived
-  here analytically (rolling-disk wobble, see its docstring); f1 and f2 are the note's forms, identified from
+  here analytically (rolling-disk wobble, see its docstring); f1 and f2 are the derivation page's forms, identified from
   integrations. This module does not derive them in closed form but re-identifies all three independently: a
   Richardson extrapolation of the hybrid integrator's eigenvalues at n = 32, 64, 128 reproduces f0, f1, f2 to
   < 1e-4 relative at (J, g1) = (1/2, 1.902) and (1, 3) (1.5e-3 near the pole at (1/4, 1.5)); the error of eq 32
   falls like n^-3 and Table 2's asymptotic row is reproduced.
-* Reference note, Sec. 1 and the Pt/Pn column of its Sec. 4 table: |P_t|/P_n = sin(beta) cos(beta)/(J + cos^2 beta)
+* Derivation page, Sec. 1 and the Pt/Pn column of its Sec. 4 table: |P_t|/P_n = sin(beta) cos(beta)/(J + cos^2 beta)
   is the impulse ratio in the wheel plane (along the ground line / along the in-plane normal n'). On a banked cycle
   (psi != 0) n' is tilted by phi* from the slope normal, so the friction the slope must supply at the impact is
   sqrt(rho^2 + sin^2 phi*)/cos phi* (:func:`impact_friction_ratio`): 0.1366, not 0.1309, for the Table-2 case
-  (0.1357, 0.0683, 0.1355, 0.2056 for the other banked rows). The rows with psi = 0 agree. Everything else in the
-  note that this module checks agrees; in addition validity needs mu > 0 (spokes = 3 with J <= 1/2 sends the
-  wheel backwards at every impact), which the note does not state.
+  (0.1357, 0.0683, 0.1355, 0.2056 for the other banked rows; the page states both). The rows with psi = 0 agree.
+  Everything else on the page that this module checks agrees; in addition validity needs mu > 0 (spokes = 3 with
+  J <= 1/2 sends the wheel backwards at every impact).
 """
 
 from __future__ import annotations
@@ -341,7 +341,7 @@ def _g1(w: RimlessWheel3D) -> float:
 
 
 def asymptotic_coefficients(w: RimlessWheel3D) -> tuple[float, float, float]:
-    """(f0, f1, f2) of 001 eq 32 with g1 = alpha1 cos psi = n alpha cos psi (reference note Sec. 3):
+    """(f0, f1, f2) of 001 eq 32 with g1 = alpha1 cos psi = n alpha cos psi (docs/theory/rimless-wheel-3d.md, Sec. 3):
 
     f0 = 8 pi^2 (pi - 2(1+J) g1)/((2+J) g1),
     f1 = -(4 pi^2/(2+J)) (J g1^2 + 2 X^2)/(g1 X),  X = 2(1+J) g1 - pi,
@@ -349,7 +349,7 @@ def asymptotic_coefficients(w: RimlessWheel3D) -> tuple[float, float, float]:
 
     f0 is the rolling-disk wobble: the lean of a disk rolling at Omega0^2 = g1/pi obeys
     (1 + J/2) phi'' + (2(1+J) Omega0^2 - 1) phi = 0, and -f0 eps^2 is (wobble frequency x step time
-    2 pi eps/Omega0)^2. f1, f2 are the note's forms identified from integrations extrapolated to n -> inf
+    2 pi eps/Omega0)^2. f1, f2 are the derivation page's forms identified from integrations extrapolated to n -> inf
     (re-checked by Richardson extrapolation in the tests). NaN at the pole X = 0.
     """
     g1 = _g1(w)
@@ -404,8 +404,8 @@ def stability_thresholds(J: float) -> StabilityThresholds:
 def minimum_stable_slope_asymptotic(spokes: int, J: float, heading: float = 0.0) -> float:
     """alpha_min ~ pi/((2+J) n cos psi): least slope for stable 3D rolling at large n (001 eqs 34/36).
 
-    Asymptotic only: the exact thresholds are higher at finite n (reference note: n alpha_crit = 1.48537, 1.30927,
-    1.26938, 1.25920 for n = 8, 16, 32, 64 at psi = 0, J = 1/2, against pi/2.5 = 1.25664).
+    Asymptotic only: the exact thresholds are higher at finite n (derivation page Sec. 3: n alpha_crit = 1.48537,
+    1.30927, 1.26938, 1.25920 for n = 8, 16, 32, 64 at psi = 0, J = 1/2, against pi/2.5 = 1.25664).
     """
     if spokes < 3 or not abs(heading) < math.pi / 2:
         raise ValueError(f"need spokes >= 3 and |heading| < pi/2 (got spokes={spokes}, heading={heading})")

@@ -1,8 +1,8 @@
 """Rimless wheel with hub inertia and Coulomb friction: stick-slip gaits A-D, their maps and basins.
 
-Source: seed 002 = Gamus & Or (2015), "Dynamic bipedal walking under stick-slip transitions", SIAM J. Appl. Dyn.
-Syst., Sec. 3 eqs (11)-(26), Figs 3.3-3.8, Appendix A eqs (41)-(45); re-derivation with oracles in reference card
-002 Secs. 1, 2, 4, 5, 7. The rigid (sticking) closed forms are reused from
+Source: 002 = Gamus & Or (2015), "Dynamic bipedal walking under stick-slip transitions", SIAM J. Appl. Dyn.
+Syst., Sec. 3 eqs (11)-(26), Figs 3.3-3.8, Appendix A eqs (41)-(45); re-derivation with oracles on the derivation
+page docs/theory/stick-slip.md, Secs. 1, 2, 4, 5, 7. The rigid (sticking) closed forms are reused from
 :mod:`mjpoincare.analysis.theory.rimless_wheel` (003/002 eqs 12-17, 22-25) through :func:`rigid_wheel`.
 
 Conventions (002's, nondimensional): m = l = 1 and g = 1 + kappa, so the stance rate omega_c =
@@ -20,7 +20,7 @@ closed form (energy integral 002 eq 13, forces eq 19) and the slipping phases fr
 a linear ODE in theta); ``method="generic"`` runs the Appendix-A matrix machinery of
 :mod:`mjpoincare.analysis.theory.stick_slip` in time on q = (x, y, theta) with M, B, G, W, W~ of eq 11.
 
-Corrections to 002 (re-derived; they agree with reference card 002 Sec. 7 items 1-8):
+Corrections to 002 (re-derived; also on the derivation page, Sec. 7 items 1-8):
 
 * tau_c of 002 is the rate omega_c = sqrt(g/(l(1+kappa))), not a time; every "rad/tau_c" is theta_dot/omega_c.
 * (41): the kinetic-energy cross term is -2 y_dot theta_dot l sin(theta) (M_23 = -m l sin theta of eq 11).
@@ -34,17 +34,18 @@ Corrections to 002 (re-derived; they agree with reference card 002 Sec. 7 items 
   Only the corrected row reproduces 002's Delta x_dot = -0.0517 (Fig. 3.6).
 * (34) has a sign error (see :mod:`mjpoincare.analysis.theory.stick_slip`).
 
-Where reference card 002 needed correcting (everything else in its Secs. 1, 2, 4, 5 reproduces):
+Results of this module that the derivation page docs/theory/stick-slip.md takes from it (the rest of its Secs. 1, 2,
+4, 5 reproduces here):
 
-* Sec. 2 "slipping-impact gain 0.8017 at mu = 0.2": eq 45 (corrected) gives 0.80158, which is also the ratio
-  0.775514/0.967486 of the card's own Type D table; 0.9570 at mu = 0.3 is right.
-* Sec. 2 "upper bound (first-step detachment) 1.12050 at mu = 1e6": the value is right, but above it the first step
-  fails by the Painleve case (forward slip starting at theta < 0 with D = kappa + sin^2 + mu sin cos < 0), not by
-  f_n -> 0; detachment is the failure up to mu ~ 1e3. The edge tends to sqrt((3+kappa) cos(alpha) - 2cos(alpha-phi))
+* Sec. 2, slipping-impact gain at mu = 0.2: eq 45 (corrected) gives 0.80158, which is also the ratio
+  0.775514/0.967486 of the page's Type D table; 0.9570 at mu = 0.3.
+* Sec. 2, upper edge of the attraction window, 1.12050 at mu = 1e6: above mu ~ 1e3 the first step fails by the
+  Painleve case (forward slip starting at theta < 0 with D = kappa + sin^2 + mu sin cos < 0), not by f_n -> 0;
+  detachment is the failure up to mu ~ 1e3. The edge tends to sqrt((3+kappa) cos(alpha) - 2cos(alpha-phi))
   = 1.120496 as mu -> inf (the sticking f_n reaching 0 exactly at theta = 0).
-* Sec. 2 "C found for mu in [0.232, 0.24505)", Sec. 5 "C lower end ~0.231": the C branch ends at mu = tan(alpha)
-  = 0.230868, the D+/D- boundary, in a grazing bifurcation: the stick phase shrinks like sqrt(mu - tan(alpha)) and
-  the orbit becomes the D orbit with Delta x_dot = 0 (found here down to tan(alpha) + 5e-6).
+* Secs. 2 and 5, lower end of the C branch: it ends at mu = tan(alpha) = 0.230868, the D+/D- boundary, in a grazing
+  bifurcation: the stick phase shrinks like sqrt(mu - tan(alpha)) and the orbit becomes the D orbit with
+  Delta x_dot = 0 (found here down to tan(alpha) + 5e-6).
 
 Additional exact results derived here (not in 002; used as oracles): over a Type D step u = theta_dot^2 is affine,
 u(phi) = Phi u(-phi) + Psi (:func:`slip_affine_coefficients`), so theta_dot*^2 = gamma^2 Psi/(1 - gamma^2 Phi) and
@@ -72,7 +73,7 @@ from scipy.optimize import brentq, minimize_scalar
 
 RTOL = 1e-11
 ATOL = 1e-12
-#: Largest theta step (rad) of a slipping phase in the fast method (grazing trap, reference card 002 Sec. 4).
+#: Largest theta step (rad) of a slipping phase in the fast method (grazing trap, docs/theory/stick-slip.md Sec. 4).
 SLIP_MAX_STEP = 0.05
 #: Post-impact slip speed used to shoot Type D gaits: x_dot is neutral while it stays > 0 (002 Sec. 3.3).
 X_NEUTRAL = 10.0
@@ -252,7 +253,7 @@ def start_slip_threshold(w: FrictionWheel) -> float:
     """|f_t/f_n| of the sticking force at theta = -phi on the slowest motion that passes upright,
     theta_dot_0 = theta_dot_min of eq 26 (002 eq 19): below this mu the slowest admissible start slips at once and
     the lower edge of the attraction window rises above theta_dot_min (002 Fig. 3.8a, "mu > 0.29";
-    reference card 002 Sec. 2: 0.3008)."""
+    derivation page docs/theory/stick-slip.md, Sec. 2: 0.3008)."""
     f_t, f_n = sticking_forces(w, -w.phi, attraction_window_rigid(w)[0])
     return float(abs(f_t / f_n))
 
@@ -279,7 +280,7 @@ def slip_dynamics(
     theta_ddot = (sign mu f_n cos(theta) + sin(theta)(g cos(alpha) - theta_dot^2 cos(theta)))/(kappa + sin^2 theta),
     x_ddot = ((1+kappa)(theta_dot^2 sin(theta) - sign mu f_n) + g(kappa sin(alpha) - cos(alpha+theta) sin(theta)))
     /(kappa + sin^2 theta).
-    Returns (theta_ddot, x_ddot, f_n/(m g), D); D <= 0 is the Painleve case (reference card 002 Sec. 4).
+    Returns (theta_ddot, x_ddot, f_n/(m g), D); D <= 0 is the Painleve case (docs/theory/stick-slip.md, Sec. 4).
     """
     s, c = math.sin(theta), math.cos(theta)
     g, k, smu = w.gravity, w.kappa, sign * w.mu
@@ -308,7 +309,8 @@ class ImpactValues:
 
 def sticking_impact(w: FrictionWheel, theta_dot_minus: float, x_dot_minus: float) -> ImpactValues:
     """Sticking impact with pre-impact slip (002 eq 43): x_dot^+ = 0,
-    theta_dot^+ = beta theta_dot^- + cos(phi) x_dot^-/(l(1+kappa)), with the impulses (reference card 002 Sec. 4)
+    theta_dot^+ = beta theta_dot^- + cos(phi) x_dot^-/(l(1+kappa)), with the impulses (docs/theory/stick-slip.md,
+    Sec. 4)
     F_t = -m((kappa + sin^2 phi) x_dot^- + l sin(phi) sin(2phi) theta_dot^-)/(1+kappa),
     F_n = m sin(phi)(cos(phi) x_dot^- + 2(kappa + cos^2 phi) l theta_dot^-)/(1+kappa);
     admissible iff F_n > 0 and |F_t| <= mu F_n (002 eq 44 with the factor 2 restored)."""
@@ -963,7 +965,7 @@ def _find_c(w: FrictionWheel, guess: Sequence[float] | None) -> Gait | None:
 
 def midstance_rate(gait: Gait) -> float:
     """theta_dot at theta = 0 (mid-stance) on the gait: the section the MuJoCo side samples, away from the smeared
-    soft impact (reference card 002 Secs. 5-6)."""
+    soft impact (derivation page docs/theory/stick-slip.md, Secs. 5-6)."""
     return gait.midstance_rate
 
 
@@ -1085,7 +1087,8 @@ def basin_outcome(
 
 @dataclass(frozen=True)
 class GaitBoundaries:
-    """Boundaries in mu for one (kappa, n, alpha) (002 Sec. 3.3; reference card 002 Secs. 2, 5 for the paper set):
+    """Boundaries in mu for one (kappa, n, alpha) (002 Sec. 3.3; docs/theory/stick-slip.md Secs. 2, 5 for the paper
+    set):
     ``ab`` A/B (= max(mu_c, |sigma~|): stick throughout needs both), ``bc`` B/C (the B gait's impact starts to
     slip), ``c_lower`` the lower end of the C branch (continued from B/C; it tends to tan(alpha), where C grazes into
     the D orbit with Delta x_dot = 0, and Newton stops a few 1e-6 above), ``d_sign`` D+/D- (Delta x_dot = 0;

@@ -1,8 +1,8 @@
 """Discrete Chaplygin sleigh ("slotted skate"): stance closed forms, plastic peg impact, exact return map.
 
-Source: seed 000 = M. J. Coleman & P. Holmes (1999), *Motions and stability of a piecewise holonomic system: the
+Source: 000 = M. J. Coleman & P. Holmes (1999), *Motions and stability of a piecewise holonomic system: the
 discrete Chaplygin sleigh*, eqs (2.1), (3.1)-(3.15), (4.1), (B.1)-(B.13);
-re-derived in docs/notes/000-slotted-skate.md.
+re-derived on the derivation page docs/theory/slotted-skate.md.
 
 Conventions (the paper's nondimensional units; m = rho = v0 = 1 makes SI numbers equal paper numbers): lengths
 are divided by the radius of gyration rho = sqrt(I/m), speeds by v0, time tau = t v0 / rho, energy E = T/(m v0^2),
@@ -18,11 +18,12 @@ Peg protocol: the peg enters at one slot end and leaves at the other (or, if V r
 where it entered); a new peg is then inserted at the slot end opposite to the one just left. With L_old the end
 left and L_new the other end, L_old L_new = L0 (L0 + Delta) always, and the plastic impact gives
 H+ = C2 H-, E+ = E- + C1 H-^2 with C2 = (1 + L_old L_new)/(1 + L_old^2), C1 = -Delta^2/[2 (1+L_old^2)^2 (1+L_new^2)]
-(3.6)/(3.7) in the note's unified form.
+(3.6)/(3.7) in the derivation page's unified form.
 
 Post-impact section Sigma: q = (D, E, theta, H) with D = 0 (V > 0) or D = Delta (V < 0), H about the current peg.
 
-Corrections to the paper/OCR used here (note Sec. 5, each re-checked in tests/test_theory_slotted_skate.py):
+Corrections to the paper as printed used here (derivation page Sec. 5, each re-checked in
+tests/test_theory_slotted_skate.py):
 (3.7) the last bracket is [1 + (L0 + (Delta - D-))^2]; (B.3)/(B.4) theta: the integrand keeps the sign of H and
 runs over (0, Delta) whatever the direction, reversal stances give 2 H |int_{D+}^{Dc}|; (B.8) reads max, not min;
 (4.1) the Delta^2 coefficient is -L0 (L0^2 - 6)/[3 (1 + L0^2)^3], not -L0 (L0^2 - 2)/[3 (1 + L0^2)^3].
@@ -48,7 +49,7 @@ FINAL_H_TOL = 1e-15
 
 @dataclass(frozen=True)
 class SlottedSkate:
-    """Slotted-skate parameters (seed 000 Sec. 3, Fig. 1b), nondimensional by rho.
+    """Slotted-skate parameters (000 Sec. 3, Fig. 1b), nondimensional by rho.
 
     ``L0`` signed distance from the slot front end back to G (any finite value; > 0: G ahead of the slot,
     -Delta < L0 < 0: G inside it, L0 < -Delta: G behind it); ``Delta`` slot length > 0.
@@ -129,7 +130,7 @@ class FinalState:
 
 
 def validate(sk: SlottedSkate) -> None:
-    """Raise ``ValueError`` naming the parameter and its allowed range (seed 000 Sec. 3: delta > 0; l0 signed)."""
+    """Raise ``ValueError`` naming the parameter and its allowed range (000 Sec. 3: delta > 0; l0 signed)."""
     if not math.isfinite(sk.L0):
         raise ValueError(f"L0 must be finite (got {sk.L0!r})")
     if not (math.isfinite(sk.Delta) and sk.Delta > 0.0):
@@ -359,13 +360,15 @@ def C1(sk: SlottedSkate, forward: bool) -> float:
 
 def dtheta_dH(sk: SlottedSkate, V_star: float) -> float:
     """Jacobian entry d theta+/d H at the straight-motion fixed point (3.9), which the paper leaves implicit:
-    [arctan(L0 + Delta) - arctan(L0)]/|V*| (note Sec. 2, derived from B.3 at H = 0), same for both directions."""
+    [arctan(L0 + Delta) - arctan(L0)]/|V*| (derivation page Sec. 2, derived from B.3 at H = 0), same for both
+    directions."""
     validate(sk)
     return (math.atan(sk.L_rear) - math.atan(sk.L_front)) / abs(V_star)
 
 
 def _criterion(sk: SlottedSkate, forward: bool) -> tuple[bool, bool]:
-    """(3.11)/(3.12) with x = L0/Delta, kappa = 1/Delta^2, read as the exact |sigma4| < 1 (note Sec. 5.7):
+    """(3.11)/(3.12) with x = L0/Delta, kappa = 1/Delta^2, read as the exact |sigma4| < 1 (derivation page Sec. 5,
+    item 7):
     V > 0: sigma4 < 1 iff x > -1, sigma4 > -1 iff 2 kappa + (1 + 2x)(1 + x) > 0;
     V < 0: sigma4 < 1 iff x < 0, sigma4 > -1 iff 2 kappa + x (1 + 2x) > 0."""
     x, kappa = sk.L0 / sk.Delta, 1.0 / sk.Delta**2
@@ -410,7 +413,7 @@ def final_energy(sk: SlottedSkate, E: float, H: float, forward: bool) -> float:
 def final_speed_b12(sk: SlottedSkate, V: float, Omega: float) -> float:
     """Final slot speed after all rotation decays from the post-impact (V, Omega) without further reversals (B.12):
     V_f^2 = V^2 + (1 + L0^2)[1 - Delta/((L0 + Delta)(2 + (L0 + Delta)(2 L0 + Delta)))] Omega^2 for V > 0, and by the
-    reflection L0 -> -(L0 + Delta), V -> -V (note Sec. 2) for V < 0:
+    reflection L0 -> -(L0 + Delta), V -> -V (derivation page Sec. 2) for V < 0:
     V_f^2 = V^2 + (1 + (L0 + Delta)^2)[1 + Delta/(L0 (2 + L0 (2 L0 + Delta)))] Omega^2. Returns V_f with V's sign."""
     validate(sk)
     l0, dl = (sk.L0, sk.Delta) if V > 0.0 else (-(sk.L0 + sk.Delta), sk.Delta)
@@ -439,7 +442,7 @@ def final_state(
 
 
 def sleigh_rate(L: float, V_star: float = 1.0) -> float:
-    """Stability exponent of the smooth Chaplygin sleigh (2.1): xi4 = -L V*/(1 + L^2) (seed 000 Sec. 2.1)."""
+    """Stability exponent of the smooth Chaplygin sleigh (2.1): xi4 = -L V*/(1 + L^2) (000 Sec. 2.1)."""
     return -L * V_star / (1.0 + L * L)
 
 

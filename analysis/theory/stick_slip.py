@@ -1,7 +1,8 @@
 """Generic stick-slip machinery of a planar N-DOF robot with one point stance foot (002 Appendix A).
 
-Source: seed 002 = Gamus & Or (2015), "Dynamic bipedal walking under stick-slip transitions", SIAM J. Appl. Dyn.
-Syst., Sec. 2 eqs (1)-(8) and Appendix A eqs (31)-(40); re-derivation in reference card 002 Sec. 4.
+Source: 002 = Gamus & Or (2015), "Dynamic bipedal walking under stick-slip transitions", SIAM J. Appl. Dyn.
+Syst., Sec. 2 eqs (1)-(8) and Appendix A eqs (31)-(40); re-derivation on the derivation page
+docs/theory/stick-slip.md, Sec. 4.
 
 Notation (002 eq 2, with the sign of (34) fixed): M(q) qdd = -h(q, qd) + W(q)^T f, where h = B + G - E u is
 supplied by the model, W = dr/dq = [w_t^T; w_n^T] is the (2, N) Jacobian of the stance foot r (rows: tangential,
@@ -14,7 +15,7 @@ The module knows nothing about a particular robot: a :class:`ContactModel` bundl
 guard (swing-foot height) and optional named failure events (e.g. a rimless wheel rolling back) and sections
 (e.g. mid-stance) to record. It never imports mujoco.
 
-Corrections to 002 Appendix A (re-derived; also listed in reference card 002 Sec. 7):
+Corrections to 002 Appendix A (re-derived; also listed on the derivation page, Sec. 7):
 
 * (34) prints qdd = M^-1 (B + G - E u + W^T f); with (2) it must be M^-1 (-B - G + E u + W^T f). (31) and (33)
   are correct as printed.
@@ -48,7 +49,7 @@ MODES = ("stick", "slip+", "slip-")
 RTOL = 1e-11
 ATOL = 1e-12
 #: Default largest time step while slipping (grazing trap: a slip that starts on the cone boundary can end again
-#: within one long solver step; reference card 002 Sec. 4 uses 1e-3).
+#: within one long solver step; derivation page docs/theory/stick-slip.md, Sec. 4).
 SLIP_MAX_STEP = 1e-2
 #: |v_t| below which a state counts as not slipping when the mode is chosen.
 V_TOL = 1e-10
@@ -295,8 +296,8 @@ def _stop_event(
 ) -> Callable[[float, Vector], float]:
     """Slip -> stick/reversal event sgn v_t. A slip that starts from v_t = 0 has v_t ~ a0 (t - t0) with a0 >= 0,
     possibly tiny (the start lies just outside the cone), and may stop again before the first solver step ends;
-    sgn v_t alone would then put the root at t0 (the grazing trap of reference card 002 Sec. 4). For such a start
-    the event is sgn v_t/(t - t0), which starts at a0 = sgn dv_t/dt and has only the true root."""
+    sgn v_t alone would then put the root at t0 (the grazing trap of docs/theory/stick-slip.md, Sec. 4). For such a
+    start the event is sgn v_t/(t - t0), which starts at a0 = sgn dv_t/dt and has only the true root."""
     t0, y0 = start
 
     def v_t(y: Vector) -> float:
@@ -381,9 +382,9 @@ def integrate_stance(
     (outcome "impact"), f_n = 0 ("detached"), stick -> slip when f_t reaches -+mu f_n (new slip direction
     -sgn(f_t)), slip -> stick or slip reversal when v_t reaches 0 (mode of :func:`mode_from_stick_force`), the
     Painleve denominator of (33) reaching 0 ("painleve"), or a model failure event. The step is limited to
-    ``slip_max_step`` while slipping (grazing trap, reference card 002 Sec. 4). At each phase start the velocities
-    are projected onto the active constraints (drift removal). f_n is also checked on the dense solution, so a
-    tangential dip below 0 between solver steps still counts as a detachment.
+    ``slip_max_step`` while slipping (grazing trap, docs/theory/stick-slip.md, Sec. 4). At each phase start the
+    velocities are projected onto the active constraints (drift removal). f_n is also checked on the dense solution,
+    so a tangential dip below 0 between solver steps still counts as a detachment.
     """
     q = np.asarray(q0, dtype=float).copy()
     qd = np.asarray(qd0, dtype=float).copy()

@@ -1,6 +1,6 @@
 """Scenario ``compass-biped-friction``: the compass biped with Coulomb friction, passive and actuated.
 
-Analytic reference: Gamus & Or (2015), seed 002, Sec. 4 (passive Gaits A, B on a 1 deg slope, eq 27, Figs
+Analytic reference: Gamus & Or (2015), 002, Sec. 4 (passive Gaits A, B on a 1 deg slope, eq 27, Figs
 4.1-4.2) and Sec. 5 (Gait I: constant torques, eq 28; Gait III: PD tracking with phase reset, eq 30; cost of
 transport eq 29); re-derived in :mod:`mjpoincare.analysis.theory.compass_biped_friction`.
 
@@ -429,7 +429,7 @@ COVERAGE = tuple(CoveragePoint(f"Gait {g.upper()}", {"gait": g}, why, miss_at=("
 COMPASS_BIPED_FRICTION = Scenario(
     name="compass-biped-friction",
     summary="compass biped with Coulomb friction (002): Gaits A/B/C (slope), I/II/III (actuated, level ground)",
-    source="Gamus & Or 2015 Secs. 4-5 (eqs 27-30, Figs 4.1-5.2); reference card 002 Secs. 3, 7",
+    source="Gamus & Or 2015 Secs. 4-5 (eqs 27-30, Figs 4.1-5.2); derivation page docs/theory/stick-slip.md Secs. 3, 7",
     params=PARAMS,
     presets=PRESETS,
     check_params=check_params,

@@ -54,7 +54,8 @@ PARAMS: tuple[Param, ...] = (
     Param("heading0", 0.0, "initial heading, rad", float, -1e3, 1e3),
 )
 
-#: Dead-beat peg constraint (note 000, 4.3): time constant = 2 steps, dmin = dmax = 0.9999.
+#: Dead-beat peg constraint (derivation page docs/theory/slotted-skate.md, Sec. 4.3): time constant = 2 steps,
+#: dmin = dmax = 0.9999.
 PRESETS: dict[str, dict[str, float | int | str]] = {
     "fast": {"timestep": 0.000494893858142, "solref_timeconst": 0.00390610197978, "integrator": "rk4",
         "solimp_dmin": 0.9999, "solimp_dmax": 0.9999, "solimp_width": 0.001, "iterations": 200,

@@ -3,7 +3,8 @@
 Coleman & Holmes (1999): each stance ends where the peg reaches a slot end (3.5), the peg is retracted and a new
 one inserted at the other slot end, and the next constraint solve is the plastic impact (3.6)-(3.7). The model is
 the "peg chart" of models/slotted_skate.xml (hinge = heading about the peg, slide s along the slot, slide n held
-at 0 by the peg's joint equality); a new peg is a change of chart (note 000, 4.2 step 5).
+at 0 by the peg's joint equality); a new peg is a change of chart (derivation page docs/theory/slotted-skate.md,
+Sec. 4.2 step 5).
 """
 
 from __future__ import annotations
@@ -76,7 +77,8 @@ class PegController:
         return batch.advance(b, state, min(dt, max(0.0, (end - state[2]) / speed)) if speed else dt)
 
     def _insert_peg(self, state: np.ndarray, end: float, b: int) -> np.ndarray:
-        """Retract the old peg and insert one at the other slot end: a change of chart (note 000, 4.2 step 5).
+        """Retract the old peg and insert one at the other slot end: a change of chart (docs/theory/slotted-skate.md,
+        Sec. 4.2 step 5).
 
         The new chart's n-velocity is the normal velocity of the material point over the new peg; the
         next constraint solve removes it (the plastic impact)."""
