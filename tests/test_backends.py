@@ -243,13 +243,14 @@ def test_rimless_wheel_on_mjx_passes_its_fast_checks(request: pytest.FixtureRequ
 
 def test_rimless_wheel_on_warp_as_measured() -> None:
     """The rimless wheel's fast-preset validation on MuJoCo Warp (float32): every check MuJoCo C's gate gates passes
-    (the others are the gate's to watch), and the eigenvalue error is Warp's own: 5.5e-4 measured here at the searched
-    fast preset (2.8e-3 at the preset before the search, against MuJoCo C's 2.6e-4: float32 arithmetic through the
-    impact jitter); asserted within a factor of 2.5 of the measurement, as machines differ at that level."""
+    (the others are the gate's to watch), and the eigenvalue error is Warp's own: 8.9e-3 measured here at the searched
+    fast preset (0.93 ms steps; 7.1e-3 with the starts' velocities scaled by 1 + 1e-6), against MuJoCo C's 2.0e-5:
+    float32 arithmetic through the impact jitter. Asserted within a factor of 2.5 of the measurement, as machines
+    differ at that level; the gated check above bounds it by its tolerance, 2e-2."""
     from mjpoincare.validation import run_validation
 
     _require("warp")
     result = run_validation("rimless-wheel", {"backend": "warp"}, "fast")
     assert not failed_gated_checks("rimless-wheel[fast]", result.to_dict()["checks"]), result.table()
     eigenvalue = next(c for c in result.checks if c.name == "eigenvalue")
-    assert 5.5e-4 / 2.5 <= eigenvalue.error <= 5.5e-4 * 2.5, result.table()
+    assert 8.9e-3 / 2.5 <= eigenvalue.error <= 8.9e-3 * 2.5, result.table()

@@ -48,7 +48,7 @@ def test_empty_dir_passes_with_one_item_per_check(pytester: pytest.Pytester) -> 
 @pytest.mark.mujoco
 def test_failing_check_reports_values_beside_project_tests(pytester: pytest.Pytester) -> None:
     pytester.makepyfile(test_project="def test_project():\n    assert True\n")
-    result = run(pytester, "--mjpoincare", "rimless-wheel", "--mjpoincare-set", "timestep=0.004", "-v")
+    result = run(pytester, "--mjpoincare", "rimless-wheel", "--mjpoincare-set", "timestep=0.01", "-v")
     out = result.stdout.str()
     assert result.ret == pytest.ExitCode.TESTS_FAILED, out
     assert "test_project.py::test_project PASSED" in out
@@ -58,7 +58,7 @@ def test_failing_check_reports_values_beside_project_tests(pytester: pytest.Pyte
     for field in ("analytic", "simulated", "error", "tolerance", "unit", "why"):
         assert re.search(rf"^  {field} +\S", report, re.MULTILINE), field
     assert f"mjpoincare check rimless-wheel::{failed[0]} FAILED" in report
-    assert "set: timestep=0.004" in report
+    assert "set: timestep=0.01" in report
     assert re.search(rf"^FAILED mjpoincare::rimless-wheel::{failed[0]} - \w+ error \d", out, re.MULTILINE)
 
 

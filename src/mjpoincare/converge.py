@@ -207,6 +207,8 @@ def converge(name: str, assignments: Mapping[str, str], preset: str | None = Non
         raise ParameterError(f"--seed must be an integer >= 0 (got {seed})")
     if resume and (not json_path or json_path == "-"):
         raise ParameterError("--resume needs --json PATH (the results file to resume from)")
+    # every rung runs the full experiment design, so that rungs differ in the refined setting alone
+    assignments = {"adaptive_stopping": "0", **assignments}
     plan = check_request(name, assignments, preset, axes, points, ratio)
     _, preset, _, start_settings = resolve_inputs(name, assignments, preset)
     header = {"command": "converge", "scenario": name, "assignments": dict(assignments), "preset": preset,

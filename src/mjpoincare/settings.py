@@ -70,6 +70,8 @@ SETTINGS: tuple[Param, ...] = (
     Param("batch", 0, "trajectories per rollout: region maps (sweep --grid) and mu sweeps are split into rollouts of "
           "this many starts, and MJX and Warp pad every smaller rollout to it (padding never seen), so that a run "
           "compiles once; thousands on a GPU. 0: the scenarios' own split and no padding", int, 0, 1_000_000),
+    Param("adaptive_stopping", 1, "1: a fitting batch stops once more steps no longer sharpen its fit "
+          "(docs/presets.md); 0: the full design, the same at every setting (converge uses it)", int, 0, 1),
     Param("diagnostics", 0, "1: record the deepest penetration and the largest kinetic energy (adds 2 sensors "
           "and the energy computation; off unless asked, as nothing else reads them)", int, 0, 1),
 )

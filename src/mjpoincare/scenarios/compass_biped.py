@@ -246,7 +246,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     # the fixed point's tolerance is stated for the post-impact state, which the exact swing flow maps the fitted
     # legs-parallel one to at about the same size
     settle = return_map_settling(STOPPING, degree=FIT_DEGREE, seed=seed, fixed_point_tolerance=tol["fixed_point"],
-                                 eigenvalue_tolerance=tol["eigenvalues"])
+                                 eigenvalue_tolerance=tol["eigenvalues"]) if s["adaptive_stopping"] else None
     controller, report, bp, model = _simulate(p, s, settle)
     why = tol.why
     x_star = theory.fixed_point(bp)
@@ -302,7 +302,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     extras["swing_foot"] = swing_foot_detail(bp, controller.swing_low[0], controller.samples[0],
                                              float(s["foot_radius"]), exact_depth)
     extras["fit"] = fit.to_dict()
-    extras["adaptive_stopping"] = settle.to_dict()
+    extras["adaptive_stopping"] = None if settle is None else settle.to_dict()
     extras["trailing_foot"] = {"analytic_liftoff_velocity": theory.step(bp, x_star).liftoff_velocity,
                                "measured_vertical_speed_20ms": float(np.mean(controller.release_speed))
                                if controller.release_speed else math.nan, "releases": len(controller.release_depth)}

@@ -296,7 +296,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     tol = at_preset(TOLERANCES, COMPASS_BIPED_FRICTION.name, preset)
     why = tol.why
     steps, degree, settle = design(g)
-    settling = None if unstable(g) else return_map_settling(
+    settling = None if unstable(g) or not s["adaptive_stopping"] else return_map_settling(
         STOPPING, degree=degree, seed=seed, fixed_point_tolerance=tol["fixed_point"],
         eigenvalue_tolerance=tol["eigenvalues"])
     c, report, _ = _run(p, s, model, initial_section_states(g, model.opt.timestep), steps, settling=settling)

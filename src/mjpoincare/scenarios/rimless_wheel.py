@@ -346,9 +346,9 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     tol = at_preset(TOLERANCES, RIMLESS_WHEEL.name, preset)
     why = tol.why
     fit_speeds = theory.fit_initial_speeds(w, FIT_BATCH)
-    settle = return_map_settling(STOPPING, degree=FIT_DEGREE, seed=seed,
-                                 fixed_point_tolerance=tol["omega_post_impact"],
-                                 eigenvalue_tolerance=tol["eigenvalue"], relative=True)
+    settle = None if not s["adaptive_stopping"] else return_map_settling(
+        STOPPING, degree=FIT_DEGREE, seed=seed, fixed_point_tolerance=tol["omega_post_impact"],
+        eigenvalue_tolerance=tol["eigenvalue"], relative=True)
     fit_rec, fit_report = _simulate(model, w, fit_speeds, _fit_seconds(w), s, settling=settle)
     try:
         fit_checks, extras = _fit_checks(w, fit_rec, len(fit_speeds), tol, why, seed)
@@ -360,7 +360,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     basin_rec, basin_report = _simulate(model, w, basin_speeds, BASIN_SECONDS, s, until_decided=True)
     basin_checks, basin_extras = _basin_checks(w, basin_rec, basin_speeds)
     extras.update(basin_extras)
-    extras["adaptive_stopping"] = settle.to_dict()
+    extras["adaptive_stopping"] = None if settle is None else settle.to_dict()
     extras["analytic"] = {
         "region": theory.region(w), "beta": w.beta, "omega_forward_threshold": theory.forward_threshold(w),
         "existence_bound": theory.existence_bound(w.spokes, w.gyration, w.leg_length),
