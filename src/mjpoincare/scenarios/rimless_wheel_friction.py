@@ -393,7 +393,8 @@ RIMLESS_WHEEL_FRICTION = Scenario(
     clip=clip,
     track_body="hub",
     frame_tilt="slope",
-    camera_distance=4.0,
+    camera_distance=5.5,  # the whole 12-spoke wheel and its contact in frame, seen from slightly above
+    camera_elevation=-10.0,
     stress_cases=STRESS_CASES,
     soak=soak,
     region_map=RegionMap(grid="theta_dot0=START:STOP:N,x_dot0=START:STOP:N (post-impact rates, nondimensional)",
