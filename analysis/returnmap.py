@@ -22,6 +22,7 @@ from itertools import combinations_with_replacement
 from typing import Any
 
 import numpy as np
+from mjpoincare.analysis.checks import jsonable
 from mjpoincare.analysis.eigenvalues import match_eigenvalues, sort_eigenvalues
 
 __all__ = ["DriftingCycleFit", "ReturnMapFit", "convergence_ratio", "fit_drifting_cycle", "fit_return_map",
@@ -77,44 +78,31 @@ class ReturnMapFit:
         Non-finite floats (e.g. NaN standard deviations) become ``None`` so that the output is
         strict JSON. The replicates' multipliers are rounded to float32 precision (:func:`replicate_list`).
         """
+        def real(a: np.ndarray) -> Any:
+            return jsonable(np.asarray(a, dtype=float))
+
+        def cplx(a: np.ndarray) -> Any:
+            return jsonable(np.asarray(a, dtype=complex))
+
         return {
-            "fixed_point": _real_list(self.fixed_point),
-            "jacobian": _real_list(self.jacobian),
-            "eigenvalues": _complex_list(self.eigenvalues),
-            "fixed_point_std": _real_list(self.fixed_point_std),
-            "eigenvalue_std": _complex_list(self.eigenvalue_std),
-            "jacobian_std": _real_list(self.jacobian_std),
-            "residual_rms": _real_list(self.residual_rms),
+            "fixed_point": real(self.fixed_point),
+            "jacobian": real(self.jacobian),
+            "eigenvalues": cplx(self.eigenvalues),
+            "fixed_point_std": real(self.fixed_point_std),
+            "eigenvalue_std": cplx(self.eigenvalue_std),
+            "jacobian_std": real(self.jacobian_std),
+            "residual_rms": real(self.residual_rms),
             "n_pairs": int(self.n_pairs),
             "degree": int(self.degree),
-            "condition": _json_float(self.condition),
+            "condition": jsonable(float(self.condition)),
             "eigenvalue_replicates": replicate_list(self.eigenvalue_replicates),
         }
-
-
-def _json_float(value: float) -> float | None:
-    """Convert to a Python float, mapping non-finite values to ``None``."""
-    value = float(value)
-    return value if np.isfinite(value) else None
-
-
-def _real_list(array: np.ndarray) -> list[Any]:
-    """Convert a real array to nested lists of floats (non-finite -> ``None``)."""
-    array = np.asarray(array, dtype=float)
-    if array.ndim > 1:
-        return [_real_list(row) for row in array]
-    return [_json_float(value) for value in array]
-
-
-def _complex_list(array: np.ndarray) -> list[list[float | None]]:
-    """Convert a 1-D complex array to a list of ``[re, im]`` pairs."""
-    return [[_json_float(z.real), _json_float(z.imag)] for z in np.asarray(array, dtype=complex)]
 
 
 def replicate_list(samples: np.ndarray) -> list[list[list[float | None]]]:
     """Bootstrap multipliers ``(n, d)`` complex as JSON: per replicate a list of ``[re, im]``, each rounded to
     float32 precision (7 significant digits; enough to draw the cloud, half the text of full precision)."""
-    return [[[_json_float(float(f"{v:.{_REPLICATE_DIGITS}g}")) for v in (z.real, z.imag)] for z in row]
+    return [[[jsonable(float(f"{v:.{_REPLICATE_DIGITS}g}")) for v in (z.real, z.imag)] for z in row]
             for row in np.asarray(samples, dtype=complex)]
 
 

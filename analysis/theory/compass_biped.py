@@ -37,6 +37,7 @@ from functools import lru_cache
 
 import numpy as np
 from mjpoincare.analysis.eigenvalues import sort_eigenvalues
+from mjpoincare.analysis.theory.shooting import central_jacobian
 from numpy.typing import ArrayLike, NDArray
 from scipy.integrate import solve_ivp
 from scipy.optimize import OptimizeResult, brentq, fsolve, minimize_scalar
@@ -401,12 +402,7 @@ def fixed_point(bp: CompassBiped, guess: ArrayLike | None = None) -> NDArray[np.
 
 def _jacobian(bp: CompassBiped, z: NDArray[np.float64], eps: float) -> NDArray[np.float64]:
     """dP/dz of :func:`return_map` by central differences with step eps."""
-    jac = np.empty((3, 3))
-    for k in range(3):
-        dz = np.zeros(3)
-        dz[k] = eps
-        jac[:, k] = (return_map(bp, z + dz) - return_map(bp, z - dz)) / (2.0 * eps)
-    return jac
+    return central_jacobian(lambda zz: return_map(bp, zz), z, eps)
 
 
 def eigenvalues(bp: CompassBiped, x_star: ArrayLike | None = None, eps: float = 1e-6) -> NDArray[np.complex128]:

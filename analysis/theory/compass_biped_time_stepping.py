@@ -50,6 +50,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from mjpoincare.analysis.theory.compass_biped_friction import FrictionBiped, ReferenceTrajectory
+from mjpoincare.analysis.theory.shooting import central_jacobian
 from numpy.typing import ArrayLike, NDArray
 
 Vector = NDArray[np.float64]
@@ -468,13 +469,7 @@ def return_map(bp: FrictionBiped, z: ArrayLike, h: float, control: Controller | 
 def map_jacobian(bp: FrictionBiped, z: ArrayLike, h: float, delta: float, control: Controller | None = None
                  ) -> Matrix:
     """dP/dz of :func:`return_map` by central differences of size ``delta`` (rad, rad/s, m/s)."""
-    zz = np.asarray(z, dtype=float)
-    cols = []
-    for j in range(zz.size):
-        e = np.zeros(zz.size)
-        e[j] = delta
-        cols.append((return_map(bp, zz + e, h, control) - return_map(bp, zz - e, h, control)) / (2 * delta))
-    return np.column_stack(cols)
+    return central_jacobian(lambda zz: return_map(bp, zz, h, control), np.asarray(z, dtype=float), delta)
 
 
 def richardson(coarse: ArrayLike, fine: ArrayLike) -> NDArray[np.float64]:
