@@ -110,7 +110,7 @@ backends: $(STAMP)
 		--scaling $(SCALING) --workers $(WORKERS) --out $(BACKENDS_OUT)
 
 releases: $(STAMP)
-	$(BIN)/python -m mjpoincare.releases sessions | xargs -d '\n' -P $(RELEASE_WORKERS) -I{} $(BIN)/nox -s {}
+	$(BIN)/python -m mjpoincare.releases matrix --workers $(RELEASE_WORKERS)
 	$(BIN)/python -m mjpoincare.releases render
 
 releases-render: $(STAMP)
@@ -145,4 +145,4 @@ gate:
 	.venv-mujoco-$(MUJOCO)/bin/mjpoincare validate --json renders/gate-mujoco-$(MUJOCO).json
 
 clean:
-	rm -rf $(VENV) $(LATEST) $(OLDEST) .venv-mujoco-* .nox build *.egg-info
+	rm -rf $(VENV) $(CORE) $(LATEST) $(OLDEST) .venv-mujoco-* .nox build *.egg-info

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 import re
+import subprocess
 from pathlib import Path
 from typing import Any
 
@@ -143,3 +144,21 @@ def test_a_bisection_reads_the_history_then_runs_a_release_point(tmp_path: Path,
     assert value_at("3.3.6") == (0.7, 1e-6)
     assert calls[0][1:] == ["-m", "nox", "-s", "release_point", "--", "3.3.6", "--out", str(out), "--scenario", "toy",
                             "--preset", "fast"]
+
+
+def test_the_matrix_runs_one_nox_session_per_release_and_names_the_failed_ones(
+        monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> None:
+    """``matrix`` (make releases) runs every release's nox session with its output in a log of its own, and
+    returns the releases whose session failed."""
+    calls = []
+
+    def fake_run(command: list[str], *, stdout: Any, stderr: Any, check: bool) -> subprocess.CompletedProcess:
+        calls.append(command)
+        stdout.write(f"ran {command[-1]}\n")
+        return subprocess.CompletedProcess(command, 1 if "3.9.0" in command[-1] else 0)
+
+    monkeypatch.setattr(releases.subprocess, "run", fake_run)
+    assert releases.run_matrix(2, tmp_path) == ["3.9.0"]
+    assert sorted(c[-1] for c in calls) == sorted(f"release(mujoco='{v}')" for v in releases.RELEASES)
+    assert (tmp_path / "3.9.0.log").read_text() == "ran release(mujoco='3.9.0')\n"
+    assert releases.main(["matrix", "--workers", "0"]) == 2

@@ -338,8 +338,37 @@ def _nox_point(out: Path, scenario: str, preset: str, check: str) -> Callable[[s
     return value_at
 
 
+def run_matrix(workers: int, logs: Path) -> list[str]:
+    """Every release's nox session (``noxfile.py``: a uv venv per release running ``run``), ``workers`` at a time,
+    with a progress bar; each session's output goes to ``logs/<release>.log``. Returns the releases whose session
+    failed."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    from mjpoincare import progress
+
+    if workers < 1:
+        raise ParameterError(f"--workers must be >= 1 (got {workers})")
+    logs.mkdir(parents=True, exist_ok=True)
+    nox = Path(sys.executable).parent / "nox"
+
+    def session(release: str) -> int:
+        with (logs / f"{release}.log").open("w") as log:
+            return subprocess.run([str(nox), "-s", f"release(mujoco='{release}')"], stdout=log,
+                                  stderr=subprocess.STDOUT, check=False).returncode
+
+    failed = []
+    with progress.bar(len(RELEASES), "MuJoCo releases", unit="release") as bar, \
+            ThreadPoolExecutor(max_workers=workers) as pool:
+        for release, code in zip(RELEASES, pool.map(session, RELEASES), strict=True):
+            if code:
+                failed.append(release)
+            bar.set_postfix_str(f"{release}: {'failed' if code else 'done'}")
+            bar.update(1)
+    return failed
+
+
 def main(argv: Sequence[str] | None = None) -> int:
-    """``run`` | ``render`` | ``bisect``; exit 2 with one line on bad input."""
+    """``run`` | ``render`` | ``matrix`` | ``bisect``; exit 2 with one line on bad input."""
     parser = argparse.ArgumentParser(prog="python -m mjpoincare.releases", description=__doc__.split("\n\n")[0])
     sub = parser.add_subparsers(dest="command", required=True)
     run = sub.add_parser("run", help="the history's runs on the loaded MuJoCo into OUT/json/")
@@ -349,7 +378,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     render_cmd = sub.add_parser("render", help="docs/results/mujoco-releases.md from OUT/json/")
     render_cmd.add_argument("--out", type=Path, default=OUT)
     render_cmd.add_argument("--page", type=Path, default=PAGE)
-    sub.add_parser("sessions", help="the nox sessions of the history, one per line (for make releases)")
+    sub.add_parser("sessions", help="the nox sessions of the history, one per line")
+    matrix = sub.add_parser("matrix", help="every release's nox session, WORKERS at a time (make releases)")
+    matrix.add_argument("--workers", type=int, default=2)
+    matrix.add_argument("--logs", type=Path, default=Path("renders/releases"), help="one log per session")
     bis = sub.add_parser("bisect", help="the first patch release between two releases where a check really changes")
     bis.add_argument("low")
     bis.add_argument("high")
@@ -366,6 +398,12 @@ def main(argv: Sequence[str] | None = None) -> int:
             print(f"wrote {args.page}")
         elif args.command == "sessions":
             print("\n".join(f"release(mujoco='{v}')" for v in RELEASES))
+        elif args.command == "matrix":
+            failed = run_matrix(args.workers, args.logs)
+            if failed:
+                print(f"python -m mjpoincare.releases: sessions failed: {', '.join(failed)} (logs in {args.logs})",
+                      file=sys.stderr)
+                return 1
         else:
             return _cmd_bisect(args)
     except ParameterError as err:
