@@ -50,9 +50,9 @@ class Miss:
     different errors on different machines; ``spread``: the largest change of that error under :data:`PERTURBATIONS`,
     measured with it; ``tolerance``: the check's tolerance at the case's preset (quoted in the reason;
     tests/test_gate.py compares it with the run's); ``mechanism``: why MuJoCo misses, in words (the numbers behind it
-    are in the scenario modules and docs/findings.md); ``resolved``: False for a miss whose band is wider than its
-    tolerance (its spread is over half of it), which the gate cannot resolve: it is asserted in its band only, never
-    as a strict expected failure, and the margins table says so.
+    are in the scenario modules and the Findings of docs/scenarios/<scenario>.md); ``resolved``: False for a miss
+    whose band is wider than its tolerance (its spread is over half of it), which the gate cannot resolve: it is
+    asserted in its band only, never as a strict expected failure, and the margins table says so.
     """
 
     check: str
@@ -148,18 +148,20 @@ _HOP_PERIOD = ("the step period is timed from impact to impact, and MuJoCo's sof
                "slope briefly, which lengthens it")
 _IMPACT_SLIP = "the soft impact takes the foot's pre-impact speed off over the contact time, not at once"
 _GAIT_C_FIT = ("the unstable gait is fitted over its first 2 steps after the fast preset's soft slipping impact; the "
-               "error shrinks at the accurate preset's shorter contact (docs/findings.md)")
+               "error shrinks at the accurate preset's shorter contact (docs/scenarios/compass-biped-friction.md, "
+               "Findings)")
 _SOFT_SLIP = "the soft impact's slip at the fast preset's contact"
 _SLIPPING_IMPACT = ("the soft slipping impact takes the foot's speed off over the contact time instead of at once, so "
                     "the foot slides a different distance than the exact impulse gives in the first 5 ms")
 _GAIT_II = ("the slipping impact and the 5 ms slip+ after it, through the fast preset's soft contact (at the earlier "
-            "1 ms contact the contact was as long as the slip, docs/findings.md; the searched preset's 0.3 ms "
-            "pyramidal-cone contact misses by as much, and its cost of transport sits 4e-4 of its tolerance above it)")
+            "1 ms contact the contact was as long as the slip, docs/scenarios/compass-biped-friction.md, Findings; "
+            "the searched preset's 0.3 ms pyramidal-cone contact misses by as much, and its cost of transport sits "
+            "4e-4 of its tolerance above it)")
 
 #: The gate, as measured by ``mjpoincare margins`` (MuJoCo 4.0.0, numpy 2.4.6, scipy 1.17.1, this repository's CPU):
 #: each spread is the measured one rounded up to 2 digits. A declared miss's range spans this measurement and the
 #: one an earlier margins run declared (machines and builds differ by more than the perturbations move some fits).
-#: The mechanisms are in the scenario modules and docs/findings.md.
+#: The mechanisms are in the scenario modules and the Findings of docs/scenarios/<scenario>.md.
 GATE: tuple[GateCase, ...] = (
     _case("rimless-wheel", "fast", _WHEEL),
     _case("rimless-wheel", "accurate", _WHEEL.replace("step_period ", ""),
@@ -204,8 +206,9 @@ GATE: tuple[GateCase, ...] = (
     _case("compass-biped-friction", "fast", "fixed_point step_period step_length speed phase_sequence impact_kind "
           "stable", [Miss(check="eigenvalues", measured=0.135104, spread=0.085, tolerance=0.03, resolved=False,
                 mechanism="the soft impact starts the slip+ late and the sliding foot rises at ~mu v_t (MuJoCo's "
-                "convex contact); the error shrinks with the contact time (docs/findings.md); the fit over starts "
-                "inside the narrow impact border is chaotic: starts x(1 + 1e-9) move it by 0.085")],
+                "convex contact); the error shrinks with the contact time (docs/scenarios/compass-biped-friction.md, "
+                "Findings); the fit over starts inside the narrow impact border is chaotic: starts x(1 + 1e-9) move "
+                "it by 0.085")],
           watched=[Watch(check="phase_times", spread=0.0, why="0.63 of its tolerance: the soft impact delays the "
                          "stick -> slip switch the foot-speed threshold sees"),
                    Watch(check="impact_slip", spread=4.1e-7, why="0.85 of its tolerance: " + _IMPACT_SLIP)],

@@ -414,11 +414,10 @@ STRESS_CASES = (
 )
 
 
-#: Where a preset must hold (mjpoincare tune): every gait of the paper, each at its own friction.
 #: Where a preset must hold (mjpoincare tune): each of the paper's gaits. Gaits B, C, II and III miss their eigenvalue
-#: tolerance at both presets (docs/findings.md: the soft impact against B's stick-slip stance, C's and II's unstable
-#: 2-step fits, III's tracking through the soft impact), so the search reports its best settings for them without
-#: requiring them of a preset.
+#: tolerance at both presets (docs/scenarios/compass-biped-friction.md, Findings: the soft impact against B's
+#: stick-slip stance, C's and II's unstable 2-step fits, III's tracking through the soft impact), so the search
+#: reports its best settings for them without requiring them of a preset.
 COVERAGE = tuple(CoveragePoint(f"Gait {g.upper()}", {"gait": g}, why, miss_at=("fast", "accurate") if miss else ())
                  for g, why, miss in (
     ("a", "passive, mu = 1: sticking", False), ("b", "passive, mu = 0.14: slip after the impact", True),

@@ -374,7 +374,8 @@ COVERAGE = (
     CoveragePoint("Type A", {"mu": "2"}, "mu = 2 > mu_c: no slip"),
     CoveragePoint("Type C", {"mu": "0.24"}, "mu = 0.24: slipping impact, slip -> stick -> slip"),
     CoveragePoint("Type D+", {"mu": "0.2"}, "mu = 0.2: slipping impact and a slip speed that grows every step; "
-                  "MuJoCo's sliding foot lifts off and the wheel flies (docs/findings.md)",
+                  "MuJoCo's sliding foot lifts off and the wheel flies (docs/scenarios/rimless-wheel-friction.md, "
+                  "Findings)",
                   miss_at=("fast", "accurate")),
 )
 
