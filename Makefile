@@ -106,7 +106,7 @@ tune-render: $(STAMP)
 	$(BIN)/python -m mjpoincare.tune_pages
 
 backends: $(STAMP)
-	$(BIN)/python -m mjpoincare.backends.findings all --presets $(PRESETS) --batch $(BATCH) --maps $(MAPS) \
+	$(BIN)/python -m mjpoincare.reports.backend_findings all --presets $(PRESETS) --batch $(BATCH) --maps $(MAPS) \
 		--scaling $(SCALING) --workers $(WORKERS) --out $(BACKENDS_OUT)
 
 releases: $(STAMP)

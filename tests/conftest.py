@@ -109,7 +109,7 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
     out = Path(tempfile.mkdtemp(prefix="mjpoincare-mjx-"))
     scenario, backend, precision, preset = MJX_RUN
     env = {**os.environ, "XLA_FLAGS": "--xla_cpu_multi_thread_eigen=false intra_op_parallelism_threads=1"}
-    process = subprocess.Popen([sys.executable, "-m", "mjpoincare.backends.findings", "run", scenario, backend,
+    process = subprocess.Popen([sys.executable, "-m", "mjpoincare.reports.backend_findings", "run", scenario, backend,
                                 precision, "--preset", preset, "--out", str(out)], cwd=out, env=env,
                                stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
     config.stash[mjx_run_key] = (process, out)

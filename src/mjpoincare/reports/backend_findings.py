@@ -2,12 +2,12 @@
 each other, with compile seconds and steps per second; and (``--maps``) the friction wheel's region map and mu sweep,
 each in rollouts of the ``batch`` setting's size.
 
-``python -m mjpoincare.backends.findings all --out DIR`` runs every scenario x preset x backend not yet in
+``python -m mjpoincare.reports.backend_findings all --out DIR`` runs every scenario x preset x backend not yet in
 ``DIR/json/`` (one process per run, so that each compile time is a first compile; resumable), then writes
 ``DIR/README.md`` from the JSON. ``make backends`` writes ``docs/results/backends/`` this way; ``make gpu-check`` is
 the same command with a GPU's sizes (batches of thousands, both presets, the maps). ``... run SCENARIO BACKEND
 PRECISION --preset P --out DIR``: one validation. ``... scaling SCENARIO BACKEND PRECISION --sizes B ...``: the
-seconds per batched step against the batch size (:mod:`mjpoincare.backends.scaling`). ``... render DIR``: the page
+seconds per batched step against the batch size (:mod:`mjpoincare.reports.batch_scaling`). ``... render DIR``: the page
 again from the JSON (no simulation).
 """
 
@@ -23,8 +23,8 @@ from importlib import metadata
 from pathlib import Path
 from typing import Any
 
-from mjpoincare.backends.findings_page import COLUMNS, PERTURBATIONS, load, render
 from mjpoincare.params import ParameterError
+from mjpoincare.reports.backend_findings_page import COLUMNS, PERTURBATIONS, load, render
 from mjpoincare.result import write_json, write_text
 
 #: The fields of a validation's result a record keeps (the scenario's extras, fits and plots stay out: the page
@@ -157,7 +157,7 @@ def run_all(scenarios: Sequence[str], presets: Sequence[str], batch: int, maps: 
     that size on every backend, and when ``scaling`` gives batch sizes the batch-size scaling of every backend, each
     in a process of its own (``workers`` at a time), skipping those already in ``out/json/`` unless ``again``; then
     the page. Returns the files written."""
-    commands = [[sys.executable, "-m", "mjpoincare.backends.findings", *extra, "--out", str(out)]
+    commands = [[sys.executable, "-m", "mjpoincare.reports.backend_findings", *extra, "--out", str(out)]
                 for name, extra in _jobs(scenarios, presets, batch, maps, scaling)
                 if again or not (out / "json" / f"{name}.json").exists()]
     running: list[subprocess.Popen[bytes]] = []
@@ -177,7 +177,7 @@ def run_all(scenarios: Sequence[str], presets: Sequence[str], batch: int, maps: 
 def main(argv: Sequence[str] | None = None) -> int:
     from mjpoincare import scenarios
 
-    parser = argparse.ArgumentParser(prog="python -m mjpoincare.backends.findings",
+    parser = argparse.ArgumentParser(prog="python -m mjpoincare.reports.backend_findings",
                                      description=__doc__.split("\n\n")[0])
     sub = parser.add_subparsers(dest="command", required=True)
     every = sub.add_parser("all", help="every scenario x preset x backend (and --maps) not yet in OUT/json, then "
@@ -235,7 +235,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         write_text(render(load(args.out)), str(args.out / "README.md"))
         return 0
     if args.command == "scaling":
-        from mjpoincare.backends.scaling import measure
+        from mjpoincare.reports.batch_scaling import measure
 
         record = {"kind": "scaling", "environment": environment(), "device": _device(args.backend),
                   **measure(args.scenario, args.backend, args.precision, args.sizes, args.steps)}

@@ -1,5 +1,5 @@
 """Batch-size scaling of a backend: seconds per batched step at batch sizes B, the measurement a GPU estimate rests
-on (``python -m mjpoincare.backends.findings scaling``).
+on (``python -m mjpoincare.reports.backend_findings scaling``).
 
 A scenario's model and its first rollout batch's starts (:meth:`mjpoincare.scenarios.base.Scenario.probe`), tiled to
 B trajectories, stepped in plain chunks (no events: the timing of the stepping alone): one chunk to compile and warm
@@ -22,7 +22,7 @@ from mjpoincare.simulate import open_batch
 def measure(scenario: str, backend: str, precision: str, sizes: Sequence[int], steps: int) -> dict[str, Any]:
     """Seconds per batched step of ``scenario``'s model on ``backend`` in ``precision`` at each batch size in
     ``sizes`` (``steps`` timed steps each, after a first chunk that compiles); the line through them is
-    :func:`mjpoincare.backends.findings_page.scaling_fit`."""
+    :func:`mjpoincare.reports.backend_findings_page.scaling_fit`."""
     from mjpoincare.validation import resolve_inputs
 
     spec, _, params, settings = resolve_inputs(scenario, {"backend": backend, "precision": precision}, None)

@@ -1,0 +1,1 @@
+"""Report commands: they run validations and measurements through the public layers and write generated pages."""
