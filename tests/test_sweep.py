@@ -10,8 +10,8 @@ import pytest
 from conftest import require_module
 
 from mjpoincare.cli import main
-from mjpoincare.params import ParameterError
-from mjpoincare.sweep import crossing, parse_values
+from mjpoincare.params import ParameterError, parse_values
+from mjpoincare.sweep import crossing
 
 #: Coarse steps for the sweeps, which test the command rather than accuracy (a tenth to a third of a validation's time
 #: at the fast preset; every check passes there): the wheel's contact time constant, and the skate's peg's, at 2 steps.

@@ -143,8 +143,9 @@ def _cmd_bench(args: argparse.Namespace) -> int:
 
 def _cmd_sweep(args: argparse.Namespace) -> int:
     from mjpoincare import scenarios
+    from mjpoincare.params import parse_values
     from mjpoincare.result import check_output_path
-    from mjpoincare.sweep import parse_values, run_sweep
+    from mjpoincare.sweep import run_sweep
 
     scenario = scenarios.get(args.scenario)
     check_output_path(args.json, "--json")

@@ -36,10 +36,9 @@ import numpy as np
 from mjpoincare import progress
 from mjpoincare.analysis.checks import Check, jsonable
 from mjpoincare.analysis.convergence import ANALYTIC_FLOOR, SANE_ORDER, Verdict, analyze
-from mjpoincare.parallel import check_engine, run_jobs
+from mjpoincare.parallel import check_engine, point_assignments, run_jobs
 from mjpoincare.params import ParameterError
-from mjpoincare.result import write_json
-from mjpoincare.sweep import _point_assignments, resumed_rows
+from mjpoincare.result import resumed_rows, write_json
 from mjpoincare.validation import resolve_inputs, run_validation
 
 AXES = ("timestep", "solref_timeconst", "solref_dampratio", "foot_radius")
@@ -217,7 +216,7 @@ def converge(name: str, assignments: Mapping[str, str], preset: str | None = Non
     rows = {r["key"]: r for r in done}
     wanted = {rung_key(o): o for rungs in plan.values() for o in rungs}
     todo = sorted((o for k, o in wanted.items() if k not in rows), key=lambda o: -_cost(o, start_settings))
-    point_set = _point_assignments(assignments, workers)
+    point_set = point_assignments(assignments, workers)
     began = time.perf_counter()
     jobs = [(name, o, point_set, preset, seed) for o in todo]
     with progress.bar(len(wanted), "converge", unit="rung", initial=len(wanted) - len(todo)) as bar:

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import os
 import sys
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from multiprocessing import get_context
 from typing import Any
@@ -81,3 +81,10 @@ def _dask(fn: Callable[..., Any], jobs: Sequence[tuple[Any, ...]], workers: int,
     finally:
         if cluster is not None:
             cluster.close()
+
+
+def point_assignments(assignments: Mapping[str, str], workers: int) -> dict[str, str]:
+    """Give each of ``workers`` concurrent points its share of the cores, unless threads were set."""
+    if workers <= 1 or "threads" in assignments:
+        return dict(assignments)
+    return {**assignments, "threads": str(max(1, (os.cpu_count() or 1) // workers))}

@@ -12,6 +12,8 @@ from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
+import numpy
+
 Value = float | int | str
 
 
@@ -109,3 +111,17 @@ def unknown(names: Iterable[str], *declared: Sequence[Param]) -> None:
     for name in names:
         if name not in known:
             raise ParameterError(f"unknown parameter {name!r}; known: {', '.join(known)}")
+
+
+def parse_values(text: str) -> list[str]:
+    """``0.07,0.072,0.074`` or ``0.07:0.076:4`` (start:stop:count) -> value strings."""
+    if text.count(":") == 2:
+        start, stop, count = text.split(":")
+        try:
+            return [f"{v:.10g}" for v in numpy.linspace(float(start), float(stop), int(count))]
+        except ValueError:
+            raise ParameterError(f"--values START:STOP:COUNT expects numbers (got {text!r})") from None
+    values = [v.strip() for v in text.split(",") if v.strip()]
+    if not values:
+        raise ParameterError("--values needs at least one value")
+    return values

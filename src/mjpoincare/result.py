@@ -137,3 +137,17 @@ def write_text(text: str, path: str) -> None:
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
+
+
+def resumed_rows(json_path: str | None, header: dict[str, Any]) -> list[dict[str, Any]]:
+    """Rows of a previous run of the same sweep (same scenario, parameter, settings and preset)."""
+    if not json_path or json_path == "-" or not Path(json_path).exists():
+        return []
+    try:
+        previous = json.loads(Path(json_path).read_text())
+    except (OSError, json.JSONDecodeError) as err:
+        raise ParameterError(f"--resume: cannot read {json_path} ({err})") from None
+    mismatch = [k for k, v in header.items() if previous.get(k) != v]
+    if mismatch:
+        raise ParameterError(f"--resume: {json_path} holds a different sweep ({', '.join(mismatch)} differ)")
+    return list(previous.get("rows", []))

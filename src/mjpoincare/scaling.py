@@ -24,9 +24,9 @@ from mujoco import rollout as mj_rollout
 
 from mjpoincare.analysis.checks import jsonable
 from mjpoincare.parallel import run_jobs
-from mjpoincare.params import ParameterError
+from mjpoincare.params import ParameterError, parse_values
 from mjpoincare.result import write_json
-from mjpoincare.sweep import parse_values, sweep_point
+from mjpoincare.sweep import sweep_point
 from mjpoincare.validation import resolve_inputs
 
 

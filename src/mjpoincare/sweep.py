@@ -17,36 +17,17 @@ most the points in flight.
 
 from __future__ import annotations
 
-import json
 import math
-import os
 import time
 from collections.abc import Mapping, Sequence
-from pathlib import Path
 from typing import Any
-
-import numpy as np
 
 from mjpoincare import progress
 from mjpoincare.analysis.checks import jsonable
-from mjpoincare.parallel import check_engine, run_jobs
+from mjpoincare.parallel import check_engine, point_assignments, run_jobs
 from mjpoincare.params import ParameterError
-from mjpoincare.result import write_json
+from mjpoincare.result import resumed_rows, write_json
 from mjpoincare.validation import resolve_inputs, run_validation
-
-
-def parse_values(text: str) -> list[str]:
-    """``0.07,0.072,0.074`` or ``0.07:0.076:4`` (start:stop:count) -> value strings."""
-    if text.count(":") == 2:
-        start, stop, count = text.split(":")
-        try:
-            return [f"{v:.10g}" for v in np.linspace(float(start), float(stop), int(count))]
-        except ValueError:
-            raise ParameterError(f"--values START:STOP:COUNT expects numbers (got {text!r})") from None
-    values = [v.strip() for v in text.split(",") if v.strip()]
-    if not values:
-        raise ParameterError("--values needs at least one value")
-    return values
 
 
 def _lowest(values: Sequence[Any]) -> float:
@@ -86,27 +67,6 @@ def sweep_point(name: str, param: str, value: str, assignments: Mapping[str, str
             "wall_s": result["timing"]["wall_s"]}
 
 
-def _point_assignments(assignments: Mapping[str, str], workers: int) -> dict[str, str]:
-    """Give each of ``workers`` concurrent points its share of the cores, unless threads were set."""
-    if workers <= 1 or "threads" in assignments:
-        return dict(assignments)
-    return {**assignments, "threads": str(max(1, (os.cpu_count() or 1) // workers))}
-
-
-def resumed_rows(json_path: str | None, header: dict[str, Any]) -> list[dict[str, Any]]:
-    """Rows of a previous run of the same sweep (same scenario, parameter, settings and preset)."""
-    if not json_path or json_path == "-" or not Path(json_path).exists():
-        return []
-    try:
-        previous = json.loads(Path(json_path).read_text())
-    except (OSError, json.JSONDecodeError) as err:
-        raise ParameterError(f"--resume: cannot read {json_path} ({err})") from None
-    mismatch = [k for k, v in header.items() if previous.get(k) != v]
-    if mismatch:
-        raise ParameterError(f"--resume: {json_path} holds a different sweep ({', '.join(mismatch)} differ)")
-    return list(previous.get("rows", []))
-
-
 def run_sweep(name: str, param: str, values: list[str], assignments: Mapping[str, str], preset: str | None,
               json_path: str | None, locate: str | None, *, workers: int = 1, engine: str = "local",
               scheduler: str | None = None, resume: bool = False) -> int:
@@ -114,7 +74,7 @@ def run_sweep(name: str, param: str, values: list[str], assignments: Mapping[str
     check_engine(workers, engine)
     if resume and (not json_path or json_path == "-"):
         raise ParameterError("--resume needs --json PATH (the results file to resume from)")
-    point_set = _point_assignments(assignments, workers)
+    point_set = point_assignments(assignments, workers)
     for value in values:  # every input is checked before the first simulation
         resolve_inputs(name, {**point_set, param: value}, preset)
     header = {"scenario": name, "param": param, "assignments": dict(assignments), "preset": preset}

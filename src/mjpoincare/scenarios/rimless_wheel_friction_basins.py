@@ -15,7 +15,7 @@ from mjpoincare.analysis.checks import jsonable
 from mjpoincare.analysis.stick_slip_phases import outcome, steps_to_converge
 from mjpoincare.analysis.stick_slip_reference import labelled_steps
 from mjpoincare.analysis.theory import rimless_wheel_friction as theory
-from mjpoincare.params import ParameterError
+from mjpoincare.params import ParameterError, parse_values
 from mjpoincare.result import write_json
 from mjpoincare.scenarios.base import Values
 from mjpoincare.scenarios.rimless_wheel_friction import (
@@ -262,7 +262,6 @@ def run_basin_map(grid: str, assignments: Mapping[str, str], preset: str | None,
     """``mjpoincare sweep rimless-wheel-friction --grid theta_dot0=0.02:1.3:100,x_dot0=0:0.3:100``: the basin map,
     its PNG (``output``) and JSON; prints the disagreements, windows and convergence. Exit 0 when the simulated region
     of attraction differs from the reference on at most 5 % of the reference points."""
-    from mjpoincare.sweep import parse_values
     from mjpoincare.validation import resolve_inputs
 
     axes: dict[str, np.ndarray] = {}

@@ -16,7 +16,7 @@ from mjpoincare.analysis.force_ratio import critical_ratio, ratio_profile
 from mjpoincare.analysis.stick_slip_phases import Steps, fit_midstance_map, outcome, settled_rows
 from mjpoincare.analysis.theory import rimless_wheel_friction as theory
 from mjpoincare.params import ParameterError
-from mjpoincare.result import write_json
+from mjpoincare.result import resumed_rows, write_json
 from mjpoincare.scenarios.base import Values
 from mjpoincare.scenarios.rimless_wheel_friction import (
     D_SIM_STEPS,
@@ -178,8 +178,6 @@ def run_mu_sweep(values: Sequence[str], assignments: Mapping[str, str], preset: 
               "preset": preset_name}
     rows: list[dict[str, Any]] = []
     if resume:
-        from mjpoincare.sweep import resumed_rows
-
         rows = [{k: (math.nan if v is None else v) for k, v in r.items()}  # JSON null = NaN
                 for r in resumed_rows(json_path, header) if r["mu"] in mus]
     done = {r["mu"] for r in rows}

@@ -15,7 +15,7 @@ import numpy as np
 from mjpoincare.analysis.checks import jsonable
 from mjpoincare.analysis.stability_classes import boundary_cells, region_classes
 from mjpoincare.analysis.theory import slotted_skate as theory
-from mjpoincare.params import ParameterError
+from mjpoincare.params import ParameterError, parse_values
 from mjpoincare.result import write_json
 from mjpoincare.scenarios import slotted_skate as skate
 from mjpoincare.scenarios.base import Values
@@ -27,8 +27,6 @@ from mjpoincare.validation import resolve_inputs
 
 def parse_grid(text: str) -> tuple[np.ndarray, np.ndarray]:
     """``x=-1.5:0.5:30,y=0.05:1:30`` -> the two axes (x = l0/delta, y = 1/delta^2)."""
-    from mjpoincare.sweep import parse_values
-
     axes: dict[str, np.ndarray] = {}
     for part in text.split(","):
         name, _, spec = part.partition("=")
