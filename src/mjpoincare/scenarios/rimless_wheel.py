@@ -212,9 +212,9 @@ class _Recorder:
     def settled(self) -> np.ndarray:
         """Per trajectory: its outcome can no longer change. Standing over the last tail window (the rocking only
         decays, 003 Sec. 3.3), or rolling over it after ROLLING_IMPACTS forward impacts with no backward motion."""
-        if self.tail is None:
+        if len(self.window) < TAIL_CHUNKS:
             return np.zeros(len(self.last_backward), bool)
-        outcome = _tail_outcomes(self.w, self)
+        outcome = _tail_outcomes(self.w, self)  # builds the tail window once per look
         forward = np.bincount(self.impacts.trajectory[self.impacts.time > self.last_backward[self.impacts.trajectory]],
                               minlength=len(self.last_backward))
         return (outcome == "standing") | ((outcome == "rolling") & (forward >= ROLLING_IMPACTS))
