@@ -1,4 +1,4 @@
-"""The rollout seam (:class:`mjpoincare.simulate.Batch`) on MJX (x64) and MuJoCo Warp (float32): the semantics of
+"""The rollout seam (:class:`mjpoincare.seam.Batch`) on MJX (x64) and MuJoCo Warp (float32): the semantics of
 ``test_rollout_seam.py`` on its small model (plus a sled for friction), and agreement with MuJoCo C.
 
 Skipped when a backend's packages are missing, except under ``CI=true`` on Python 3.11+ (``make test`` installs the
@@ -18,10 +18,11 @@ from conftest import BACKEND_DISTRIBUTIONS, failed_gated_checks, skip_unless_req
 from mujoco import rollout as mj_rollout
 from test_rollout_seam import XML, fractional_step_of
 
-from mjpoincare.backends import check_installed, check_settings, open_backend_batch
+from mjpoincare.backends import check_installed, check_settings, open_batch
 from mjpoincare.params import ParameterError
+from mjpoincare.seam import Batch
 from mjpoincare.settings import DEFAULTS
-from mjpoincare.simulate import Batch, initial_states
+from mjpoincare.simulate import initial_states
 
 #: The seam's model with a 1 kg sled on the floor, sliding along x and free to settle along z (box-plane contact):
 #: friction decelerates it.
@@ -79,7 +80,7 @@ def _column(model: mujoco.MjModel, joint: str, velocity: bool = False) -> int:
 
 
 def _open(backend: tuple[str, str], model: mujoco.MjModel, start: np.ndarray) -> Batch:
-    return open_backend_batch(backend[0], model, start, precision=backend[1])
+    return open_batch(model, start, threads=1, backend=backend[0], precision=backend[1])
 
 
 def _c_rollout(model: mujoco.MjModel, start: np.ndarray, nstep: int) -> np.ndarray:
@@ -113,7 +114,7 @@ def test_padding_is_never_seen_and_shares_the_compile(backend: tuple[str, str], 
     start = _states(free, swing=0.7)
     with _open(backend, free, start) as whole:
         both = whole.run_chunk(CHUNK)
-    with open_backend_batch(backend[0], free, start[:1], precision=backend[1], size=2) as padded:
+    with open_batch(free, start[:1], threads=1, backend=backend[0], precision=backend[1], batch=2) as padded:
         one = padded.run_chunk(CHUNK)
         assert padded.states().shape == (1, start.shape[1])
     assert one.shape == (1, CHUNK + 1, start.shape[1])
@@ -207,7 +208,7 @@ def test_mjx_float32_is_mjx_in_single_precision(free: mujoco.MjModel) -> None:
 
     before = jax.config.jax_enable_x64
     start = _states(free, swing=0.7)
-    with open_backend_batch("mjx", free, start, precision="float32") as batch:
+    with open_batch(free, start, threads=1, backend="mjx", precision="float32") as batch:
         got = np.concatenate([batch.run_chunk(CHUNK)[:, 1:] for _ in range(STEPS // CHUNK)], axis=1)
     error = np.abs(got - _c_rollout(free, start, STEPS)).max()
     assert 1e-9 < error < 1e-5  # measured 3.2e-6

@@ -62,13 +62,17 @@ def test_list_shows_scenarios_and_parameters(capsys: pytest.CaptureFixture[str])
 def test_unwritable_output_exits_2_before_any_simulation(command: list[str], capsys: pytest.CaptureFixture[str],
                                                          monkeypatch: pytest.MonkeyPatch) -> None:
     """An output path that cannot be written is refused first: one line naming the option, exit 2, and no rollout
-    (every rollout goes through ``simulate._native_chunk``, which fails this test if reached)."""
-    from mjpoincare import simulate
+    (every rollout goes through ``mujoco_c._native_chunk``, which fails this test if reached). The seam's self-test
+    (a tiny model, cached per process) runs first, as any earlier validation in the process would have run it."""
+    from mjpoincare import seam_check
+    from mjpoincare.backends import mujoco_c
+
+    seam_check.require(tuple(seam_check.MECHANISMS))
 
     def no_simulation(*_: object, **__: object) -> None:
         raise AssertionError("simulated before checking the output path")
 
-    monkeypatch.setattr(simulate, "_native_chunk", no_simulation)
+    monkeypatch.setattr(mujoco_c, "_native_chunk", no_simulation)
     assert main(command) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "cannot be written" in err and "/proc/" in err, err

@@ -116,7 +116,7 @@ def test_sliding_law_cannot_be_read_from_float32_states(monkeypatch: pytest.Monk
     velocities are differences of hub coordinates of order 1 that float32 resolves to ~1e-7. The float32 backends'
     misses of ``sliding_contact_law`` are their records' precision, not their contact."""
     from mjpoincare.scenarios import rimless_wheel_friction as scenario
-    from mjpoincare.simulate import Chunk
+    from mjpoincare.seam import Chunk
 
     measured: dict[str, float] = {}
     law = scenario.sliding_contact

@@ -22,7 +22,7 @@ from mjpoincare import gate
 from mjpoincare.result import write_json
 from mjpoincare.scenarios import REGISTRY, Scenario
 from mjpoincare.scenarios.base import MissingTolerances, Tolerances, at_preset
-from mjpoincare.simulate import STATE_SPEC
+from mjpoincare.seam import STATE_SPEC
 from mjpoincare.validation import resolve_inputs
 
 CASES = [pytest.param(name, preset, id=f"{name}[{preset}]") for name, s in REGISTRY.items() for preset in s.presets]

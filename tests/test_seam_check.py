@@ -16,8 +16,8 @@ from conftest import BACKEND_DISTRIBUTIONS, required_in_ci
 
 from mjpoincare import cli, seam_check
 from mjpoincare.backends import REQUIRES, _importable
+from mjpoincare.backends.mujoco_c import MujocoBatch
 from mjpoincare.scenarios import REGISTRY
-from mjpoincare.simulate import MujocoBatch
 
 #: The seam method (or MuJoCo C field reader) each mechanism stands behind.
 CALLS = {"set_contact": "contact", "set_eq_active": "equality", "set_friction": "friction",

@@ -6,7 +6,9 @@ import mujoco
 import numpy as np
 import pytest
 
-from mjpoincare.simulate import STATE_SPEC, fractional_step, initial_states, plain_clip
+from mjpoincare.backends.mujoco_c import fractional_step
+from mjpoincare.seam import STATE_SPEC
+from mjpoincare.simulate import initial_states, plain_clip
 
 BALL = """<mujoco><option timestep="0.01" gravity="0 0 -9.81"/><worldbody>
 <body><freejoint/><geom type="sphere" size="0.1" mass="1"/></body></worldbody></mujoco>"""

@@ -82,13 +82,17 @@ def test_bad_engine_and_resume_without_file_are_refused() -> None:
 
 
 def _no_simulation(monkeypatch: pytest.MonkeyPatch) -> None:
-    """Fail the test if a rollout starts (every rollout goes through ``simulate._native_chunk``)."""
-    from mjpoincare import simulate
+    """Fail the test if a scenario's rollout starts (every rollout goes through ``mujoco_c._native_chunk``; the
+    seam's self-test, cached per process, runs first)."""
+    from mjpoincare import seam_check
+    from mjpoincare.backends import mujoco_c
+
+    seam_check.require(tuple(seam_check.MECHANISMS))
 
     def refuse(*_: object, **__: object) -> None:
         raise AssertionError("simulated before refusing")
 
-    monkeypatch.setattr(simulate, "_native_chunk", refuse)
+    monkeypatch.setattr(mujoco_c, "_native_chunk", refuse)
 
 
 @pytest.mark.parametrize(("command", "needle"), [

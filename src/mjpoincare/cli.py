@@ -46,6 +46,8 @@ def _cmd_validate(args: argparse.Namespace) -> int:
 
     names = args.scenario or list(scenarios.DEFAULT_SCENARIOS)
     assignments = parse_assignments(args.set)
+    check_output_path(args.json, "--json")  # before the inputs: resolving them self-tests the seam (a tiny rollout)
+    check_output_path(args.report, "--report", directory=True)
     for name in names:  # refuse bad input before any simulation or file
         _, _, params, _ = resolve_inputs(name, assignments, args.preset)
         if args.peer:
@@ -56,8 +58,6 @@ def _cmd_validate(args: argparse.Namespace) -> int:
             from mjpoincare.extrapolate import coarse_grids
 
             coarse_grids(name, assignments, args.preset)
-    check_output_path(args.json, "--json")
-    check_output_path(args.report, "--report", directory=True)
     if args.report:
         _require_viz("--report", "matplotlib")
     results = [validate(name, args.preset, args.seed, peer=args.peer, **assignments) for name in names]

@@ -1,4 +1,4 @@
-"""The harness checks itself: each mechanism of the rollout seam (:class:`mjpoincare.simulate.Batch`) run on a tiny
+"""The harness checks itself: each mechanism of the rollout seam (:class:`mjpoincare.seam.Batch`) run on a tiny
 model, on the MuJoCo release and the backend actually loaded, before a scenario that uses it runs.
 
 A scenario declares the mechanisms its event controllers use (``Scenario.mechanisms``). :func:`require` runs their
@@ -21,9 +21,11 @@ from functools import cache
 import mujoco
 import numpy as np
 
+from mjpoincare.backends import open_batch
 from mjpoincare.mjcompat import efc_diag_inverse_inertia
 from mjpoincare.params import ParameterError
-from mjpoincare.simulate import STATE_SPEC, Batch, initial_states, open_batch
+from mjpoincare.seam import STATE_SPEC, Batch
+from mjpoincare.simulate import initial_states
 
 GRAVITY = 9.81
 #: Steps of each observation, at the model's timestep of 1 ms.

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import mujoco
 
 from mjpoincare.parallel import machine_cores
-from mjpoincare.params import Param, ParameterError, Value
+from mjpoincare.params import Param, Value
 
 INTEGRATORS = {
     "euler": mujoco.mjtIntegrator.mjINT_EULER,
@@ -163,23 +163,6 @@ def apply_unskip(spec: mujoco.MjSpec, settings: Mapping[str, Value]) -> None:
             geom.contype, geom.conaffinity = 1, 1
     elif which == "contact":
         spec.option.disableflags &= ~int(mujoco.mjtDisableBit.mjDSBL_CONTACT)
-
-
-def check_backend(settings: dict[str, Value]) -> None:
-    """Resolve ``precision=auto`` to the backend's first precision (in place), and refuse a backend and precision
-    that do not go together (:data:`BACKEND_PRECISIONS`), a backend whose packages are missing, or a setting the
-    backend cannot honour, each in one line naming them."""
-    backend = str(settings["backend"])
-    allowed = BACKEND_PRECISIONS[backend]
-    if settings["precision"] == "auto":
-        settings["precision"] = allowed[0]
-    if settings["precision"] not in allowed:
-        raise ParameterError(f"precision must be {' or '.join(allowed)} with backend={backend} "
-                             f"(got {settings['precision']})")
-    from mjpoincare.backends import check_installed, check_settings
-
-    check_installed(backend)
-    check_settings(settings)
 
 
 def rollout_options(settings: Mapping[str, Value]) -> dict[str, float | int | str]:

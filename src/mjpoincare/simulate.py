@@ -1,107 +1,28 @@
-"""Batched rollouts through :mod:`mujoco.rollout`: no Python between steps.
+"""The chunked event loop over any engine of the rollout seam: no Python between steps.
 
-A batch of initial states is stepped by MuJoCo's threaded C++ rollout in native chunks of
-``chunk_steps`` steps. Each chunk's recorded states (time, qpos, qvel) are handed to a consumer
-(usually a vectorised section detector) and then dropped, so memory stays
-``O(batch x chunk_steps)`` whatever the duration. Consecutive chunks overlap by one row so that
-a crossing at a chunk boundary is seen once.
+A batch of initial states is stepped by an engine (:mod:`mjpoincare.backends`; MuJoCo C's threaded
+``mujoco.rollout`` by default) in native chunks of ``chunk_steps`` steps. Each chunk's recorded states (time, qpos,
+qvel) are handed to a consumer (usually a vectorised section detector) and then dropped, so memory stays
+``O(batch x chunk_steps)`` whatever the duration. Consecutive chunks overlap by one row so that a crossing at a
+chunk boundary is seen once.
 
-Events go through one seam, :class:`Batch`: run a chunk, rewrite chosen trajectories' states, switch a
-trajectory's contacts, equality constraints or actuators, and land a state on a guard with a fractional step.
-:class:`MujocoBatch` implements it on MuJoCo C; a backend that batches ``mjData`` (MJX, MuJoCo Warp) implements the
-same methods, and no scenario changes.
-
-MuJoCo's reaction to a numerical blow-up (NaN/huge qacc) is to *reset* the data and carry on
-silently; :func:`rollout_batch` detects that per trajectory from the recorded time, and reports
-MuJoCo's warnings, captured by :func:`mjpoincare.mjlog.captured_mujoco_log`.
+Events go through one seam, :class:`mjpoincare.seam.Batch`: run a chunk, rewrite chosen trajectories' states,
+switch a trajectory's contacts, equality constraints or actuators, and land a state on a guard with a fractional
+step. Every engine implements it, and no scenario changes from one to the other. Diverged trajectories are flagged
+per trajectory and MuJoCo's warnings, captured by :func:`mjpoincare.mjlog.captured_mujoco_log`, go into the report.
 """
 
 from __future__ import annotations
 
-import copy
-import time
-from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
-from types import TracebackType
-from typing import Protocol
+from collections.abc import Callable
 
 import mujoco
 import numpy as np
 from mujoco import rollout as mj_rollout
 
+from mjpoincare.backends import open_batch
 from mjpoincare.mjlog import captured_mujoco_log
-
-STATE_SPEC = mujoco.mjtState.mjSTATE_FULLPHYSICS
-
-
-@dataclass(frozen=True)
-class Chunk:
-    """States recorded over one chunk: ``time`` (B, T), ``qpos`` (B, T, nq), ``qvel`` (B, T, nv).
-
-    Row 0 repeats the last row of the previous chunk (or is the initial state).
-    """
-
-    time: np.ndarray
-    qpos: np.ndarray
-    qvel: np.ndarray
-
-
-@dataclass
-class RolloutReport:
-    """What a batch rollout did: ``steps`` simulated (trajectory-steps), ``batch_steps`` (each chunk's steps once:
-    the steps a GPU takes one after the other, whatever the batch size), ``wall_s`` spent stepping, ``compile_s``
-    spent compiling (MJX and Warp; 0 on MuJoCo C), divergence, warnings."""
-
-    steps: int = 0
-    wall_s: float = 0.0
-    diverged: np.ndarray = field(default_factory=lambda: np.zeros(0, bool))
-    warnings: list[str] = field(default_factory=list)
-    final_state: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
-    #: Smallest and largest value of each sensor over all recorded steps (empty when the model has none).
-    sensor_min: np.ndarray = field(default_factory=lambda: np.zeros(0))
-    sensor_max: np.ndarray = field(default_factory=lambda: np.zeros(0))
-    #: Each sensor's largest value over the batch in the first two recorded steps (the scale of the initial states;
-    #: two because MuJoCo's energy sensors lag the state by one step).
-    sensor_first: np.ndarray = field(default_factory=lambda: np.zeros(0))
-    compile_s: float = 0.0
-    batch_steps: int = 0
-
-    def merge(self, other: RolloutReport) -> RolloutReport:
-        """One report for two batches run one after the other."""
-        low, high = _sensor_extremes(self, other.sensor_min, other.sensor_max)
-        first = (np.fmax(self.sensor_first, other.sensor_first) if self.sensor_first.size and other.sensor_first.size
-                 else (self.sensor_first if self.sensor_first.size else other.sensor_first))
-        return RolloutReport(steps=self.steps + other.steps, wall_s=self.wall_s + other.wall_s,
-                             diverged=np.concatenate([self.diverged, other.diverged]),
-                             warnings=self.warnings + other.warnings, final_state=self.final_state,
-                             sensor_min=low, sensor_max=high, sensor_first=first,
-                             compile_s=self.compile_s + other.compile_s,
-                             batch_steps=self.batch_steps + other.batch_steps)
-
-    def record_sensors(self, sensordata: np.ndarray) -> None:
-        """Fold a chunk's sensor readings (..., nsensordata) into the extremes (NaN rows ignored)."""
-        if sensordata.shape[-1] == 0 or not np.isfinite(sensordata).any():
-            return
-        if self.sensor_first.size == 0:
-            first = sensordata.reshape(-1, *sensordata.shape[-2:])[:, :2].reshape(-1, sensordata.shape[-1])
-            self.sensor_first = np.where(np.isnan(first), -np.inf, first).max(axis=0)
-        flat = sensordata.reshape(-1, sensordata.shape[-1])
-        nan = np.isnan(flat)
-        self.sensor_min, self.sensor_max = _sensor_extremes(self, np.where(nan, np.inf, flat).min(axis=0),
-                                                            np.where(nan, -np.inf, flat).max(axis=0))
-
-    @property
-    def steps_per_s(self) -> float:
-        """Raw simulation rate over all trajectories."""
-        return self.steps / self.wall_s if self.wall_s > 0 else float("nan")
-
-
-def _sensor_extremes(report: RolloutReport, low: np.ndarray, high: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    if report.sensor_min.size == 0:
-        return low, high
-    if low.size == 0:
-        return report.sensor_min, report.sensor_max
-    return np.fmin(report.sensor_min, low), np.fmax(report.sensor_max, high)
+from mjpoincare.seam import STATE_SPEC, Batch, Chunk, RolloutReport
 
 
 def initial_states(model: mujoco.MjModel, qpos: np.ndarray, qvel: np.ndarray) -> np.ndarray:
@@ -124,225 +45,6 @@ def perturbed_starts(state0: np.ndarray, nq: int, nv: int, relative: float) -> n
     if relative:
         current[:, 1 + nq : 1 + nq + nv] *= 1.0 + relative
     return current
-
-
-def _warning_lines(datas: list[mujoco.MjData]) -> list[str]:
-    lines = []
-    for name, kind in mujoco.mjtWarning.__members__.items():
-        if name == "mjNWARNING":
-            continue
-        count = sum(int(d.warning[int(kind)].number) for d in datas)
-        if count:
-            lines.append(f"{name}: raised {count} time(s)")
-    return lines
-
-
-def _native_chunk(pool: mj_rollout.Rollout, model: mujoco.MjModel | list[mujoco.MjModel],
-                  datas: list[mujoco.MjData], current: np.ndarray, n: int, dt: float,
-                  report: RolloutReport, control: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
-    """Step ``current`` (B, nstate) ``n`` steps in MuJoCo (with ``control`` (B, n, nu) as ctrl, if given);
-    returns the raw states (B, n, nstate) and the
-    chunk with its first row prepended, where rows from a divergence on (NaN, or MuJoCo's silent reset,
-    seen as time not advancing by one step per step) are NaN and the trajectory is flagged in ``report``."""
-    start = time.perf_counter()
-    states, sensordata = pool.rollout(model, datas, current, control, nstep=n)
-    report.wall_s += time.perf_counter() - start
-    report.steps += current.shape[0] * n
-    report.batch_steps += n
-    full = np.concatenate([current[:, None, :], states], axis=1)
-    expected = full[:, :1, 0] + dt * np.arange(n + 1)[None, :]
-    bad = ~np.isfinite(full).all(axis=2) | (np.abs(full[:, :, 0] - expected) > 0.5 * dt)
-    bad = np.logical_or.accumulate(bad | report.diverged[:, None], axis=1)
-    report.diverged |= bad[:, -1]
-    full[bad] = np.nan
-    if sensordata.shape[-1]:
-        report.record_sensors(np.where(bad[:, 1:, None], np.nan, sensordata))
-    return states, full
-
-
-#: ``geom_margin`` of a geom whose contacts are switched off on MJX and MuJoCo Warp: a contact would need a
-#: penetration deeper than 1000 km. Those backends can change ``geom_margin`` per trajectory at runtime but not
-#: ``geom_contype`` (MuJoCo docs, "Collision detection": a contact is generated when the distance is below the
-#: margin). MuJoCo C before 3.5 still generates the contact of a geom resting on a plane with this margin, so
-#: :class:`MujocoBatch` switches contacts with the collision filter instead (:func:`switch_contact_filter`).
-RELEASED_MARGIN = -1e6
-
-
-def switch_contact(released: dict[tuple[int, int], float], margins: np.ndarray, index: int, geom: int, on: bool
-                   ) -> None:
-    """:meth:`Batch.set_contact` through the margin (MJX, MuJoCo Warp): trajectory ``index``'s geom margins
-    ``margins`` (a writable view of its own, (ngeom,)) get :data:`RELEASED_MARGIN` at ``geom`` when its contact is
-    switched off, and the margin kept in ``released`` back when it is switched on again (switching twice either way
-    changes nothing)."""
-    if on:
-        if (index, geom) in released:
-            margins[geom] = released.pop((index, geom))
-    elif (index, geom) not in released:
-        released[index, geom] = float(margins[geom])
-        margins[geom] = RELEASED_MARGIN
-
-
-def switch_contact_filter(released: dict[tuple[int, int], tuple[int, int]], model: mujoco.MjModel, index: int,
-                          geom: int, on: bool) -> None:
-    """:meth:`Batch.set_contact` through the collision filter (MuJoCo C, every release): trajectory ``index``'s own
-    ``model`` gets ``geom_contype`` and ``geom_conaffinity`` 0 at ``geom`` when its contact is switched off (no pair
-    with it passes the filter; MuJoCo docs, "Collision detection"), and the pair kept in ``released`` back when it is
-    switched on again (switching twice either way changes nothing)."""
-    if on:
-        if (index, geom) in released:
-            model.geom_contype[geom], model.geom_conaffinity[geom] = released.pop((index, geom))
-    elif (index, geom) not in released:
-        released[index, geom] = (int(model.geom_contype[geom]), int(model.geom_conaffinity[geom]))
-        model.geom_contype[geom] = 0
-        model.geom_conaffinity[geom] = 0
-
-
-class Batch(Protocol):
-    """B trajectories stepped in native chunks, with per-trajectory events between chunks: the seam a backend
-    implements. States are full-physics vectors (nstate,) (MuJoCo docs, "State": ``mjSTATE_FULLPHYSICS``)."""
-
-    report: RolloutReport
-    #: The timestep of every trajectory, s.
-    timestep: float
-
-    def __enter__(self) -> Batch:
-        """The batch, ready to run (a backend may compile here)."""
-        ...
-
-    def __exit__(self, kind: type[BaseException] | None, error: BaseException | None,
-                 trace: TracebackType | None) -> None:
-        """Release the batch; ``report`` then holds the final states and the backend's warnings."""
-        ...
-
-    def run_chunk(self, nstep: int, control: np.ndarray | None = None) -> np.ndarray:
-        """Step every trajectory ``nstep`` steps from its current state (``control`` (B, nstep, nu): the ctrl of each
-        step); the recorded states (B, nstep + 1, nstate), row 0 the start, NaN from a divergence on (flagged in
-        ``report``). Each trajectory's current state becomes its last step."""
-        ...
-
-    def states(self) -> np.ndarray:
-        """The current states (B, nstate), a copy."""
-        ...
-
-    def set_states(self, indices: np.ndarray, states: np.ndarray) -> None:
-        """Continue trajectories ``indices`` (k,) from ``states`` (k, nstate); the others are untouched."""
-        ...
-
-    def set_contact(self, index: int, geom: int, on: bool) -> None:
-        """Switch geom ``geom``'s contacts off (none is generated) or back on, in trajectory ``index`` only."""
-        ...
-
-    def set_eq_active(self, index: int, eq: int, on: bool) -> None:
-        """Switch equality constraint ``eq`` off or on, in trajectory ``index`` only."""
-        ...
-
-    def set_actuator(self, index: int, actuator: int, *, bias: float | None = None, gear: float | None = None
-                     ) -> None:
-        """Trajectory ``index``'s actuator ``actuator``: its constant bias force (``biasprm[0]``) and/or its ``gear[0]``
-        (MuJoCo docs, "Actuation model")."""
-        ...
-
-    def set_friction(self, index: int, mu: float) -> None:
-        """Trajectory ``index``'s sliding friction coefficient: every geom's ``friction[0]`` (MuJoCo mixes a contact's
-        friction as the larger of its two geoms', so every contact of the trajectory then has ``mu``)."""
-        ...
-
-    def advance(self, index: int, state: np.ndarray, seconds: float) -> np.ndarray:
-        """``state`` (nstate,) after one step of ``seconds`` (a fraction of the timestep) of trajectory ``index``'s
-        model and integrator: how an event controller lands a state on its guard."""
-        ...
-
-
-class MujocoBatch:
-    """:class:`Batch` on MuJoCo C: ``mujoco.rollout``'s thread pool over ``models``. One model is shared by every
-    trajectory until an event changes a trajectory's: that trajectory then gets its own copy (the caller's model is
-    never changed). A list gives each trajectory its own model, changed in place by its events. A context manager
-    (the pool and, at exit, the data's warnings in ``report``)."""
-
-    def __init__(self, models: Sequence[mujoco.MjModel] | mujoco.MjModel, state0: np.ndarray, threads: int = 2
-                 ) -> None:
-        self._current = np.array(state0, dtype=float)
-        batch = self._current.shape[0]
-        self._shared = models if isinstance(models, mujoco.MjModel) else None
-        self.models: list[mujoco.MjModel] = [models] * batch if isinstance(models, mujoco.MjModel) else list(models)
-        first = self.models[0]
-        self._datas = [mujoco.MjData(first) for _ in range(max(1, threads))]
-        self._event_data: mujoco.MjData | None = None
-        self._released: dict[tuple[int, int], tuple[int, int]] = {}
-        self.timestep = first.opt.timestep
-        self._pool = mj_rollout.Rollout(nthread=threads)
-        self.report = RolloutReport(diverged=np.zeros(self._current.shape[0], bool))
-
-    def __enter__(self) -> MujocoBatch:
-        return self
-
-    def __exit__(self, kind: type[BaseException] | None, error: BaseException | None,
-                 trace: TracebackType | None) -> None:
-        self._pool.close()
-        self.report.final_state = self._current
-        self.report.warnings = _warning_lines(self._datas) + self.report.warnings
-
-    def _model(self, index: int) -> mujoco.MjModel:
-        """Trajectory ``index``'s own model, to change (copied from the shared one on its first change)."""
-        if self._shared is not None and self.models[index] is self._shared:
-            self.models[index] = copy.copy(self._shared)
-        return self.models[index]
-
-    def run_chunk(self, nstep: int, control: np.ndarray | None = None) -> np.ndarray:
-        models = self._shared if self._shared is not None and all(m is self._shared for m in self.models) \
-            else self.models
-        states, full = _native_chunk(self._pool, models, self._datas, self._current, nstep, self.timestep,
-                                     self.report, control)
-        self._current = states[:, -1, :].copy()
-        return full
-
-    def states(self) -> np.ndarray:
-        return self._current.copy()
-
-    def set_states(self, indices: np.ndarray, states: np.ndarray) -> None:
-        self._current[np.asarray(indices, int)] = states
-
-    def set_contact(self, index: int, geom: int, on: bool) -> None:
-        switch_contact_filter(self._released, self._model(index), index, geom, on)
-
-    def set_eq_active(self, index: int, eq: int, on: bool) -> None:
-        self._model(index).eq_active0[eq] = on
-
-    def set_actuator(self, index: int, actuator: int, *, bias: float | None = None, gear: float | None = None
-                     ) -> None:
-        model = self._model(index)
-        if bias is not None:
-            model.actuator_biasprm[actuator, 0] = bias
-        if gear is not None:
-            model.actuator_gear[actuator, 0] = gear
-
-    def set_friction(self, index: int, mu: float) -> None:
-        model = self._model(index)
-        model.geom_friction[:, 0] = mu
-
-    def advance(self, index: int, state: np.ndarray, seconds: float) -> np.ndarray:
-        """One event ``mjData`` serves the batch, set from ``state`` each time (its solver warmstart carries over)."""
-        model = self.models[index]
-        if self._event_data is None:
-            self._event_data = mujoco.MjData(model)
-        mujoco.mj_setState(model, self._event_data, state, STATE_SPEC)
-        fractional_step(model, self._event_data, seconds)
-        out = np.empty_like(state)
-        mujoco.mj_getState(model, self._event_data, out, STATE_SPEC)
-        return out
-
-
-def open_batch(model: mujoco.MjModel, state0: np.ndarray, *, threads: int, backend: str = "mujoco",
-               precision: str = "float64", batch: int = 0) -> Batch:
-    """The :class:`Batch` of ``backend`` (``mujoco``: :class:`MujocoBatch`; ``mjx``, ``warp``: their optional
-    packages, :mod:`mjpoincare.backends`) over ``model`` and the starts ``state0`` (B, nstate), as a context manager.
-    ``batch``: MJX and Warp step max(B, ``batch``) trajectories, the rest padding that is never seen, so that every
-    rollout of a run has one shape and compiles once (MuJoCo C compiles nothing and ignores it)."""
-    if backend == "mujoco":
-        return MujocoBatch(model, state0, threads)
-    from mjpoincare.backends import open_backend_batch
-
-    return open_backend_batch(backend, model, state0, precision=precision, size=batch)
 
 
 def _chunk_of(full: np.ndarray, nq: int, nv: int) -> Chunk:
@@ -453,17 +155,6 @@ def event_rollout(
                     break
         rollout.report.warnings += log
     return rollout.report
-
-
-def fractional_step(model: mujoco.MjModel, data: mujoco.MjData, seconds: float) -> None:
-    """Advance ``data`` by one step of ``seconds`` (a fraction of the timestep) with the model's own integrator:
-    how an event controller lands a state on its guard. The model's timestep is restored even if the step raises."""
-    dt = model.opt.timestep
-    model.opt.timestep = seconds
-    try:
-        mujoco.mj_step(model, data)
-    finally:
-        model.opt.timestep = dt
 
 
 def plain_clip(model: mujoco.MjModel, state0: np.ndarray, nstep: int) -> np.ndarray:

@@ -7,7 +7,7 @@ from collections.abc import Mapping
 
 import mujoco
 
-from mjpoincare import scenarios, seam_check
+from mjpoincare import backends, scenarios, seam_check
 from mjpoincare import settings as sim_settings
 from mjpoincare.analysis.checks import Check
 from mjpoincare.params import resolve, unknown
@@ -24,7 +24,7 @@ def resolve_inputs(name: str, assignments: Mapping[str, str], preset: str | None
     preset_name, overrides = scenario.preset(preset)
     params = resolve(scenario.params, {p.name: p.default for p in scenario.params}, assignments)
     settings = resolve(sim_settings.SETTINGS, {**sim_settings.DEFAULTS, **overrides}, assignments)
-    sim_settings.check_backend(settings)
+    backends.check_backend(settings)
     scenario.check_params(params)
     seam_check.require(scenario.mechanisms, str(settings["backend"]), str(settings["precision"]))
     return scenario, preset_name, params, settings

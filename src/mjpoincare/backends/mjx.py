@@ -5,7 +5,7 @@ time (``jit(...).lower(...).compile()``: a plain ``jax.jit`` recompiled when fed
 structure, batch size and chunk length, so batches of the same shapes compile once per process.
 
 Per-trajectory events change per-trajectory arrays passed to the compiled chunk: ``geom_margin`` (contacts released
-by :data:`mjpoincare.simulate.RELEASED_MARGIN`; MJX cannot change ``geom_contype`` at runtime), ``geom_friction``,
+by :data:`mjpoincare.seam.RELEASED_MARGIN`; MJX cannot change ``geom_contype`` at runtime), ``geom_friction``,
 ``actuator_biasprm``, ``actuator_gear`` and the data's ``eq_active``.
 
 Precision: ``float64`` runs everything the batch does (``put_model``, compiling, stepping, copying back) inside JAX's
@@ -28,9 +28,10 @@ import mujoco
 import numpy as np
 from mujoco import mjx
 
-from mjpoincare.backends import ArrayBatch, state_layout
+from mjpoincare.backends import state_layout
+from mjpoincare.backends.arrays import ArrayBatch
 from mjpoincare.params import ParameterError
-from mjpoincare.simulate import switch_contact
+from mjpoincare.seam import switch_contact
 
 #: Compiled chunks and fractional steps, by (kind, model structure, argument shapes): shared by every batch.
 _COMPILED: dict[tuple, Any] = {}
@@ -110,7 +111,7 @@ def _compiled(kind: str, function: Callable[..., Any], *args: Any) -> tuple[Any,
 
 
 class MjxBatch(ArrayBatch):
-    """:class:`mjpoincare.simulate.Batch` on MJX: B trajectories of ``model`` from the starts ``state0``
+    """:class:`mjpoincare.seam.Batch` on MJX: B trajectories of ``model`` from the starts ``state0``
     (B, nstate) in ``precision`` (``float64`` or ``float32``), padded to ``size`` (:class:`ArrayBatch`). The
     caller's model is never changed; every trajectory's event-changed fields live in this batch's arrays."""
 

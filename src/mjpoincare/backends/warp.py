@@ -7,7 +7,7 @@ the ``cpu`` device); a chunk of ``nstep`` steps replays it ``nstep / block`` tim
 first step (cached on disk across processes); that and the captures count as compile time.
 
 Per-trajectory events write per-world model arrays (``put_model``'s ``batch_sizes``): ``geom_margin`` (contacts
-released by :data:`mjpoincare.simulate.RELEASED_MARGIN`; ``geom_contype`` is filtered once in ``put_model`` and
+released by :data:`mjpoincare.seam.RELEASED_MARGIN`; ``geom_contype`` is filtered once in ``put_model`` and
 cannot change at runtime), ``geom_friction``, ``actuator_biasprm``, ``actuator_gear``, and the data's
 ``eq_active``. A fractional step runs on a separate one-world model and data.
 """
@@ -23,9 +23,10 @@ import mujoco_warp as mjw
 import numpy as np
 import warp as wp
 
-from mjpoincare.backends import ArrayBatch, state_layout
+from mjpoincare.backends import state_layout
+from mjpoincare.backends.arrays import ArrayBatch
 from mjpoincare.params import ParameterError
-from mjpoincare.simulate import switch_contact
+from mjpoincare.seam import switch_contact
 
 #: The per-trajectory model fields, batched over the worlds.
 BATCHED = ("geom_margin", "geom_friction", "actuator_biasprm", "actuator_gear")
@@ -111,7 +112,7 @@ def _overflow_lines(overflow: np.ndarray) -> list[str]:
 
 
 class WarpBatch(ArrayBatch):
-    """:class:`mjpoincare.simulate.Batch` on MuJoCo Warp: B worlds of ``model`` from the starts ``state0``
+    """:class:`mjpoincare.seam.Batch` on MuJoCo Warp: B worlds of ``model`` from the starts ``state0``
     (B, nstate), padded to ``size`` (:class:`ArrayBatch`), on Warp's default device. The caller's model is never
     changed."""
 

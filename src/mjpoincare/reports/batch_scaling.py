@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from mjpoincare.simulate import open_batch
+from mjpoincare.backends import open_batch
 
 
 def measure(scenario: str, backend: str, precision: str, sizes: Sequence[int], steps: int) -> dict[str, Any]:

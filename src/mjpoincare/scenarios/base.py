@@ -19,8 +19,8 @@ import numpy as np
 
 from mjpoincare.analysis.checks import Check
 from mjpoincare.params import Param, ParameterError, Value
+from mjpoincare.seam import RolloutReport
 from mjpoincare.settings import SEARCH_SPACE, Dimension
-from mjpoincare.simulate import RolloutReport
 
 Values = Mapping[str, Value]
 T = TypeVar("T")

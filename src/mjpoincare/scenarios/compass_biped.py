@@ -34,6 +34,7 @@ from mjpoincare.analysis.eigenvalues import match_eigenvalues
 from mjpoincare.analysis.returnmap import fit_return_map, regress_at, sample_pairs
 from mjpoincare.analysis.start_designs import sphere_offsets
 from mjpoincare.analysis.theory import compass_biped as theory
+from mjpoincare.backends.mujoco_c import MujocoBatch
 from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios.base import (
@@ -49,15 +50,9 @@ from mjpoincare.scenarios.base import (
     at_preset,
 )
 from mjpoincare.scenarios.compass_gait_controller import GaitController
+from mjpoincare.seam import STATE_SPEC, RolloutReport
 from mjpoincare.settings import rollout_options, search_space
-from mjpoincare.simulate import (
-    STATE_SPEC,
-    MujocoBatch,
-    RolloutReport,
-    event_clip,
-    event_rollout,
-    initial_states,
-)
+from mjpoincare.simulate import event_clip, event_rollout, initial_states
 
 PARAMS: tuple[Param, ...] = (
     Param("m_h", 10.0, "hip mass, kg", float, 0.0, 1e6, low_open=True),

@@ -60,8 +60,9 @@ from mjpoincare.scenarios.base import (
 )
 from mjpoincare.scenarios.compass_biped_friction_stance import stance_checks
 from mjpoincare.scenarios.compass_gait_controller import FrictionGaitController
+from mjpoincare.seam import RolloutReport
 from mjpoincare.settings import rollout_options
-from mjpoincare.simulate import KeptRows, RolloutReport, event_rollout, initial_states
+from mjpoincare.simulate import KeptRows, event_rollout, initial_states
 
 GAITS = ("a", "b", "c", "i", "ii", "iii")
 #: 002's friction per gait when ``mu`` = 0: A above mu_c (any mu >= 0.175 is the same gait), B 0.14 (Fig. 4.2a),

@@ -1,5 +1,5 @@
 """The compass bipeds' gait controller: the contact protocol of the exact hybrid model, run through the rollout
-seam (:class:`mjpoincare.simulate.Batch`, per trajectory) between MuJoCo's native chunks.
+seam (:class:`mjpoincare.seam.Batch`, per trajectory) between MuJoCo's native chunks.
 
 The swing foot's contact is off from heel strike until the foot is ahead of the stance foot and clear of the
 ground (it passes through the slope mid-swing, as the exact model's foot does, Kiša 2020 Sec. 4.1), and the
@@ -20,7 +20,7 @@ from mjpoincare.analysis.sections import level_crossings
 from mjpoincare.analysis.theory import compass_biped_friction as friction
 from mjpoincare.analysis.theory.compass_biped import CompassBiped
 from mjpoincare.scenarios.base import JointIndex
-from mjpoincare.simulate import Batch, Chunk
+from mjpoincare.seam import Batch, Chunk
 
 ENABLE_AHEAD = 0.05  # swing-foot contact switches on once the foot is this far (x l) ahead of the stance foot
 ENABLE_CLEAR = 2e-3  # ... and this high (x l) above the slope

@@ -43,8 +43,9 @@ from mjpoincare.scenarios.base import (
     Values,
     at_preset,
 )
+from mjpoincare.seam import Chunk, RolloutReport
 from mjpoincare.settings import rollout_options, search_space
-from mjpoincare.simulate import Chunk, RolloutReport, initial_states, plain_clip, rollout_batch
+from mjpoincare.simulate import initial_states, plain_clip, rollout_batch
 
 PARAMS: tuple[Param, ...] = (
     Param("spokes", 8, "number of spokes n (alpha = pi/n)", int, 3, 64),

@@ -52,10 +52,7 @@ from mjpoincare.scenarios.base import (
 )
 from mjpoincare.scenarios.rimless_wheel_3d_ideal import IdealImpactController
 from mjpoincare.settings import search_space
-from mjpoincare.simulate import (
-    event_clip,
-    plain_clip,
-)
+from mjpoincare.simulate import event_clip, plain_clip
 
 MODES = ("contact", "ideal")
 

@@ -17,7 +17,7 @@ from mjpoincare.analysis.sections import Crossings, level_crossings
 from mjpoincare.analysis.theory import rimless_wheel_3d_hybrid as hybrid
 from mjpoincare.analysis.theory.rimless_wheel_3d import RimlessWheel3D
 from mjpoincare.analysis.theory.rimless_wheel_3d_section import section_state
-from mjpoincare.simulate import Batch, Chunk
+from mjpoincare.seam import Batch, Chunk
 
 
 class IdealImpactController:

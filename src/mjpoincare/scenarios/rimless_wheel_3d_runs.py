@@ -20,8 +20,9 @@ from mjpoincare.analysis.theory import rimless_wheel_3d_hybrid as hybrid
 from mjpoincare.analysis.theory.rimless_wheel_3d_section import fit_map, section_state
 from mjpoincare.scenarios.base import JointIndex, Values
 from mjpoincare.scenarios.rimless_wheel_3d_ideal import IdealImpactController
+from mjpoincare.seam import Chunk, RolloutReport
 from mjpoincare.settings import rollout_options
-from mjpoincare.simulate import Chunk, RolloutReport, event_rollout, initial_states, rollout_batch
+from mjpoincare.simulate import event_rollout, initial_states, rollout_batch
 
 FIT_STARTS = 24  # random directions around the planar cycle (plus the cycle itself)
 FIT_IMPACTS = 12  # mid-stance samples per fitting trajectory

@@ -27,7 +27,7 @@ from mjpoincare.scenarios.rimless_wheel_friction import (
     reference_gait,
     run_batch,
 )
-from mjpoincare.simulate import RolloutReport
+from mjpoincare.seam import RolloutReport
 
 # --- regions of attraction (002 Sec. 3.4, eq 26, Fig. 3.8) --------------------------------------------------------
 

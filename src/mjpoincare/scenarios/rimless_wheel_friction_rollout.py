@@ -22,8 +22,9 @@ from mjpoincare.analysis.theory import rimless_wheel_friction as theory
 from mjpoincare.mjcompat import efc_diag_inverse_inertia
 from mjpoincare.params import ParameterError
 from mjpoincare.scenarios.base import JointIndex, Values
+from mjpoincare.seam import Batch, Chunk, RolloutReport
 from mjpoincare.settings import rollout_options
-from mjpoincare.simulate import Batch, Chunk, RolloutReport, event_rollout
+from mjpoincare.simulate import event_rollout
 
 FIT_OFFSETS = (-0.12, -0.06, 0.0, 0.06, 0.12)  # relative offsets of theta_dot0 around the gait's post-impact state
 SLIP_START = 0.05  # x_dot0 of the slipping start checked for its settled type (a D- transient at mu = 0.3)

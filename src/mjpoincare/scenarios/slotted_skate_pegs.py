@@ -15,7 +15,7 @@ import mujoco
 import numpy as np
 
 from mjpoincare.scenarios.base import JointIndex, Values
-from mjpoincare.simulate import Batch, Chunk
+from mjpoincare.seam import Batch, Chunk
 
 
 class PegController:

@@ -1,0 +1,88 @@
+"""What the array engines' batches share (MJX, MuJoCo Warp): the current states of the trajectories and of the
+padding, the bookkeeping of a finished chunk and the flagging of a divergence (:class:`mjpoincare.seam.Batch`)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from mjpoincare.seam import RolloutReport
+
+#: MuJoCo's bound on a position or velocity (``mjMAXVAL``): beyond it MuJoCo C warns and resets the data, which
+#: :class:`~mjpoincare.backends.mujoco_c.MujocoBatch` flags as a divergence; an engine that does not reset is flagged
+#: the same.
+MAXVAL = 1e10
+
+def flag_divergence(current: np.ndarray, states: np.ndarray, diverged: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The recorded chunk (B, n + 1, nstate) from the start ``current`` (B, nstate) and the states after each step
+    ``states`` (B, n, nstate), NaN from a divergence on (non-finite or beyond :data:`MAXVAL`: the backends do not
+    reset), and its mask (B, n + 1); ``diverged`` (B,) is updated in place."""
+    full = np.concatenate([current[:, None, :], states], axis=1)
+    with np.errstate(invalid="ignore"):
+        bad = ~np.isfinite(full).all(axis=2) | (np.abs(full[:, :, 1:]) > MAXVAL).any(axis=2)
+    bad = np.logical_or.accumulate(bad | diverged[:, None], axis=1)
+    diverged |= bad[:, -1]
+    full[bad] = np.nan
+    return full, bad
+
+
+class ArrayBatch:
+    """What the array backends' batches share (:class:`mjpoincare.seam.Batch`): the current states of the B
+    trajectories and of the padding, and the bookkeeping of a finished chunk.
+
+    Padding: a batch opened with ``size`` > B steps ``size`` trajectories, the B starts and ``size`` - B copies of
+    the last start, so that every rollout of a run has one shape and MJX and Warp compile once (the ``batch``
+    setting). The padding is never seen: chunks, states, divergence flags, sensor extremes and step counts are the B
+    trajectories' only; it takes no events (its contacts, constraints and actuators stay as the model has them).
+    """
+
+    #: The current states (size, nstate): the B trajectories' first, then the padding's.
+    _current: np.ndarray
+    #: Divergence flags of every row of ``_current``.
+    _diverged: np.ndarray
+    #: B, the trajectories the caller asked for.
+    _real: int
+    report: RolloutReport
+
+    def _start(self, state0: np.ndarray, size: int) -> int:
+        """Hold the starts ``state0`` (B, nstate), padded to ``size`` rows when ``size`` > B; the number of rows."""
+        real = state0.shape[0]
+        rows = max(real, size)
+        self._real = real
+        self._current = np.concatenate([state0, np.repeat(state0[-1:], rows - real, axis=0)]).astype(float)
+        self._diverged = np.zeros(rows, bool)
+        self.report = RolloutReport(diverged=np.zeros(real, bool))
+        return rows
+
+    def states(self) -> np.ndarray:
+        return self._current[: self._real].copy()
+
+    def set_states(self, indices: np.ndarray, states: np.ndarray) -> None:
+        self._current[np.asarray(indices, int)] = states
+
+    def _controls(self, control: np.ndarray | None, nstep: int, nu: int) -> np.ndarray:
+        """The ctrl of every row and step (rows, nstep, nu): the B trajectories' ``control`` (B, nstep, nu), zero for
+        the padding (and for everyone when ``control`` is None)."""
+        out = np.zeros((self._current.shape[0], nstep, nu))
+        if control is not None:
+            out[: self._real] = control
+        return out
+
+    def _finish(self) -> None:
+        """On leaving the batch: the B trajectories' last states."""
+        self.report.final_state = self.states()
+
+    def _finish_chunk(self, states: np.ndarray, sensordata: np.ndarray, nstep: int, seconds: float) -> np.ndarray:
+        """Count the chunk's ``nstep`` steps and ``seconds``, flag divergences (:func:`flag_divergence`), fold the
+        sensor readings ``sensordata`` (rows, nstep, nsensordata) into the report's extremes (divergent rows left
+        out) and continue from the last states of ``states`` (rows, nstep, nstate); the B trajectories' recorded
+        chunk (B, nstep + 1, nstate)."""
+        real = self._real
+        self.report.wall_s += seconds
+        self.report.steps += real * nstep
+        self.report.batch_steps += nstep
+        full, bad = flag_divergence(self._current, states, self._diverged)
+        self.report.diverged = self._diverged[:real].copy()
+        if sensordata.shape[-1]:
+            self.report.record_sensors(np.where(bad[:real, 1:, None], np.nan, sensordata[:real]))
+        self._current = states[:, -1, :].copy()
+        return full[:real]
