@@ -23,10 +23,13 @@ from mjpoincare.analysis.eigenvalues import match_eigenvalues
 from mjpoincare.analysis.theory import compass_biped as compass_theory
 from mjpoincare.analysis.theory import rimless_wheel as rimless_theory
 
+from mjpoincare import scenarios
 from mjpoincare.cli import main
 from mjpoincare.peers import compare, drake
+from mjpoincare.scenarios import compass_biped_drake, rimless_wheel_drake
 from mjpoincare.scenarios.compass_biped import biped
 from mjpoincare.scenarios.rimless_wheel import wheel
+from mjpoincare.scenarios.rimless_wheel_drake import point_mass_wheel
 from mjpoincare.validation import resolve_inputs
 
 ACCURACY = drake.REFERENCE_ACCURACY  # runge_kutta5 at target accuracy 1e-12
@@ -42,8 +45,8 @@ MULTIPLIER_TOL = 10 * ACCURACY / drake.difference_step(ACCURACY)
 # only (measured 0).
 IMPACT_TOL = 1e-14
 
-RIMLESS_CASES = [a for s, a in compare.AGREEMENT_CASES if s == "rimless-wheel"]
-COMPASS_CASES = [a for s, a in compare.AGREEMENT_CASES if s == "compass-biped"]
+RIMLESS_CASES = rimless_wheel_drake.AGREEMENT_CASES
+COMPASS_CASES = compass_biped_drake.AGREEMENT_CASES
 
 
 @pytest.fixture
@@ -60,7 +63,7 @@ def _params(scenario: str, assignments: dict[str, str]) -> dict:
 
 @functools.cache
 def _rimless(items: tuple[tuple[str, str], ...]) -> drake.RimlessWheelGait:
-    return drake.rimless_wheel(_params("rimless-wheel", dict(items)))
+    return drake.rimless_wheel(point_mass_wheel(_params("rimless-wheel", dict(items))))
 
 
 @pytest.mark.usefixtures("needs_drake")
@@ -68,7 +71,7 @@ def _rimless(items: tuple[tuple[str, str], ...]) -> drake.RimlessWheelGait:
                          "defaults")
 def test_rimless_wheel_matches_theory_at_kappa_zero(assignments: dict[str, str]) -> None:
     gait = _rimless(tuple(assignments.items()))
-    w = drake.point_mass_wheel(_params("rimless-wheel", assignments))
+    w = point_mass_wheel(_params("rimless-wheel", assignments))
     star = rimless_theory.rolling_fixed_point(w)
     assert gait.accuracy == ACCURACY
     assert abs(gait.omega_post_impact - star) / star <= STATE_TOL
@@ -83,7 +86,7 @@ def test_rimless_wheel_kappa_floor_is_the_whole_difference() -> None:
     """Drake's omega+ minus the scenario's analytic one (kappa = 1e-4) is the theory's own kappa shift."""
     p = _params("rimless-wheel", {})
     floored = rimless_theory.rolling_fixed_point(wheel(p))
-    predicted = rimless_theory.rolling_fixed_point(drake.point_mass_wheel(p)) - floored
+    predicted = rimless_theory.rolling_fixed_point(point_mass_wheel(p)) - floored
     assert abs(predicted) > 1e4 * STATE_TOL  # a difference the check must name, far above the agreement
     assert abs((_rimless(()).omega_post_impact - floored) - predicted) <= STATE_TOL * floored
 
@@ -93,8 +96,8 @@ def test_rimless_wheel_kappa_floor_is_the_whole_difference() -> None:
                          "defaults")
 def test_compass_gait_matches_theory(assignments: dict[str, str]) -> None:
     p = _params("compass-biped", assignments)
-    cycle = drake.compass_gait(p)
     bp = biped(p)
+    cycle = drake.compass_gait(bp)
     x_star = compass_theory.fixed_point(bp)
     assert np.max(np.abs(np.array(cycle.fixed_point) - x_star)) <= STATE_TOL
     lam = compass_theory.eigenvalues(bp, x_star, eps=drake.difference_step(ACCURACY))
@@ -130,7 +133,7 @@ def test_compare_block_and_table_for_the_compass_gait() -> None:
                     unit="", why=""),
               Check(name="stable", analytic=0.0, simulated=0.0, error=0.0, tolerance=0.0, kind="count", unit="",
                     why="")]
-    block = compare.compare("compass-biped", p, checks)
+    block = compare.compare(scenarios.get("compass-biped").peers[0], p, checks)
     assert set(block["checks"]) == {"fixed_point", "eigenvalues"}
     assert block["checks"]["fixed_point"]["difference"] <= STATE_TOL
     # the analytic eigenvalues use the theory's own step 1e-6: its truncation (measured 2.6e-8) adds to the tolerance
@@ -143,8 +146,9 @@ def test_compare_block_and_table_for_the_compass_gait() -> None:
 @pytest.mark.parametrize(("scenario", "metric"), [("rimless-wheel", "omega_post_impact_error"),
                                                   ("compass-biped", "fixed_point_error")])
 def test_bench_rows_tighten_with_accuracy(scenario: str, metric: str) -> None:
-    text, block = compare.bench_block(scenario, _params(scenario, {}))
-    assert block is not None and "Drake" in text and f"accuracy={compare.BENCH_ACCURACIES[0]:g}" in text
+    peers = scenarios.get(scenario).peers
+    text, block = compare.bench_block(peers, _params(scenario, {}))
+    assert block is not None and "Drake" in text and f"accuracy={peers[0].bench_accuracies[0]:g}" in text
     errors = [row[metric] for row in block["rows"]]
     assert errors[-1] < errors[0]
 
@@ -171,5 +175,5 @@ def test_missing_pydrake_names_the_extra(monkeypatch: pytest.MonkeyPatch, capsys
     assert main(["validate", "compass-biped", "--peer", "drake", "--json", "-"]) == 2
     err = capsys.readouterr().err
     assert "mjpoincare[peers]" in err and err.count("\n") == 1, err
-    text, block = compare.bench_block("rimless-wheel", _params("rimless-wheel", {}))
+    text, block = compare.bench_block(scenarios.get("rimless-wheel").peers, _params("rimless-wheel", {}))
     assert block is None and "mjpoincare[peers]" in text and text.strip().count("\n") == 0

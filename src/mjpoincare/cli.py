@@ -42,18 +42,16 @@ def _cmd_validate(args: argparse.Namespace) -> int:
     from mjpoincare import scenarios
     from mjpoincare.api import validate
     from mjpoincare.result import check_output_path, write_json
-    from mjpoincare.validation import resolve_inputs
+    from mjpoincare.validation import peer_of, resolve_inputs
 
     names = args.scenario or list(scenarios.DEFAULT_SCENARIOS)
     assignments = parse_assignments(args.set)
     check_output_path(args.json, "--json")  # before the inputs: resolving them self-tests the seam (a tiny rollout)
     check_output_path(args.report, "--report", directory=True)
     for name in names:  # refuse bad input before any simulation or file
-        _, _, params, _ = resolve_inputs(name, assignments, args.preset)
+        scenario, _, params, _ = resolve_inputs(name, assignments, args.preset)
         if args.peer:
-            from mjpoincare.peers.compare import check_peer
-
-            check_peer(args.peer, name, params)
+            peer_of(scenario, args.peer, params)
         if args.extrapolate:
             from mjpoincare.extrapolate import coarse_grids
 

@@ -15,6 +15,8 @@ from typing import Any
 import numpy
 
 Value = float | int | str
+#: Resolved parameters or settings by name.
+Values = Mapping[str, Value]
 
 
 class ParameterError(ValueError):
@@ -113,15 +115,67 @@ def unknown(names: Iterable[str], *declared: Sequence[Param]) -> None:
             raise ParameterError(f"unknown parameter {name!r}; known: {', '.join(known)}")
 
 
+def _span(start: str, stop: str, count: str) -> list[str]:
+    """``count`` evenly spaced values from ``start`` to ``stop`` (both included), each as text of 10 significant
+    digits (ValueError for text that is not a number or a count)."""
+    return [f"{v:.10g}" for v in numpy.linspace(float(start), float(stop), int(count))]
+
+
 def parse_values(text: str) -> list[str]:
     """``0.07,0.072,0.074`` or ``0.07:0.076:4`` (start:stop:count) -> value strings."""
     if text.count(":") == 2:
-        start, stop, count = text.split(":")
         try:
-            return [f"{v:.10g}" for v in numpy.linspace(float(start), float(stop), int(count))]
+            return _span(*text.split(":"))
         except ValueError:
             raise ParameterError(f"--values START:STOP:COUNT expects numbers (got {text!r})") from None
     values = [v.strip() for v in text.split(",") if v.strip()]
     if not values:
         raise ParameterError("--values needs at least one value")
     return values
+
+
+def grid_syntax(axes: Sequence[Param]) -> str:
+    """The ``--grid`` syntax over ``axes``, e.g. ``x=START:STOP:N,y=START:STOP:N``."""
+    return ",".join(f"{axis.name}=START:STOP:N" for axis in axes)
+
+
+def parse_grid(text: str, axes: Sequence[Param]) -> dict[str, numpy.ndarray]:
+    """A region map's ``--grid``: the values along each of its axes.
+
+    Args:
+        text: every axis once, comma-separated, as ``NAME=START:STOP:N`` (:func:`grid_syntax`), e.g.
+            ``x=-1.5:0.5:30,y=0.05:1:30``: N >= 2 values from START to STOP, both included, each rounded to 10
+            significant digits as a ``--values`` range is.
+        axes: the map's axes, each a :class:`Param` naming the axis, what it is (``doc``) and its bounds.
+
+    Returns:
+        Axis name -> its values, shape (N,), in the order of ``axes``.
+
+    Raises:
+        ParameterError: one line, on axes other than ``axes``, on a range that is not START:STOP:N with N >= 2
+            (naming the axis), and on a value outside its axis's bounds (naming the axis and the bound).
+    """
+    specs = {}
+    for part in text.split(","):
+        name, _, spec = part.partition("=")
+        specs[name.strip()] = spec.strip()
+    if set(specs) != {axis.name for axis in axes}:
+        raise ParameterError(f"--grid expects {grid_syntax(axes)} with N >= 2 (got {text!r})")
+    grid = {}
+    for axis in axes:
+        spec = specs[axis.name]
+        try:
+            values = numpy.array([float(v) for v in _span(*spec.split(":"))])
+        except (TypeError, ValueError):  # TypeError: not three fields
+            values = numpy.zeros(0)
+        if values.size < 2 or not numpy.isfinite(values).all():
+            raise ParameterError(f"--grid {axis.name} expects START:STOP:N with numbers START, STOP and an integer "
+                                 f"N >= 2 (got {axis.name}={spec})")
+        for value in values:
+            try:
+                axis.coerce(float(value))
+            except ParameterError:
+                raise ParameterError(f"--grid {axis.name} ({axis.doc}) must be {axis.range_text()} "
+                                     f"(got {value:g})") from None
+        grid[axis.name] = values
+    return grid

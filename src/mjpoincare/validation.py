@@ -10,11 +10,13 @@ import mujoco
 from mjpoincare import backends, scenarios, seam_check
 from mjpoincare import settings as sim_settings
 from mjpoincare.analysis.checks import Check
-from mjpoincare.params import resolve, unknown
+from mjpoincare.params import ParameterError, Value, resolve, unknown
+from mjpoincare.peers import Peer
+from mjpoincare.peers.compare import compare
 from mjpoincare.result import Result
 
 
-def resolve_inputs(name: str, assignments: Mapping[str, str], preset: str | None
+def resolve_inputs(name: str, assignments: Mapping[str, Value], preset: str | None
                    ) -> tuple[scenarios.Scenario, str, dict, dict]:
     """Scenario, preset name, checked parameters and settings; bad input raises ParameterError, and a seam mechanism
     the scenario uses that fails its self-test on the loaded MuJoCo and backend raises
@@ -30,6 +32,17 @@ def resolve_inputs(name: str, assignments: Mapping[str, str], preset: str | None
     return scenario, preset_name, params, settings
 
 
+def peer_of(scenario: scenarios.Scenario, name: str, params: Mapping[str, object]) -> Peer:
+    """The scenario's peer called ``name``, its parameters checked against the peer's model; one line naming the
+    scenarios that have such a peer when this one has none (before any simulation)."""
+    for peer in scenario.peers:
+        if peer.name == name:
+            peer.check_params(params)
+            return peer
+    others = [s.name for s in scenarios.REGISTRY.values() if any(peer.name == name for peer in s.peers)]
+    raise ParameterError(f"--peer {name} is for {', '.join(others) or 'no scenario'} only (got {scenario.name})")
+
+
 def stability_check(diverged: int, warnings: int) -> Check:
     """A run is stable when no trajectory diverged (NaN or MuJoCo reset) and MuJoCo raised no warning."""
     count = float(diverged + warnings)
@@ -37,15 +50,12 @@ def stability_check(diverged: int, warnings: int) -> Check:
                  why="diverged trajectories + MuJoCo warnings: any is a failure, never silent")
 
 
-def run_validation(name: str, assignments: Mapping[str, str] | None = None, preset: str | None = None,
+def run_validation(name: str, assignments: Mapping[str, Value] | None = None, preset: str | None = None,
                    seed: int = 0, peer: str | None = None) -> Result:
     """Validate scenario ``name`` with ``--set``-style ``assignments`` under ``preset``; with ``peer``, add that
     simulator's value of each check (:func:`mjpoincare.peers.compare.compare`) as ``extras["peer"]``."""
     scenario, preset_name, params, settings = resolve_inputs(name, assignments or {}, preset)
-    if peer:
-        from mjpoincare.peers.compare import check_peer
-
-        check_peer(peer, scenario.name, params)
+    outside = peer_of(scenario, peer, params) if peer else None
     start = time.perf_counter()
     evaluation = scenario.evaluate(params, settings, preset_name, seed)
     wall = time.perf_counter() - start
@@ -60,10 +70,8 @@ def run_validation(name: str, assignments: Mapping[str, str] | None = None, pres
         extras["diagnostics"] = {"max_penetration_m": max(0.0, -float(report.sensor_min[0])),
                                  "max_kinetic_energy_J": float(report.sensor_max[1]),
                                  "initial_kinetic_energy_J": float(report.sensor_first[1])}
-    if peer:
-        from mjpoincare.peers.compare import compare
-
-        extras["peer"] = compare(scenario.name, params, checks)
+    if outside is not None:
+        extras["peer"] = compare(outside, params, checks)
     return Result(scenario=scenario.name, preset=preset_name, seed=seed, params=params,
                   settings=sim_settings.as_json(settings), mujoco_version=mujoco.__version__, checks=checks,
                   timing=timing, warnings=report.warnings, diverged=diverged, extras=extras)

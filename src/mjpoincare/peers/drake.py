@@ -18,9 +18,11 @@ the guard has crossed 0 (Drake's witness has then located the impact in time to 
 ``Simulator.AdvancePendingEvents`` applies Drake's reset. The gait is a root of that map (MINPACK hybrd) and its
 multipliers are central finite differences of it. The suite's theory supplies only the root search's starting guess.
 
-What Drake's models cannot represent is refused (:func:`check_params`): a hub with inertia (gyration > 0) and an
-ankle torque. mu enters neither model: both assume a sticking stance foot, which each scenario's own parameter check
-has already required of mu.
+Drake's models are given as the suite's theory parameters (:class:`~mjpoincare.analysis.theory.rimless_wheel.
+RimlessWheel`, :class:`~mjpoincare.analysis.theory.compass_biped.CompassBiped`); what they cannot represent is refused
+with ValueError: a hub with inertia (gyration > 0) and an ankle torque. mu enters neither model: both assume a
+sticking stance foot. The scenarios map their parameters onto these models and say so in their ``peers`` field
+(:class:`mjpoincare.peers.Peer`).
 """
 
 from __future__ import annotations
@@ -40,12 +42,10 @@ from scipy.optimize import fsolve
 from mjpoincare.analysis.eigenvalues import sort_eigenvalues
 from mjpoincare.analysis.theory import compass_biped as compass_theory
 from mjpoincare.analysis.theory import rimless_wheel as rimless_theory
-from mjpoincare.params import ParameterError
-from mjpoincare.scenarios.base import Values
-from mjpoincare.scenarios.compass_biped import biped
+from mjpoincare.params import ParameterError, Values
+from mjpoincare.peers import Peer, PeerValues
 
 NAME = "drake"
-SCENARIOS: tuple[str, ...] = ("rimless-wheel", "compass-biped")
 INSTALL = "pip install 'mjpoincare[peers]'"
 SCHEME = "runge_kutta5"
 #: Target accuracy of the reference run (Drake's integrator error control and witness isolation).
@@ -78,20 +78,6 @@ def version() -> str:
         return importlib.metadata.version("drake")
     except importlib.metadata.PackageNotFoundError:
         return "unknown"
-
-
-def check_params(scenario: str, p: Values) -> None:
-    """Refuse, before any simulation, a scenario Drake has no model of, a missing pydrake, or a parameter Drake's
-    model cannot represent."""
-    if scenario not in SCENARIOS:
-        raise ParameterError(f"--peer drake is for {', '.join(SCENARIOS)} only (got {scenario})")
-    require()
-    if scenario == "rimless-wheel" and float(p["gyration"]) != 0.0:
-        raise ParameterError(f"gyration must be 0 with --peer drake: Drake's RimlessWheel has a point-mass hub "
-                             f"(got {p['gyration']})")
-    if scenario == "compass-biped" and float(p["tau_ankle"]) != 0.0:
-        raise ParameterError(f"tau_ankle must be 0 with --peer drake: Drake's CompassGait has no ankle torque "
-                             f"(got {p['tau_ankle']})")
 
 
 @dataclass(frozen=True)
@@ -188,19 +174,19 @@ def _simulator(system: Any, accuracy: float, scheme: str, time_scale: float) -> 
     return simulator
 
 
-def _rimless_step_map(p: Values, accuracy: float, scheme: str) -> tuple[_StepMap, float, float]:
-    """Drake's RimlessWheel with the scenario's parameters: its step map, its slope and alpha."""
+def _rimless_step_map(w: rimless_theory.RimlessWheel, accuracy: float, scheme: str) -> tuple[_StepMap, float, float]:
+    """Drake's RimlessWheel with the parameters of ``w``: its step map, its slope and alpha."""
     from pydrake.examples import RimlessWheel
 
     wheel = RimlessWheel()
-    length, gravity = float(p["leg_length"]), float(p["gravity"])
+    length, gravity = w.leg_length, w.gravity
     simulator = _simulator(wheel, accuracy, scheme, math.sqrt(length / gravity))
     params = simulator.get_mutable_context().get_mutable_numeric_parameter(0)
-    params.set_mass(float(p["mass"]))
+    params.set_mass(w.mass)
     params.set_length(length)
     params.set_gravity(gravity)
-    params.set_number_of_spokes(float(int(p["spokes"])))
-    params.set_slope(float(p["slope"]))
+    params.set_number_of_spokes(float(w.spokes))
+    params.set_slope(w.slope)
     slope, alpha = params.slope(), wheel.calc_alpha(params)
 
     def step_forward(x: NDArray[np.float64]) -> float:  # Drake's "step forward" witness
@@ -209,22 +195,22 @@ def _rimless_step_map(p: Values, accuracy: float, scheme: str) -> tuple[_StepMap
     return _StepMap(simulator, step_forward, MAX_STEP * math.sqrt(length / gravity)), slope, alpha
 
 
-def _compass_step_map(p: Values, accuracy: float, scheme: str) -> tuple[_StepMap, float]:
-    """Drake's CompassGait with the scenario's parameters (hip torque as a fixed input): its step map and slope."""
+def _compass_step_map(bp: compass_theory.CompassBiped, accuracy: float, scheme: str) -> tuple[_StepMap, float]:
+    """Drake's CompassGait with the parameters of ``bp`` (hip torque as a fixed input): its step map and slope."""
     from pydrake.examples import CompassGait
 
     gait = CompassGait()
-    length, gravity = float(p["a"]) + float(p["b"]), float(p["gravity"])
+    length, gravity = bp.a + bp.b, bp.gravity
     simulator = _simulator(gait, accuracy, scheme, math.sqrt(length / gravity))
     context = simulator.get_mutable_context()
     params = context.get_mutable_numeric_parameter(0)
-    params.set_mass_hip(float(p["m_h"]))
-    params.set_mass_leg(float(p["m_l"]))
+    params.set_mass_hip(bp.m_h)
+    params.set_mass_leg(bp.m_l)
     params.set_length_leg(length)
-    params.set_center_of_mass_leg(float(p["b"]))  # Drake measures the leg's mass from the hip: 003's b
+    params.set_center_of_mass_leg(bp.b)  # Drake measures the leg's mass from the hip: 003's b
     params.set_gravity(gravity)
-    params.set_slope(float(p["slope"]))
-    gait.get_input_port(0).FixValue(context, [float(p["tau_hip"])])
+    params.set_slope(bp.slope)
+    gait.get_input_port(0).FixValue(context, [bp.tau_hip])
     slope = params.slope()
 
     def foot_collision(x: NDArray[np.float64]) -> float:  # Drake's "foot collision" witness
@@ -267,19 +253,27 @@ def _jacobian(section_map: Callable[[NDArray[np.float64]], NDArray[np.float64]],
     return jac
 
 
-def rimless_wheel(p: Values, guess: float | None = None, accuracy: float = REFERENCE_ACCURACY,
+def rimless_wheel(w: rimless_theory.RimlessWheel, guess: float | None = None, accuracy: float = REFERENCE_ACCURACY,
                   scheme: str = SCHEME) -> RimlessWheelGait:
-    """Drake's rolling gait of the rimless wheel with the scenario's parameters ``p`` (gyration must be 0).
+    """Drake's rolling gait of the rimless wheel ``w``.
 
-    ``guess``: the starting post-impact speed of the root search (default: GUESS_OFFSET above the suite's theory at
-    kappa = 0, 003 eq 3.13). The section is 003's post-impact one, theta = gamma - alpha, omega+ > 0.
+    Args:
+        w: the wheel; its hub must be a point mass (gyration 0, Drake's model), else ValueError.
+        guess: the starting post-impact speed of the root search (default: GUESS_OFFSET above the suite's theory,
+            003 eq 3.13). The section is 003's post-impact one, theta = gamma - alpha, omega+ > 0.
+        accuracy: the integrator's target accuracy.
+        scheme: Drake's integration scheme.
+
+    Returns:
+        The gait (:class:`RimlessWheelGait`).
     """
-    check_params("rimless-wheel", p)
+    if w.gyration != 0.0:
+        raise ValueError(f"Drake's RimlessWheel has a point-mass hub (got gyration {w.gyration})")
     if guess is None:
-        guess = (1.0 + GUESS_OFFSET) * rimless_theory.rolling_fixed_point(point_mass_wheel(p))
+        guess = (1.0 + GUESS_OFFSET) * rimless_theory.rolling_fixed_point(w)
     _import_drake()
     start = time.perf_counter()
-    step_map, slope, alpha = _rimless_step_map(p, accuracy, scheme)
+    step_map, slope, alpha = _rimless_step_map(w, accuracy, scheme)
 
     def section_map(z: NDArray[np.float64]) -> NDArray[np.float64]:
         return step_map([slope - alpha, float(z[0])]).x_plus[1:]
@@ -292,20 +286,27 @@ def rimless_wheel(p: Values, guess: float | None = None, accuracy: float = REFER
                             step_period=impact.period, accuracy=accuracy, wall_s=time.perf_counter() - start)
 
 
-def compass_gait(p: Values, guess: ArrayLike | None = None, accuracy: float = REFERENCE_ACCURACY,
-                 scheme: str = SCHEME) -> CompassGaitCycle:
-    """Drake's period-1 gait of the compass biped with the scenario's parameters ``p`` (tau_ankle must be 0).
+def compass_gait(bp: compass_theory.CompassBiped, guess: ArrayLike | None = None,
+                 accuracy: float = REFERENCE_ACCURACY, scheme: str = SCHEME) -> CompassGaitCycle:
+    """Drake's period-1 gait of the compass biped ``bp``.
 
-    ``guess``: the starting post-impact state x (default: GUESS_OFFSET off the suite's theory, 003 eq 4.18 by Newton
-    shooting). The
-    section is 003's post-impact one, z = (theta_st, dtheta_st, dtheta_sw) with theta_sw = 2 gamma - theta_st
-    (003 eq 4.6), as the theory's; the eigenvalues are its multipliers.
+    Args:
+        bp: the biped; it must have no ankle torque (Drake's model), else ValueError.
+        guess: the starting post-impact state x, (4,) (default: GUESS_OFFSET off the suite's theory, 003 eq 4.18 by
+            Newton shooting). The section is 003's post-impact one, z = (theta_st, dtheta_st, dtheta_sw) with
+            theta_sw = 2 gamma - theta_st (003 eq 4.6), as the theory's; the eigenvalues are its multipliers.
+        accuracy: the integrator's target accuracy.
+        scheme: Drake's integration scheme.
+
+    Returns:
+        The cycle (:class:`CompassGaitCycle`).
     """
-    check_params("compass-biped", p)
-    x0 = (1.0 + GUESS_OFFSET) * compass_theory.fixed_point(biped(p)) if guess is None else np.asarray(guess, float)
+    if bp.tau_ankle != 0.0:
+        raise ValueError(f"Drake's CompassGait has no ankle torque (got tau_ankle {bp.tau_ankle})")
+    x0 = (1.0 + GUESS_OFFSET) * compass_theory.fixed_point(bp) if guess is None else np.asarray(guess, float)
     _import_drake()
     start = time.perf_counter()
-    step_map, slope = _compass_step_map(p, accuracy, scheme)
+    step_map, slope = _compass_step_map(bp, accuracy, scheme)
 
     def state(z: NDArray[np.float64]) -> NDArray[np.float64]:
         return np.array([z[0], 2.0 * slope - z[0], z[1], z[2]])
@@ -321,9 +322,12 @@ def compass_gait(p: Values, guess: ArrayLike | None = None, accuracy: float = RE
                             step_length=impact.advance, accuracy=accuracy, wall_s=time.perf_counter() - start)
 
 
-def point_mass_wheel(p: Values) -> rimless_theory.RimlessWheel:
-    """The suite's analytic wheel of Drake's model: the scenario's parameters with kappa = 0 (no MIN_GYRATION
-    floor)."""
-    return rimless_theory.RimlessWheel(spokes=int(p["spokes"]), slope=float(p["slope"]),
-                                       leg_length=float(p["leg_length"]), gyration=0.0, gravity=float(p["gravity"]),
-                                       mass=float(p["mass"]))
+def peer(*, check_params: Callable[[Values], None], values: Callable[[Values, float], PeerValues],
+         model_note: Callable[[Values], str], bench_accuracies: tuple[float, ...], bench_metrics: dict[str, str],
+         bench_model: str, agreement_cases: tuple[dict[str, str], ...]) -> Peer:
+    """Drake as a scenario's :class:`~mjpoincare.peers.Peer`: the scenario's mapping of its parameters onto Drake's
+    model (the arguments, as the record's fields) with Drake's name, version, scheme, install line and reference
+    accuracy."""
+    return Peer(name=NAME, version=version, scheme=SCHEME, install=INSTALL, reference_accuracy=REFERENCE_ACCURACY,
+                check_params=check_params, values=values, model_note=model_note, bench_accuracies=bench_accuracies,
+                bench_metrics=bench_metrics, bench_model=bench_model, agreement_cases=agreement_cases)

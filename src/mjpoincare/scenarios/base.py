@@ -18,11 +18,11 @@ import mujoco
 import numpy as np
 
 from mjpoincare.analysis.checks import Check
-from mjpoincare.params import Param, ParameterError, Value
+from mjpoincare.params import Param, ParameterError, Values
+from mjpoincare.peers import Peer
 from mjpoincare.seam import RolloutReport
 from mjpoincare.settings import SEARCH_SPACE, Dimension
 
-Values = Mapping[str, Value]
 T = TypeVar("T")
 
 
@@ -235,6 +235,8 @@ class Scenario:
             the preset search judges each trial at all of them.
         search_space: the settings the preset search varies (:class:`~mjpoincare.settings.Dimension`); the preset's
             other settings are the scene's own and stay as declared.
+        peers: outside simulators' models of the system (:class:`~mjpoincare.peers.Peer`), for ``validate --peer``
+            and the bench's peer rows.
     """
 
     name: str
@@ -261,6 +263,7 @@ class Scenario:
     mechanisms: tuple[str, ...] = ()
     coverage: tuple[CoveragePoint, ...] = (CoveragePoint("defaults", {}, "the scenario's default parameters"),)
     search_space: tuple[Dimension, ...] = SEARCH_SPACE
+    peers: tuple[Peer, ...] = ()
 
     def preset(self, name: str | None) -> tuple[str, Values]:
         """The preset's name and setting overrides (the default preset when ``name`` is None)."""

@@ -49,6 +49,7 @@ from mjpoincare.scenarios.base import (
     Values,
     at_preset,
 )
+from mjpoincare.scenarios.compass_biped_drake import drake_peer
 from mjpoincare.scenarios.compass_gait_controller import GaitController
 from mjpoincare.seam import STATE_SPEC, RolloutReport
 from mjpoincare.settings import rollout_options, search_space
@@ -418,6 +419,7 @@ COMPASS_BIPED = Scenario(
     stress_cases=STRESS_CASES,
     soak=soak,
     mechanisms=("rollout", "contact", "actuator"),
+    peers=(drake_peer(biped),),
     coverage=COVERAGE,
     search_space=search_space("timestep", "solref_timeconst", "solref_dampratio", "integrator", "foot_radius"),
 )

@@ -43,6 +43,7 @@ from mjpoincare.scenarios.base import (
     Values,
     at_preset,
 )
+from mjpoincare.scenarios.rimless_wheel_drake import drake_peer
 from mjpoincare.seam import Chunk, RolloutReport
 from mjpoincare.settings import rollout_options, search_space
 from mjpoincare.simulate import initial_states, plain_clip, rollout_batch
@@ -463,6 +464,7 @@ RIMLESS_WHEEL = Scenario(
     stress_cases=STRESS_CASES,
     soak=soak,
     mechanisms=("rollout",),
+    peers=(drake_peer(wheel),),
     coverage=COVERAGE,
     search_space=search_space("timestep", "solref_timeconst", "solref_dampratio", "integrator", "foot_radius"),
 )

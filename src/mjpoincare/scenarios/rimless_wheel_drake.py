@@ -1,0 +1,61 @@
+"""The rimless wheel's outside peer: Drake's hybrid ``RimlessWheel`` (:mod:`mjpoincare.peers.drake`).
+
+Drake's wheel is the point-mass wheel of 003 Sec. 3 (kappa = 0 in 002's terms, 002 eqs 12, 14). Its values are set
+beside the suite's theory for that model (003 eqs 3.11-3.13) and beside the checks' own analytic values, whose hub
+inertia is floored (:data:`mjpoincare.scenarios.rimless_wheel.MIN_GYRATION`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from mjpoincare.analysis.theory import rimless_wheel as theory
+from mjpoincare.params import ParameterError, Values
+from mjpoincare.peers import Peer, PeerValues, drake
+
+#: Drake's accuracy settings of the bench rows (runge_kutta5).
+BENCH_ACCURACIES = (1e-4, 1e-6, 1e-8)
+#: The parameter sets of the agreement table (and of tests/test_peer_drake.py).
+AGREEMENT_CASES: tuple[dict[str, str], ...] = (
+    {}, {"spokes": "6", "slope": "0.2"}, {"spokes": "12", "slope": "0.1", "leg_length": "2", "mass": "3"},
+    {"spokes": "32", "slope": "0.05", "gravity": "3.7"},
+)
+
+
+def point_mass_wheel(p: Values) -> theory.RimlessWheel:
+    """The suite's analytic wheel of Drake's model: the scenario's parameters with kappa = 0 (no gyration floor)."""
+    return theory.RimlessWheel(spokes=int(p["spokes"]), slope=float(p["slope"]), leg_length=float(p["leg_length"]),
+                               gyration=0.0, gravity=float(p["gravity"]), mass=float(p["mass"]))
+
+
+def check_params(p: Values) -> None:
+    """Refuse a missing pydrake or a hub with inertia (Drake's RimlessWheel has a point-mass hub)."""
+    drake.require()
+    if float(p["gyration"]) != 0.0:
+        raise ParameterError(f"gyration must be 0 with --peer drake: Drake's RimlessWheel has a point-mass hub "
+                             f"(got {p['gyration']})")
+
+
+def values(p: Values, accuracy: float) -> PeerValues:
+    """Drake's omega+, multiplier, impact coefficient and step period, each beside the theory at kappa = 0."""
+    w = point_mass_wheel(p)
+    gait = drake.rimless_wheel(w, accuracy=accuracy)
+    star = theory.rolling_fixed_point(w)
+    return {"omega_post_impact": (gait.omega_post_impact, star),
+            "eigenvalue": (gait.multiplier, theory.rolling_multiplier(w)),
+            "impact_coefficient": (gait.impact_coefficient, w.beta),
+            "step_period": (gait.step_period, theory.step_period(w, star))}, gait
+
+
+def drake_peer(wheel: Callable[[Values], theory.RimlessWheel]) -> Peer:
+    """Drake's rimless wheel as the scenario's peer; ``wheel`` maps the scenario's parameters onto the checks' own
+    analytic wheel (the model note names its floored kappa)."""
+
+    def model_note(p: Values) -> str:
+        return (f"Drake's RimlessWheel has a point-mass hub (kappa = 0); the checks' analytic values use the "
+                f"scenario's floor kappa = {wheel(p).kappa:.3g}")
+
+    return drake.peer(check_params=check_params, values=values, model_note=model_note,
+                      bench_accuracies=BENCH_ACCURACIES,
+                      bench_metrics={"omega_post_impact_error": "omega_post_impact", "eigenvalue_error": "eigenvalue"},
+                      bench_model="point-mass hub, kappa = 0", agreement_cases=AGREEMENT_CASES)
