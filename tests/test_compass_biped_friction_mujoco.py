@@ -4,7 +4,7 @@ Gaits A (passive, 1 deg, mu = 1), I (constant torques, level ground, mu = 0.2), 
 phase reset, fed as native control, level ground, mu = 0.2), B (passive, mu = 0.14, slip+ -> stick -> slip-) and
 the unstable C (passive, mu = 0.2) and II (constant torques, mu = 0.2), fitted over their first 2 steps; fast
 preset, the scenario's own tolerances. The runs' verdicts (and the checks MuJoCo misses, as strict xfails with the
-measured error) are the gate's (:data:`mjpoincare.gate.GATE`, tests/test_gate.py); this module checks what they
+measured error) are the gate's (:func:`mjpoincare.gate.cases`, tests/test_gate.py); this module checks what they
 are compared against and how the gaits are classified.
 """
 
@@ -25,7 +25,7 @@ pytestmark = pytest.mark.mujoco
 
 def _run(gait: str) -> Result:
     label = "compass-biped-friction[fast]" if gait == "a" else f"compass-biped-friction[fast,gait={gait}]"
-    return gate.case(label).run()
+    return gate.run_case(gate.case(label))
 
 
 def _checks(gait: str) -> dict[str, Check]:

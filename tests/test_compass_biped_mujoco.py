@@ -23,7 +23,7 @@ def test_switched_off_swing_foot_dips_as_the_exact_swing() -> None:
     gait's depth: MuJoCo's foot spheres (radius r) are point feet only to O(r/l). A foot whose contact stayed on
     would stop at the slope. The run's deepest dip below the slope is reported without a verdict, in the table and
     the JSON (the run's verdicts are the gate's: tests/test_gate.py)."""
-    result = gate.case("compass-biped[fast]").run()
+    result = gate.run_case(gate.case("compass-biped[fast]"))
     swing = result.extras["swing_foot"]
     r_over_l = result.settings["foot_radius"] / (result.params["a"] + result.params["b"])
     below, exact = swing["depth_below_stance_foot"], swing["exact_depth_same_swing"]
@@ -40,7 +40,7 @@ def test_switched_off_swing_foot_dips_as_the_exact_swing() -> None:
 def test_constant_torques_move_the_gait_as_the_theory_says() -> None:
     """Ankle and hip torques are MuJoCo actuators switched to the stance leg at each heel strike: the gait they
     give matches the exact actuated model (fast preset tolerances)."""
-    result = gate.case("compass-biped[fast,tau_ankle=0.5,tau_hip=0.2]").run()
+    result = gate.run_case(gate.case("compass-biped[fast,tau_ankle=0.5,tau_hip=0.2]"))
     passive = theory.fixed_point(theory.CompassBiped())
     assert abs(result.extras["analytic"]["fixed_point"][2] - passive[2]) > 0.01  # the torques matter
 

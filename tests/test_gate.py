@@ -1,7 +1,8 @@
-"""The regression gate (:data:`mjpoincare.gate.GATE`): every gated check passes, every watched check stays within its
-tolerance plus its measured spread, every declared miss misses (strict xfail whose reason quotes its declared error)
-with an error inside its band, a band never wider than the check's tolerance; every check of every case's run is in
-one of the three forms, and every scenario's defaults are in the gate at every preset it offers.
+"""The regression gate (:func:`mjpoincare.gate.cases`, each scenario's ``gate_cases``): every gated check passes,
+every watched check stays within its tolerance plus its measured spread, every declared miss misses (strict xfail
+whose reason quotes its declared error) with an error inside its band, a band never wider than the check's
+tolerance; every check of every case's run is in one of the three forms, and every scenario's defaults are in the
+gate at every preset it offers.
 
 Which form a check takes, and the margin and resolution it holds by, comes from ``mjpoincare margins`` (error +
 spread under seed, thread count and starts x(1 + 1e-12) and x(1 + 1e-9)).
@@ -17,14 +18,15 @@ import pytest
 
 from mjpoincare import gate, scenarios
 from mjpoincare.cli import main
-from mjpoincare.gate import GATE, MARGIN, GateCase, Miss, Watch, case, margin_rows
+from mjpoincare.gate import MARGIN, case, cases, margin_rows
+from mjpoincare.scenarios.gate_cases import GateCase, Miss, Watch
 
 pytestmark = pytest.mark.mujoco
 
 
 def _params() -> list[object]:
     out: list[object] = []
-    for c in GATE:
+    for c in cases():
         out += [pytest.param(c, name, id=f"{c.label}::{name}") for name in c.gated]
         out += [pytest.param(c, miss.check, id=f"{c.label}::{miss.check}",
                              marks=pytest.mark.xfail(strict=True, reason=miss.reason(c.preset)))
@@ -34,50 +36,51 @@ def _params() -> list[object]:
 
 @pytest.mark.parametrize(("case", "name"), _params())
 def test_gated_check(case: GateCase, name: str) -> None:
-    result = case.run()
+    result = gate.run_case(case)
     check = next(c for c in result.checks if c.name == name)
     assert check.passed, result.table()
 
 
 @pytest.mark.parametrize(("case", "watch"), [pytest.param(c, w, id=f"{c.label}::{w.check}")
-                                             for c in GATE for w in c.watched])
+                                             for c in cases() for w in c.watched])
 def test_watched_check_stays_within_its_tolerance_plus_its_spread(case: GateCase, watch: Watch) -> None:
-    check = next(c for c in case.run().checks if c.name == watch.check)
+    check = next(c for c in gate.run_case(case).checks if c.name == watch.check)
     assert check.error <= check.tolerance + watch.spread, (
         f"{case.label}::{watch.check}: error {check.error:.4g} beyond tolerance {check.tolerance:g} + spread "
         f"{watch.spread:.2g}: {watch.why}")
 
 
 @pytest.mark.parametrize(("case", "miss"), [pytest.param(c, m, id=f"{c.label}::{m.check}")
-                                            for c in GATE for m in c.misses])
+                                            for c in cases() for m in c.misses])
 def test_declared_miss_measures_what_it_declares(case: GateCase, miss: Miss) -> None:
     """The run's error lies in the miss's band (its declared error widened by its spread; the xfail reason quotes
     both), the band is no wider than the check's tolerance unless the miss is declared unresolved (and then it is
     wider: a miss the gate can resolve is never declared unresolved), and the tolerance the reason quotes is the
     check's (to the 3 digits it is declared with: some tolerances are computed per run from the exact model and the
     contact settings)."""
-    check = next(c for c in case.run().checks if c.name == miss.check)
+    check = next(c for c in gate.run_case(case).checks if c.name == miss.check)
     low, high = miss.band
     assert check.tolerance == pytest.approx(miss.tolerance, rel=5e-3), (
         f"{case.label}::{miss.check}: tolerance {check.tolerance:g}")
     assert (high - low <= miss.tolerance) == miss.resolved, (
         f"{case.label}::{miss.check}: band {low:g}-{high:g}, tolerance {miss.tolerance:g}, resolved={miss.resolved}")
     assert low <= check.error <= high, (
-        f"{case.label}::{miss.check}: measured {check.error:.4g}, band {low:g}-{high:g}: update gate.GATE")
+        f"{case.label}::{miss.check}: measured {check.error:.4g}, band {low:g}-{high:g}: update the scenario's "
+        "gate_cases")
 
 
-@pytest.mark.parametrize("case", [pytest.param(c, id=c.label) for c in GATE])
+@pytest.mark.parametrize("case", [pytest.param(c, id=c.label) for c in cases()])
 def test_every_check_of_the_run_is_gated_watched_or_a_declared_miss(case: GateCase) -> None:
     """Each case names every check its run has, once: gated, watched, or a declared miss."""
     declared = [*case.gated, *(m.check for m in case.misses), *(w.check for w in case.watched)]
     assert len(declared) == len(set(declared)), f"{case.label}: a check is declared twice"
-    assert set(declared) == {c.name for c in case.run().checks}, case.label
+    assert set(declared) == {c.name for c in gate.run_case(case).checks}, case.label
 
 
 @pytest.mark.parametrize("name", list(scenarios.REGISTRY))
 def test_every_preset_of_every_scenario_is_in_the_gate_on_its_defaults(name: str) -> None:
     for preset in scenarios.get(name).presets:
-        assert any(c.scenario == name and c.preset == preset and not c.values for c in GATE), (
+        assert any(c.scenario == name and c.preset == preset and not c.values for c in cases()), (
             f"{name} --preset {preset} is not in the gate")
 
 
@@ -87,7 +90,7 @@ def test_margin_rows_measure_the_spread() -> None:
     the gated checks hold the margin."""
     gated = case("slotted-skate[fast]")
     rows = margin_rows([gated])
-    assert [r["check"] for r in rows] == [c.name for c in gated.run().checks]
+    assert [r["check"] for r in rows] == [c.name for c in gate.run_case(gated).checks]
     by_check = {r["check"]: r for r in rows}
     assert by_check["sigma4_forward"]["spread"] > 0 and by_check["reversals"]["spread"] == 0
     heading = by_check["heading"]
@@ -146,7 +149,7 @@ def test_margins_exit_1_on_a_failing_watched_check_and_on_a_drifting_miss(monkey
                                   watched=(*missed.watched, Watch(check=miss.check, spread=0.0, why="planted")))
     drifting = dataclasses.replace(missed, misses=(dataclasses.replace(miss, measured=3 * miss.bounds[1]), *others))
     for planted in (watched, drifting):
-        monkeypatch.setattr(gate, "GATE", (planted,))
+        monkeypatch.setattr(gate, "cases", lambda planted=planted: (planted,))
         capsys.readouterr()
         assert main(["margins", "--case", missed.label, "--base-only"]) == 1
         line = next(x for x in capsys.readouterr().out.splitlines() if miss.check in x)

@@ -32,12 +32,12 @@ REPO_MODELS = Path(__file__).resolve().parents[1] / "models"  # the MJCF files a
 
 @pytest.fixture(scope="module")
 def contact() -> dict:
-    return gate.case("rimless-wheel-3d[fast]").run().to_dict()
+    return gate.run_case(gate.case("rimless-wheel-3d[fast]")).to_dict()
 
 
 @pytest.fixture(scope="module")
 def ideal() -> dict:
-    return gate.case("rimless-wheel-3d[fast,impact=ideal]").run().to_dict()
+    return gate.run_case(gate.case("rimless-wheel-3d[fast,impact=ideal]")).to_dict()
 
 
 NAMES = {"pitch_rate", "bank", "heading_eigenvalue", "wobble_modulus", "wobble_angle", "lambda5", "lambda2",

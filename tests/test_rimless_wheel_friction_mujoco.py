@@ -25,7 +25,7 @@ pytestmark = pytest.mark.mujoco
 
 @pytest.fixture(scope="module")
 def type_b() -> dict:
-    return gate.case("rimless-wheel-friction[fast]").run().to_dict()
+    return gate.run_case(gate.case("rimless-wheel-friction[fast]")).to_dict()
 
 
 def _checks(result: dict) -> dict[str, dict]:
@@ -45,14 +45,14 @@ def test_default_type_b(type_b: dict) -> None:
 
 def test_type_a_and_critical_friction() -> None:
     """mu = 2: no slip (Type A); the run's verdict is the gate's (tests/test_gate.py)."""
-    result = gate.case("rimless-wheel-friction[fast,mu=2.0]").run().to_dict()
+    result = gate.run_case(gate.case("rimless-wheel-friction[fast,mu=2.0]")).to_dict()
     assert result["analytic"]["gait"] == "A"
     assert "critical_friction" in _checks(result)
 
 
 def test_type_c() -> None:
     """mu = 0.24: slipping impact, slip -> stick -> slip (Type C); the run's verdict is the gate's."""
-    result = gate.case("rimless-wheel-friction[fast,mu=0.24]").run().to_dict()
+    result = gate.run_case(gate.case("rimless-wheel-friction[fast,mu=0.24]")).to_dict()
     assert result["analytic"]["gait"] == "C"
 
 

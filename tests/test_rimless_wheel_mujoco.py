@@ -33,7 +33,7 @@ COARSE = {"timestep": "8e-4", "solref_timeconst": "1.6e-3"}
 
 @pytest.fixture(scope="module")
 def fast_result() -> dict:
-    return gate.case("rimless-wheel[fast]").run().to_dict()
+    return gate.run_case(gate.case("rimless-wheel[fast]")).to_dict()
 
 
 def test_default_fast_validation_has_its_checks(fast_result: dict) -> None:

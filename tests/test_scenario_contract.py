@@ -6,13 +6,10 @@ gate's cached runs (:func:`mjpoincare.gate.case`), so no validation runs twice i
 from __future__ import annotations
 
 import ast
-import importlib
 import json
 import subprocess
 import sys
-from collections.abc import Mapping
 from pathlib import Path
-from typing import Any
 
 import mujoco
 import numpy as np
@@ -20,7 +17,7 @@ import pytest
 
 from mjpoincare import gate
 from mjpoincare.result import write_json
-from mjpoincare.scenarios import REGISTRY, Scenario
+from mjpoincare.scenarios import REGISTRY
 from mjpoincare.scenarios.base import MissingTolerances, Tolerances, at_preset
 from mjpoincare.seam import STATE_SPEC
 from mjpoincare.validation import resolve_inputs
@@ -28,17 +25,11 @@ from mjpoincare.validation import resolve_inputs
 CASES = [pytest.param(name, preset, id=f"{name}[{preset}]") for name, s in REGISTRY.items() for preset in s.presets]
 
 
-def _tolerance_tables(scenario: Scenario) -> list[Mapping[str, Any]]:
-    """The scenario module's preset -> tolerances tables (one, or one per mode as rimless-wheel-3d's)."""
-    table = importlib.import_module(scenario.evaluate.__module__).TOLERANCES
-    return [table] if set(table) & set(scenario.presets) else list(table.values())
-
-
 @pytest.mark.parametrize(("name", "preset"), CASES)
 def test_defaults_pass_check_params_and_tolerances_exist(name: str, preset: str) -> None:
     scenario = REGISTRY[name]
     scenario.check_params({p.name: p.default for p in scenario.params})
-    for table in _tolerance_tables(scenario):
+    for table in scenario.tolerance_tables:
         tolerances = at_preset(table, name, preset)
         assert isinstance(tolerances, Tolerances) and tolerances.bounds, tolerances
         assert all(np.isfinite(v) and v >= 0 for v in tolerances.bounds.values()), tolerances
@@ -77,7 +68,7 @@ def test_one_render_frame(name: str, preset: str) -> None:
 @pytest.mark.mujoco
 @pytest.mark.parametrize(("name", "preset"), CASES)
 def test_validation_json_round_trips(name: str, preset: str, tmp_path: Path) -> None:
-    result = gate.case(f"{name}[{preset}]").run()
+    result = gate.run_case(gate.case(f"{name}[{preset}]"))
     assert result.scenario == name and result.preset == preset
     payload = result.to_dict()
     write_json(payload, str(tmp_path / "result.json"))

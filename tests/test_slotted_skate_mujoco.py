@@ -16,7 +16,7 @@ pytestmark = pytest.mark.mujoco
 
 
 def test_fast_validation_passes() -> None:
-    result = gate.case("slotted-skate[fast]").run()
+    result = gate.run_case(gate.case("slotted-skate[fast]"))
     assert result.extras["impacts"] > 60
     collisions = next(c for c in result.checks if c.name == "collisions_before_reversal")
     # P1 backward starts (B.6; docs/theory/slotted-skate.md Sec. 3.4: 11 at Omega0 = 0.1)
@@ -27,7 +27,8 @@ def test_fast_validation_passes() -> None:
 def test_accurate_preset_meets_targets(l0: float) -> None:
     """Acceptance (P1, P2 = Figs 4-6): sigma4 within 1e-6 and the energy per impact within 1e-5, both directions
     (the run's full verdict is the gate's: tests/test_gate.py)."""
-    result = gate.case("slotted-skate[accurate]" if l0 > 0 else f"slotted-skate[accurate,l0={l0},delta={1 / 3}]").run()
+    label = "slotted-skate[accurate]" if l0 > 0 else f"slotted-skate[accurate,l0={l0},delta={1 / 3}]"
+    result = gate.run_case(gate.case(label))
     by_name = {c.name: c for c in result.checks}
     for name in ("sigma4_forward", "sigma4_backward"):
         assert by_name[name].error <= 1e-6, result.table()
@@ -37,7 +38,7 @@ def test_accurate_preset_meets_targets(l0: float) -> None:
 def test_reversals_follow_the_map() -> None:
     """P4 (Fig 8, L0 = -sqrt 2, Delta = sqrt 2 / 2): forward starts reverse within a stance (B.5); every stance's
     reversal matches the map."""
-    result = gate.case("slotted-skate[fast,l0=-1.4142135623730951,delta=0.7071067811865476]").run()
+    result = gate.run_case(gate.case("slotted-skate[fast,l0=-1.4142135623730951,delta=0.7071067811865476]"))
     by_name = {c.name: c for c in result.checks}
     assert result.extras["reversals_seen"] > 0
     assert by_name["reversals"].error == 0
@@ -85,7 +86,7 @@ def test_grid_input_is_checked(capsys: pytest.CaptureFixture[str]) -> None:
 
 def test_final_state_and_smooth_limit() -> None:
     """P4 reverses once and ends at V_f = -0.88307 (B.12); a small slot approaches the sleigh's rate -1/2."""
-    result = gate.case("slotted-skate[fast,l0=-1.4142135623730951,delta=0.7071067811865476]").run()
+    result = gate.run_case(gate.case("slotted-skate[fast,l0=-1.4142135623730951,delta=0.7071067811865476]"))
     by_name = {c.name: c for c in result.checks}
     assert by_name["final_speed"].analytic == pytest.approx(-0.8830719, abs=1e-6)
     assert by_name["final_speed"].passed and by_name["final_reversals"].simulated == 1

@@ -9,7 +9,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from mjpoincare.parallel import machine_cores
-from mjpoincare.params import ParameterError, parse_assignments
+from mjpoincare.params import ParameterError, grid_syntax, parse_assignments
 
 EXIT_PASS, EXIT_FAIL, EXIT_BAD_INPUT = 0, 1, 2
 
@@ -31,7 +31,8 @@ def _cmd_list(_: argparse.Namespace) -> int:
         for p in scenario.params:
             print(f"  {p.name} = {p.default}  ({p.doc}; {p.range_text()})")
         if scenario.region_map:
-            print(f"  sweep --grid {scenario.region_map.grid}")
+            axes = scenario.region_map.axes
+            print(f"  sweep --grid {grid_syntax(axes)} with " + ", ".join(f"{a.name} = {a.doc}" for a in axes))
         for param in scenario.param_sweeps:
             print(f"  sweep --param {param}: the scenario's own sweep")
     return EXIT_PASS
@@ -143,7 +144,7 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
     from mjpoincare import scenarios
     from mjpoincare.params import parse_values
     from mjpoincare.result import check_output_path
-    from mjpoincare.sweep import run_sweep
+    from mjpoincare.sweep import run_own_sweep, run_region_map, run_sweep
 
     scenario = scenarios.get(args.scenario)
     check_output_path(args.json, "--json")
@@ -156,12 +157,14 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
         output = (args.output or facet.output).format(scenario=scenario.name)
         check_output_path(output, "--output")
         _require_viz("sweep --grid", "matplotlib")
-        return facet.run(args.grid, parse_assignments(args.set), args.preset, args.json, output, workers=args.workers)
+        return run_region_map(scenario.name, facet, args.grid, parse_assignments(args.set), args.preset, args.json,
+                              output, workers=args.workers)
     if not (args.param and args.values):
         raise ParameterError("sweep needs --param and --values (or --grid)")
     if args.param in scenario.param_sweeps:
-        return scenario.param_sweeps[args.param](parse_values(args.values), parse_assignments(args.set), args.preset,
-                                                 args.json, resume=args.resume, workers=args.workers)
+        return run_own_sweep(scenario.name, args.param, scenario.param_sweeps[args.param], parse_values(args.values),
+                             parse_assignments(args.set), args.preset, args.json, resume=args.resume,
+                             workers=args.workers)
     return run_sweep(args.scenario, args.param, parse_values(args.values), parse_assignments(args.set), args.preset,
                      args.json, args.locate, workers=args.workers, engine=args.engine, scheduler=args.scheduler,
                      resume=args.resume)
@@ -197,9 +200,9 @@ def _cmd_margins(args: argparse.Namespace) -> int:
     from mjpoincare.result import check_output_path, write_json
 
     check_output_path(args.json, "--json")
-    cases = [c for c in gate.GATE if not args.case or any(k in c.label for k in args.case)]
+    cases = [c for c in gate.cases() if not args.case or any(k in c.label for k in args.case)]
     if not cases:
-        raise ParameterError(f"--case matches no gate case; cases: {', '.join(c.label for c in gate.GATE)}")
+        raise ParameterError(f"--case matches no gate case; cases: {', '.join(c.label for c in gate.cases())}")
     compare = {}
     for path in args.compare:
         try:

@@ -1,62 +1,76 @@
 """The scenario registry: every entry point (CLI, tests, bench, render) lists scenarios from here.
 
-A scenario's module is imported when the scenario is first looked up, so a command that runs one scenario loads
-only that one (its theory, its model and their libraries).
+The registry discovers scenarios: it lists the entry points of the group ``mjpoincare.scenarios`` of every installed
+distribution (this one's are in its ``pyproject.toml``; another distribution adds a system by declaring its own,
+docs/adding-a-scenario.md), by name. A scenario's module is imported when the scenario is first looked up, so a
+command that runs one scenario loads only that one (its theory, its model and their libraries).
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterator, MutableMapping
-from importlib import import_module
+from importlib.metadata import EntryPoint, entry_points
 
 from mjpoincare.params import ParameterError
 from mjpoincare.scenarios.base import Evaluation, Scenario
 
-#: Scenario name -> ``module:attribute`` of its :class:`Scenario`, in listing order.
-ENTRIES: dict[str, str] = {
-    "rimless-wheel": "mjpoincare.scenarios.rimless_wheel:RIMLESS_WHEEL",
-    "compass-biped": "mjpoincare.scenarios.compass_biped:COMPASS_BIPED",
-    "slotted-skate": "mjpoincare.scenarios.slotted_skate:SLOTTED_SKATE",
-    "rimless-wheel-3d": "mjpoincare.scenarios.rimless_wheel_3d:RIMLESS_WHEEL_3D",
-    "rimless-wheel-friction": "mjpoincare.scenarios.rimless_wheel_friction:RIMLESS_WHEEL_FRICTION",
-    "compass-biped-friction": "mjpoincare.scenarios.compass_biped_friction:COMPASS_BIPED_FRICTION",
-}
+#: The entry-point group a distribution declares its scenarios in: ``name = "module:attribute"`` of a Scenario.
+GROUP = "mjpoincare.scenarios"
+#: What ``mjpoincare validate`` runs when no scenario is named: the main job (the biped with friction, at 10 s, is
+#: left to its own command).
 DEFAULT_SCENARIOS: tuple[str, ...] = ("rimless-wheel", "compass-biped", "slotted-skate", "rimless-wheel-3d",
                                      "rimless-wheel-friction")
 
 
 class Registry(MutableMapping[str, Scenario]):
-    """Scenarios by name, each imported from its ``module:attribute`` entry on first access."""
+    """Scenarios by name, discovered from the entry points of :data:`GROUP` when first listed, each imported on
+    first access. Setting a listed name replaces its scenario in this process (a test's variant of a scenario);
+    deleting it goes back to the entry point's."""
 
-    def __init__(self, entries: dict[str, str]) -> None:
-        self._entries = dict(entries)
+    def __init__(self, group: str) -> None:
+        self._group = group
+        self._entries: dict[str, EntryPoint] | None = None
         self._loaded: dict[str, Scenario] = {}
+
+    @property
+    def entries(self) -> dict[str, EntryPoint]:
+        """Name -> entry point, sorted by name (a name two distributions declare is an error, not a shadow)."""
+        if self._entries is None:
+            found: dict[str, EntryPoint] = {}
+            for entry in entry_points(group=self._group):
+                if entry.name in found and found[entry.name].value != entry.value:
+                    raise RuntimeError(f"scenario {entry.name!r} is declared twice: {found[entry.name].value} and "
+                                       f"{entry.value}")
+                found[entry.name] = entry
+            self._entries = dict(sorted(found.items()))
+        return self._entries
 
     def __getitem__(self, name: str) -> Scenario:
         if name not in self._loaded:
-            module, attribute = self._entries[name].split(":")
-            scenario = getattr(import_module(module), attribute)
+            scenario = self.entries[name].load()
+            if not isinstance(scenario, Scenario):
+                raise TypeError(f"entry point {name!r} ({self.entries[name].value}) is not a Scenario")
             if scenario.name != name:
-                raise RuntimeError(f"registry entry {name!r} loads scenario {scenario.name!r}")
+                raise RuntimeError(f"entry point {name!r} loads scenario {scenario.name!r}")
             self._loaded[name] = scenario
         return self._loaded[name]
 
     def __setitem__(self, name: str, scenario: Scenario) -> None:
-        self._entries.setdefault(name, "")
+        if name not in self.entries:
+            raise KeyError(f"{name!r} is not a registered scenario (declare an entry point in {self._group!r})")
         self._loaded[name] = scenario
 
     def __delitem__(self, name: str) -> None:
-        del self._entries[name]
         self._loaded.pop(name, None)
 
     def __iter__(self) -> Iterator[str]:
-        return iter(self._entries)
+        return iter(self.entries)
 
     def __len__(self) -> int:
-        return len(self._entries)
+        return len(self.entries)
 
 
-REGISTRY = Registry(ENTRIES)
+REGISTRY = Registry(GROUP)
 
 
 def get(name: str) -> Scenario:
@@ -66,4 +80,4 @@ def get(name: str) -> Scenario:
     return REGISTRY[name]
 
 
-__all__ = ["DEFAULT_SCENARIOS", "ENTRIES", "REGISTRY", "Evaluation", "Scenario", "get"]
+__all__ = ["DEFAULT_SCENARIOS", "GROUP", "REGISTRY", "Evaluation", "Scenario", "get"]

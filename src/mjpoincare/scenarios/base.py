@@ -3,8 +3,8 @@
 A :class:`Scenario` is declared once (in its own module) and used by the CLI, the tests, the
 benchmark and the renderer alike; :mod:`mjpoincare.scenarios` keeps the registry.
 
-Tolerances and their reasons. A scenario module's ``TOLERANCES`` maps a preset to its :class:`Tolerances` (the bound of
-each check by name, and why; rimless-wheel-3d: one such table per impact mode); :func:`at_preset` reads it, and a
+Tolerances and their reasons. A scenario's ``tolerances`` field maps a preset to its :class:`Tolerances` (the bound
+of each check by name, and why; rimless-wheel-3d: one such table per impact mode); :func:`at_preset` reads it, and a
 preset without tolerances is an error, never a fallback.
 """
 
@@ -20,6 +20,7 @@ import numpy as np
 from mjpoincare.analysis.checks import Check
 from mjpoincare.params import Param, ParameterError, Values
 from mjpoincare.peers import Peer
+from mjpoincare.scenarios.gate_cases import GateCase
 from mjpoincare.seam import RolloutReport
 from mjpoincare.settings import SEARCH_SPACE, Dimension
 
@@ -60,6 +61,10 @@ class Tolerances:
     def __getitem__(self, check: str) -> float:
         """The bound of ``check`` (KeyError for a check the table does not bound)."""
         return self.bounds[check]
+
+
+#: A scenario's tolerances by preset.
+ToleranceTable = Mapping[str, Tolerances]
 
 
 @dataclass(frozen=True)
@@ -162,36 +167,96 @@ class CoveragePoint:
     miss_at: tuple[str, ...] = ()
 
 
-class RegionMapRun(Protocol):
-    """Runs a region map: parses ``grid`` (refusing bad input with :class:`ParameterError` before any simulation),
-    prints a summary, writes the PNG ``output`` and, when ``json_path`` is given, the JSON; returns the exit code."""
+class RegionMapCompute(Protocol):
+    """A region map's computation (:attr:`RegionMap.compute`) on resolved inputs."""
 
-    def __call__(self, grid: str, assignments: Mapping[str, str], preset: str | None, json_path: str | None,
-                 output: str, *, workers: int) -> int: ...
+    def __call__(self, p: Values, s: Values, preset: str, x: np.ndarray, y: np.ndarray, *,
+                 workers: int) -> dict[str, Any]:
+        """The map over the grid ``x`` x ``y``.
+
+        Args:
+            p: the scenario's checked parameters.
+            s: the checked simulator settings.
+            preset: the preset's name.
+            x: the values of the map's first axis, shape (nx,).
+            y: the values of its second axis, shape (ny,).
+            workers: processes the map may use for independent work (a map may need more, or run in one).
+
+        Returns:
+            The map's data (numbers, arrays, texts; JSON once :func:`~mjpoincare.analysis.checks.jsonable` has
+            converted it), which :attr:`RegionMap.summary`, :attr:`RegionMap.plot` and :attr:`RegionMap.passed` read.
+        """
+        ...
 
 
 @dataclass(frozen=True)
 class RegionMap:
     """The ``mjpoincare sweep SCENARIO --grid`` facet: a map over a grid of two axes, simulated against the reference.
 
+    It computes on resolved inputs and returns data; the command parses the grid, resolves the inputs (both before any
+    simulation), prints :attr:`summary`, writes the PNG and the JSON (``scenario`` and the data) and returns the exit
+    code from :attr:`passed`.
+
     Attributes:
-        grid: the ``--grid`` syntax, e.g. ``x=START:STOP:N,y=START:STOP:N`` (shown by ``mjpoincare list``).
+        axes: the grid's two axes (their names, what they are and their bounds), in the order :attr:`compute` takes
+            them; ``--grid`` is :func:`~mjpoincare.params.parse_grid` over them.
         output: the PNG path when ``-o`` is not given (``{scenario}`` is filled in).
-        run: the map itself (:class:`RegionMapRun`).
+        compute: the map (:class:`RegionMapCompute`).
+        summary: ``(data) -> text``: what the command prints.
+        plot: ``(data, path)``: writes the PNG at ``path``.
+        passed: ``(data) -> bool``: the map agrees with the reference (exit 0; else 1).
     """
 
-    grid: str
+    axes: tuple[Param, Param]
     output: str
-    run: RegionMapRun
+    compute: RegionMapCompute
+    summary: Callable[[dict[str, Any]], str]
+    plot: Callable[[dict[str, Any], str], None]
+    passed: Callable[[dict[str, Any]], bool]
 
 
-class ParamSweep(Protocol):
-    """A scenario's own sweep of one parameter (``mjpoincare sweep SCENARIO --param NAME``) in place of the generic
-    one validation per value: checks ``values`` before any simulation, prints its table, writes ``json_path``
-    (``resume`` skips the values that file holds) and returns the exit code."""
+class SweepPlan(Protocol):
+    """A scenario's sweep's work ahead of its simulation (:attr:`ParamSweep.plan`)."""
 
-    def __call__(self, values: Sequence[str], assignments: Mapping[str, str], preset: str | None,
-                 json_path: str | None, *, resume: bool, workers: int) -> int: ...
+    def __call__(self, p: Values, s: Values, values: Sequence[float], *, workers: int) -> list[tuple[Any, ...]]:
+        """The reference at each value, grouped into the jobs of :attr:`ParamSweep.compute`.
+
+        Args:
+            p: the scenario's checked parameters (the swept one at its declared value).
+            s: the checked simulator settings.
+            values: the values to run, increasing.
+            workers: processes the references may use (a sweep may need more).
+
+        Returns:
+            Each job's arguments after ``(p, s, preset)``.
+        """
+        ...
+
+
+@dataclass(frozen=True)
+class ParamSweep:
+    """A scenario's own sweep of one of its parameters (``mjpoincare sweep SCENARIO --param NAME``), in place of the
+    generic one validation per value: the values simulated together and judged as a whole.
+
+    It computes on resolved inputs and returns data; the command resolves the other inputs and checks the values
+    against the parameter's declared range (before any simulation), keeps the rows in the resumable results file
+    (:class:`~mjpoincare.parallel.ResumableRows`, one row per value, ``row[NAME]`` the value), prints :attr:`table` and
+    the timing, and returns the exit code from :attr:`passed`.
+
+    Attributes:
+        plan: the references and the jobs (:class:`SweepPlan`).
+        compute: ``(p, s, preset, *job) -> rows``: one job's rows, one per value (JSON once ``jsonable`` has converted
+            them; a NaN is written as null and read back as NaN on resume).
+        summarize: ``(p, rows) -> summary``: the sweep's summary over all rows (the JSON's ``summary``).
+        table: ``(rows, summary) -> text``: what the command prints.
+        passed: ``(summary) -> bool``: the sweep agrees with the reference (exit 0; else 1).
+    """
+
+    plan: SweepPlan
+    compute: Callable[..., list[dict[str, Any]]]
+    summarize: Callable[[Values, list[dict[str, Any]]], dict[str, Any]]
+    table: Callable[[list[dict[str, Any]], dict[str, Any]], str]
+    passed: Callable[[dict[str, Any]], bool]
 
 
 @dataclass(frozen=True)
@@ -237,6 +302,10 @@ class Scenario:
             other settings are the scene's own and stay as declared.
         peers: outside simulators' models of the system (:class:`~mjpoincare.peers.Peer`), for ``validate --peer``
             and the bench's peer rows.
+        tolerances: preset -> :class:`Tolerances` (or mode -> such a table): what ``evaluate`` judges each check
+            against, and why.
+        gate_cases: the runs the regression gate asserts (:class:`~mjpoincare.scenarios.gate_cases.GateCase`; the
+            defaults at every preset at least), each check in its form: gated, watched or a declared miss.
     """
 
     name: str
@@ -264,6 +333,14 @@ class Scenario:
     coverage: tuple[CoveragePoint, ...] = (CoveragePoint("defaults", {}, "the scenario's default parameters"),)
     search_space: tuple[Dimension, ...] = SEARCH_SPACE
     peers: tuple[Peer, ...] = ()
+    tolerances: ToleranceTable | Mapping[str, ToleranceTable] = field(default_factory=dict)
+    gate_cases: tuple[GateCase, ...] = ()
+
+    @property
+    def tolerance_tables(self) -> list[ToleranceTable]:
+        """The scenario's preset -> :class:`Tolerances` tables: its one, or one per mode (rimless-wheel-3d)."""
+        table: Mapping[str, Any] = self.tolerances
+        return [table] if set(table) & set(self.presets) else list(table.values())
 
     def preset(self, name: str | None) -> tuple[str, Values]:
         """The preset's name and setting overrides (the default preset when ``name`` is None)."""

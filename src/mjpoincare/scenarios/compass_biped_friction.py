@@ -58,6 +58,7 @@ from mjpoincare.scenarios.base import (
     Values,
     at_preset,
 )
+from mjpoincare.scenarios.compass_biped_friction_gate import GATE_CASES
 from mjpoincare.scenarios.compass_biped_friction_stance import stance_checks
 from mjpoincare.scenarios.compass_gait_controller import FrictionGaitController
 from mjpoincare.seam import RolloutReport
@@ -443,5 +444,7 @@ COMPASS_BIPED_FRICTION = Scenario(
     camera_distance=3.5,
     stress_cases=STRESS_CASES,
     mechanisms=("rollout", "contact", "actuator"),
+    tolerances=TOLERANCES,
+    gate_cases=GATE_CASES,
     coverage=COVERAGE,
 )

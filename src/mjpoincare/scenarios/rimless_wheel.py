@@ -43,6 +43,7 @@ from mjpoincare.scenarios.base import (
     Values,
     at_preset,
 )
+from mjpoincare.scenarios.gate_cases import GateCase, Watch
 from mjpoincare.scenarios.rimless_wheel_drake import drake_peer
 from mjpoincare.seam import Chunk, RolloutReport
 from mjpoincare.settings import rollout_options, search_space
@@ -438,6 +439,28 @@ def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
 #: error grows without bound for any fixed setting (its sensitivity to omega+, d ln T / d ln omega+, is 2.7 at slope
 #: 0.08 and 10.9 at 0.07 for n = 8). The tolerances hold from the defaults up. Nothing is singular at the no-flight
 #: bound: the steep point sits 5 % of the n = 8 slope range below it, where the impacts are hardest without flight.
+_WHEEL = "omega_post_impact eigenvalue impact_coefficient step_period basins stable"
+_HOP_PERIOD = ("the step period is timed from impact to impact, and MuJoCo's soft impact lets the wheel leave the "
+               "slope briefly, which lengthens it")
+#: The gate's runs of this scenario (:mod:`mjpoincare.gate`), as measured by ``mjpoincare margins`` (MuJoCo 4.0.0,
+#: numpy 2.4.6, scipy 1.17.1, this repository's CPU): each spread is the measured one rounded up to 2 digits. A
+#: declared miss's range spans this measurement and the one an earlier margins run declared (machines and builds
+#: differ by more than the perturbations move some fits).
+GATE_CASES: tuple[GateCase, ...] = (
+    GateCase.of("rimless-wheel", "fast", _WHEEL),
+    GateCase.of("rimless-wheel", "accurate", _WHEEL.replace("step_period ", ""), watched=[
+        Watch(check="step_period", spread=2.6e-6, why="0.96 of its tolerance: " + _HOP_PERIOD
+              + "; the searched preset trades it against the six-spoke wheel's hop")]),
+    GateCase.of("rimless-wheel", "accurate", _WHEEL, spokes=10, slope=0.1),
+    GateCase.of("rimless-wheel", "accurate", _WHEEL, spokes=12, slope=0.1),
+    GateCase.of("rimless-wheel", "accurate", _WHEEL.replace("omega_post_impact ", ""), spokes=8, slope=0.2, watched=[
+        Watch(check="omega_post_impact", spread=5.4e-5, why="0.48 of its tolerance, 0.53 with its spread: the error "
+              "grows with the slope, the impacts' speed through the soft contact (0.39 of its tolerance at slope 0.08, "
+              "0.76 at 0.25 in the preset's study)")]),
+    GateCase.of("rimless-wheel", "accurate", _WHEEL, spokes=6, slope=0.22),
+)
+
+
 COVERAGE = (
     CoveragePoint("defaults", {}, "n = 8, slope 0.08: the lowest slope the tolerances are stated for"),
     CoveragePoint("steep", {"slope": "0.25"}, "slope 0.25 below the no-flight bound 0.2621: hard impacts, the soft "
@@ -464,6 +487,8 @@ RIMLESS_WHEEL = Scenario(
     stress_cases=STRESS_CASES,
     soak=soak,
     mechanisms=("rollout",),
+    tolerances=TOLERANCES,
+    gate_cases=GATE_CASES,
     peers=(drake_peer(wheel),),
     coverage=COVERAGE,
     search_space=search_space("timestep", "solref_timeconst", "solref_dampratio", "integrator", "foot_radius"),

@@ -50,6 +50,7 @@ from mjpoincare.scenarios.base import (
     Values,
     at_preset,
 )
+from mjpoincare.scenarios.gate_cases import GateCase
 from mjpoincare.scenarios.rimless_wheel_3d_ideal import IdealImpactController
 from mjpoincare.settings import search_space
 from mjpoincare.simulate import event_clip, plain_clip
@@ -386,6 +387,19 @@ def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray 
 #: Where a preset must hold (mjpoincare tune): the defaults, a heavy hub (J = 2: slow multipliers, the largest
 #: friction demand at impact), and the ideal impact mode, which shares the presets. Few spokes are no coverage point:
 #: at n = 6, slope 0.2 the planar cycle's wobble multiplier is 3.4 (eqs 33-36), so the wheel falls over.
+_WHEEL_3D = ("pitch_rate bank heading_eigenvalue wobble_modulus wobble_angle lambda5 lambda2 planar_pitch_rate "
+             "planar_bank stable")
+#: The gate's runs of this scenario (:mod:`mjpoincare.gate`), as measured by ``mjpoincare margins`` (MuJoCo 4.0.0,
+#: numpy 2.4.6, scipy 1.17.1, this repository's CPU): each spread is the measured one rounded up to 2 digits. A
+#: declared miss's range spans this measurement and the one an earlier margins run declared (machines and builds
+#: differ by more than the perturbations move some fits).
+GATE_CASES: tuple[GateCase, ...] = (
+    GateCase.of("rimless-wheel-3d", "fast", _WHEEL_3D),
+    GateCase.of("rimless-wheel-3d", "fast", _WHEEL_3D, impact="ideal"),
+    GateCase.of("rimless-wheel-3d", "accurate", _WHEEL_3D),
+)
+
+
 COVERAGE = (
     CoveragePoint("defaults", {}, "n = 16, slope 0.125, heading pi/10"),
     CoveragePoint("heavy hub", {"J": "2"}, "J = 2: slow multipliers, mu = 0.99 needed"),
@@ -413,6 +427,8 @@ RIMLESS_WHEEL_3D = Scenario(
     stress_cases=STRESS_CASES,
     soak=soak,
     mechanisms=("rollout", "fractional_step"),
+    tolerances=TOLERANCES,
+    gate_cases=GATE_CASES,
     coverage=COVERAGE,
     search_space=search_space("timestep", "solref_timeconst", "solref_dampratio", "integrator", "foot_radius",
                               "cone", "impratio", "noslip_iterations"),

@@ -7,20 +7,19 @@ B sticking impact, stick -> slip; C slipping impact, slip -> stick -> slip; D sl
 throughout (D+ / D-: the slip speed grows / shrinks each step; D- is a transient).
 
 Model: the planar wheel of :mod:`mjpoincare.scenarios.rimless_wheel`, rebuilt by its ``build`` with the hub's radius
-of gyration sqrt(kappa) l and friction ``mu`` on both the feet and the floor. Measurement, vectorised on the
-recorded rows (:mod:`mjpoincare.scenarios.rimless_wheel_friction_rollout`): mid-stance section theta = 0; contact
-modes from friction-cone saturation, phases, impacts and gait types by :mod:`mjpoincare.analysis.stick_slip_phases`
-with this module's per-preset thresholds; the force ratio and mu_c by :mod:`mjpoincare.analysis.force_ratio`. Rates
-are nondimensional (002's units, m = l = 1, omega_c = sqrt(g/(l(1+kappa))) = 1). The friction sweep and the regions
-of attraction, which reuse this module's experiment: :mod:`mjpoincare.scenarios.rimless_wheel_friction_sweep` and
-:mod:`mjpoincare.scenarios.rimless_wheel_friction_basins`. Why the presets, thresholds and starts are what they are:
-docs/scenarios/rimless-wheel-friction.md.
+of gyration sqrt(kappa) l and friction ``mu`` on both the feet and the floor. The model, the batch and the
+measurement, vectorised on the recorded rows: :mod:`mjpoincare.scenarios.rimless_wheel_friction_rollout` (mid-stance
+section theta = 0; contact modes from friction-cone saturation, phases, impacts and gait types by
+:mod:`mjpoincare.analysis.stick_slip_phases` with its per-preset thresholds; the force ratio and mu_c by
+:mod:`mjpoincare.analysis.force_ratio`). Rates are nondimensional (002's units, m = l = 1,
+omega_c = sqrt(g/(l(1+kappa))) = 1). The friction sweep and the regions of attraction, which reuse that experiment:
+:mod:`mjpoincare.scenarios.rimless_wheel_friction_sweep` and :mod:`mjpoincare.scenarios.rimless_wheel_friction_basins`.
+Why the presets, thresholds and starts are what they are: docs/scenarios/rimless-wheel-friction.md.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
 from dataclasses import asdict
 from typing import Any
 
@@ -37,7 +36,6 @@ from mjpoincare.scenarios import rimless_wheel as rw
 from mjpoincare.scenarios.base import (
     CoveragePoint,
     Evaluation,
-    RegionMap,
     ReturnMapPlot,
     Scenario,
     Soak,
@@ -46,17 +44,29 @@ from mjpoincare.scenarios.base import (
     Values,
     at_preset,
 )
+from mjpoincare.scenarios.gate_cases import GateCase, Watch
+from mjpoincare.scenarios.rimless_wheel_friction_basins import REGION_MAP
 from mjpoincare.scenarios.rimless_wheel_friction_rollout import (
+    D_SIM_STEPS,
     FIT_OFFSETS,
-    FrictionRun,
+    FIT_PAIRS,
+    SETTLED_STEPS,
+    SIM_STEPS,
+    build,
     classifier,
     fit_starts,
+    friction_wheel,
     gait_start,
+    period_seconds,
+    rate_unit,
     reference_gait,
     row_signals,
+    run_batch,
     simulate,
     sliding_contact,
+    start_states,
 )
+from mjpoincare.scenarios.rimless_wheel_friction_sweep import MU_SWEEP
 from mjpoincare.settings import search_space
 from mjpoincare.simulate import plain_clip
 
@@ -116,34 +126,8 @@ TOLERANCES: dict[str, Tolerances] = {
     "coarse": Tolerances(bounds=_FAST_BOUNDS, reasons=REASONS),  # the region maps' preset keeps the fast tolerances
 }
 
-FIT_PAIRS = 12  # mid-stance pairs per fitting trajectory (beta^24 of the offset remains: near the fixed point)
-SIM_STEPS = 30  # steps simulated per trajectory (the slowest reference transient settles to 1e-3 within ~25)
-D_SIM_STEPS = 12  # D gaits: theta_dot converges within ~5 steps (lambda ~ 0.34) and the slip speed keeps growing
-SETTLED_STEPS = 5  # the last steps of a run compared with the reference gait
-BACKWARD_RATE = -0.01  # nondimensional theta_dot below which the wheel rolls back
-FLIGHT_CLEARANCE = 1e-3  # lowest foot this high (x leg_length) = flight ("detached")
-MU_NO_SLIP = 10.0  # "unbounded" friction in simulation: far above mu_c; the reference uses the same finite mu
 
-
-# --- model and units ----------------------------------------------------------------------------------------------
-
-
-def friction_wheel(p: Values) -> theory.FrictionWheel:
-    """The nondimensional reference wheel (002 eq 11)."""
-    return theory.FrictionWheel(int(p["spokes"]), float(p["kappa"]), float(p["slope"]), float(p["mu"]))
-
-
-def rate_unit(p: Values) -> float:
-    """omega_c = sqrt(g/(l(1+kappa))), 1/s: theta_dot_SI = theta_dot omega_c, x_dot_SI = x_dot l omega_c."""
-    return theory.omega_c(float(p["leg_length"]), float(p["gravity"]), float(p["kappa"]))
-
-
-def rigid_params(p: Values) -> dict[str, float | int]:
-    """Parameters of :mod:`mjpoincare.scenarios.rimless_wheel` for the same wheel (hub mass 1 kg, gyration
-    sqrt(kappa) l, the same mu on feet and floor)."""
-    l = float(p["leg_length"])
-    return {"spokes": int(p["spokes"]), "slope": float(p["slope"]), "leg_length": l, "mass": 1.0,
-            "gyration": math.sqrt(float(p["kappa"])) * l, "mu": float(p["mu"]), "gravity": float(p["gravity"])}
+# --- inputs -------------------------------------------------------------------------------------------------------
 
 
 def check_params(p: Values) -> None:
@@ -162,41 +146,6 @@ def check_params(p: Values) -> None:
             f"kappa (...)/D vanishes at kappa = 0) and MuJoCo's pitch joint needs it (see rimless-wheel)")
     if not theory.attractors(w):
         raise ParameterError(theory.no_gait_reason(w))
-
-
-def build(p: Values, s: Values) -> mujoco.MjModel:
-    """The rimless wheel of ``rimless-wheel`` (same MJCF and MjSpec rebuild) with gyration sqrt(kappa) l and mu."""
-    return rw.build(rigid_params(p), s)
-
-
-def start_states(model: mujoco.MjModel, p: Values, s: Values, starts: np.ndarray) -> np.ndarray:
-    """Full-physics states just after an impact for nondimensional post-impact states ``starts`` (B, 2) =
-    (theta_dot0, x_dot0) of 002 (x_dot0: slip speed of the new stance tip)."""
-    unit, l = rate_unit(p), float(p["leg_length"])
-    w = rw.wheel(rigid_params(p))
-    return rw.post_impact_states(model, w, starts[:, 0] * unit, float(s["foot_radius"]), starts[:, 1] * l * unit)
-
-
-# --- the experiment -----------------------------------------------------------------------------------------------
-
-
-def run_batch(p: Values, s: Values, preset: str, starts: np.ndarray, steps: int,
-              mus: np.ndarray | None = None, extra: float = 0.0) -> FrictionRun:
-    """Simulate ``starts`` for ``steps`` gait periods plus ``extra`` seconds (one rollout; ``mus`` gives each
-    trajectory its own friction) and measure them."""
-    model = build(p, s)
-    mu_all = np.full(len(starts), float(p["mu"])) if mus is None else np.asarray(mus, float)
-    period = period_seconds(p, mu_all)
-    rec, report = simulate(model, mu_all, start_states(model, p, s, starts), steps * period + extra, s)
-    cls = classifier(mu_all, s, preset, len(starts))
-    rows = row_signals(rec, model, p, s, rate_unit(p), cls)
-    table = phases.step_table(rows, cls, steps + 2, backward_rate=BACKWARD_RATE, flight_clearance=FLIGHT_CLEARANCE)
-    return FrictionRun(rec=rec, model=model, rows=rows, steps=table, cls=cls, report=report)
-
-
-def period_seconds(p: Values, mus: np.ndarray) -> float:
-    """Longest gait period over the friction values (s), at least the sticking gait's, for sizing the runs."""
-    return theory.longest_period(friction_wheel(p), np.unique(mus)) / rate_unit(p)
 
 
 # --- the checks ---------------------------------------------------------------------------------------------------
@@ -349,26 +298,30 @@ STRESS_CASES = (
 )
 
 
-def _basin_map(grid: str, assignments: Mapping[str, str], preset: str | None, json_path: str | None, output: str,
-               *, workers: int) -> int:
-    """``sweep --grid``: regions of attraction with finite friction (Gamus & Or 2015 Sec. 3.4, eq 26, Fig. 3.8); the
-    reference runs in at least two processes."""
-    from mjpoincare.scenarios.rimless_wheel_friction_basins import run_basin_map  # that module imports this one
-
-    return run_basin_map(grid, assignments, preset, json_path, output, workers=max(workers, 2))
-
-
-def _mu_sweep(values: Sequence[str], assignments: Mapping[str, str], preset: str | None, json_path: str | None, *,
-              resume: bool, workers: int) -> int:
-    """``sweep --param mu``: gait type, multiplier and edges across friction (Gamus & Or 2015 Sec. 3.3, Fig. 3.5);
-    the reference runs in at least two processes."""
-    from mjpoincare.scenarios.rimless_wheel_friction_sweep import run_mu_sweep  # that module imports this one
-
-    return run_mu_sweep(values, assignments, preset, json_path, resume=resume, workers=max(workers, 2))
-
-
 #: Where a preset must hold (mjpoincare tune): one point per stick-slip gait type the default validation judges,
 #: from high to low friction: Type A (no slip), Type B (the defaults, mu = 0.3) and Type C (slipping impact).
+_WHEEL = "omega_post_impact eigenvalue impact_coefficient step_period basins stable"
+_FRICTION_WHEEL = "gait_type midstance_rate eigenvalue impact_kind phase_sequence slip_onset sliding_contact_law stable"
+#: The gate's runs of this scenario (:mod:`mjpoincare.gate`), as measured by ``mjpoincare margins`` (MuJoCo 4.0.0,
+#: numpy 2.4.6, scipy 1.17.1, this repository's CPU): each spread is the measured one rounded up to 2 digits. A
+#: declared miss's range spans this measurement and the one an earlier margins run declared (machines and builds
+#: differ by more than the perturbations move some fits).
+GATE_CASES: tuple[GateCase, ...] = (
+    GateCase.of("rimless-wheel-friction", "fast", _FRICTION_WHEEL),
+    GateCase.of("rimless-wheel-friction", "fast", "gait_type midstance_rate eigenvalue impact_kind phase_sequence "
+                "stable", mu=2.0, watched=[
+                    Watch(check="critical_friction", spread=7.1e-4, why="0.79 of its tolerance: the bisection of the "
+                          "slip onset over the soft contact's stick-slip threshold")]),
+    GateCase.of("rimless-wheel-friction", "fast", "gait_type midstance_rate eigenvalue impact_kind phase_sequence "
+                "sliding_contact_law stable", mu=0.24),
+    GateCase.of("rimless-wheel-friction", "accurate", _FRICTION_WHEEL.replace("midstance_rate ", ""), watched=[
+        Watch(check="midstance_rate", spread=4.2e-9, why="0.70 of its tolerance: the searched accurate preset is the "
+              "fast one's soft contact, whose first-order bias this is; every stiffer contact tried hops at the impact "
+              "and misses a category check")]),
+    GateCase.of("rimless-wheel-friction", "coarse", _FRICTION_WHEEL),
+)
+
+
 COVERAGE = (
     CoveragePoint("Type B", {}, "mu = 0.3 (the paper's stick-slip case): slip before each impact"),
     CoveragePoint("Type A", {"mu": "2"}, "mu = 2 > mu_c: no slip"),
@@ -398,10 +351,11 @@ RIMLESS_WHEEL_FRICTION = Scenario(
     camera_elevation=-10.0,
     stress_cases=STRESS_CASES,
     soak=soak,
-    region_map=RegionMap(grid="theta_dot0=START:STOP:N,x_dot0=START:STOP:N (post-impact rates, nondimensional)",
-                         output="renders/basins-{scenario}.png", run=_basin_map),
-    param_sweeps={"mu": _mu_sweep},
+    region_map=REGION_MAP,
+    param_sweeps={"mu": MU_SWEEP},
     mechanisms=("rollout", "friction", "contact_fields"),
+    tolerances=TOLERANCES,
+    gate_cases=GATE_CASES,
     coverage=COVERAGE,
     search_space=search_space("timestep", "solref_timeconst", "solref_dampratio", "integrator", "foot_radius",
                               "cone", "impratio", "noslip_iterations"),

@@ -19,28 +19,26 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Mapping
 
 import mujoco
 import numpy as np
 
-from mjpoincare import settings as sim_settings
 from mjpoincare.analysis import checks
 from mjpoincare.analysis.returnmap import fit_return_map
 from mjpoincare.analysis.theory import slotted_skate as theory
-from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios.base import (
     CoveragePoint,
     Evaluation,
-    RegionMap,
     Scenario,
     StressCase,
     Tolerances,
     Values,
     at_preset,
 )
-from mjpoincare.scenarios.slotted_skate_pegs import PegController
+from mjpoincare.scenarios.gate_cases import GateCase
+from mjpoincare.scenarios.slotted_skate_pegs import PegController, build
+from mjpoincare.scenarios.slotted_skate_regions import REGION_MAP
 from mjpoincare.settings import rollout_options, search_space
 from mjpoincare.simulate import event_clip, event_rollout, initial_states
 
@@ -93,25 +91,6 @@ def check_params(p: Values) -> None:
     if float(p["V0"]) == 0.0:
         raise ParameterError("V0 must be non-zero (an initial state with no slot motion never reaches a slot end)")
     theory.validate(skate(p))
-
-
-def build(p: Values, s: Values) -> mujoco.MjModel:
-    """The MJCF skate with mass, inertia, slot geometry and the peg constraint's solver settings."""
-    spec = load_spec("slotted_skate.xml")
-    sim_settings.apply_options(spec, s)
-    body = spec.body("skate")
-    mass, rho = float(p["mass"]), float(p["rho"])
-    body.mass = mass
-    body.inertia = [mass * rho**2] * 3
-    l0, delta = float(p["l0"]), float(p["delta"])
-    spec.geom("slot").size = [0.5 * delta, 0.02 * rho, 0.021 * rho]
-    spec.geom("slot").pos = [-(l0 + 0.5 * delta), 0, 0.05 * rho]
-    spec.geom("body").size = [0.5 * abs(l0 + delta) + 0.3 * rho, 0.25 * rho, 0.02 * rho]
-    spec.geom("body").pos = [-0.5 * (l0 + delta), 0, 0.05 * rho]
-    slot = spec.equality("slot")
-    slot.solref = sim_settings.solref(s)
-    slot.solimp = sim_settings.solimp(s)
-    return compile_spec(spec, s)
 
 
 def start_states(model: mujoco.MjModel, p: Values, V0: np.ndarray, Omega0: np.ndarray) -> np.ndarray:
@@ -344,18 +323,23 @@ STRESS_CASES = (
 )
 
 
-def _region_map(grid: str, assignments: Mapping[str, str], preset: str | None, json_path: str | None, output: str,
-                *, workers: int) -> int:
-    """``sweep --grid``: the stability regions over the axes of Coleman & Holmes 1999 Fig. 2 (one batched rollout;
-    ``workers`` is not used)."""
-    from mjpoincare.scenarios.slotted_skate_regions import run_regions  # that module imports this one
-
-    return run_regions(grid, assignments, preset, json_path, output)
-
-
 #: Where a preset must hold (mjpoincare tune): the defaults, the other stability region (slot behind the mass centre),
 #: the regression gate's two other points (a long slot behind the mass centre; the mirrored defaults) and a fast slide
 #: (20x the slot speed: few steps per stance, the hardest impacts on the pegs).
+_SKATE = ("sigma4_forward sigma4_fit_forward stability_forward sigma4_backward sigma4_fit_backward stability_backward "
+          "energy_loss heading reversals collisions_before_reversal final_speed final_reversals stable")
+#: The gate's runs of this scenario (:mod:`mjpoincare.gate`), as measured by ``mjpoincare margins`` (MuJoCo 4.0.0,
+#: numpy 2.4.6, scipy 1.17.1, this repository's CPU): each spread is the measured one rounded up to 2 digits. A
+#: declared miss's range spans this measurement and the one an earlier margins run declared (machines and builds
+#: differ by more than the perturbations move some fits).
+GATE_CASES: tuple[GateCase, ...] = (
+    GateCase.of("slotted-skate", "fast", _SKATE),
+    GateCase.of("slotted-skate", "fast", _SKATE, l0=-1.4142135623730951, delta=0.7071067811865476),
+    GateCase.of("slotted-skate", "accurate", _SKATE),
+    GateCase.of("slotted-skate", "accurate", _SKATE, l0=-1.0, delta=1 / 3),
+)
+
+
 COVERAGE = (
     CoveragePoint("defaults", {}, "l0 = 1, delta = 1/3, V0 = 1"),
     CoveragePoint("slot behind", {"l0": "-2"}, "L0 < -Delta: the other stability region"),
@@ -383,9 +367,10 @@ SLOTTED_SKATE = Scenario(
     camera_distance=4.0,
     camera_elevation=-89.0,
     stress_cases=STRESS_CASES,
-    region_map=RegionMap(grid="x=START:STOP:N,y=START:STOP:N with x = l0/delta, y = 1/delta^2",
-                         output="renders/regions-{scenario}.png", run=_region_map),
+    region_map=REGION_MAP,
     mechanisms=("rollout", "fractional_step"),
+    tolerances=TOLERANCES,
+    gate_cases=GATE_CASES,
     coverage=COVERAGE,
     search_space=search_space("timestep", "solref_timeconst", "solref_dampratio", "integrator", "iterations",
                               "tolerance"),

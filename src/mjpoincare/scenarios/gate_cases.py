@@ -1,0 +1,99 @@
+"""The gate's records: each scenario declares, as its ``gate_cases``, the validation runs the regression gate
+(:mod:`mjpoincare.gate`) asserts and, per check, the form it is asserted in: gated, watched (:class:`Watch`) or a
+declared miss (:class:`Miss`) with its measured error, spread and mechanism."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+
+from mjpoincare.params import Value
+
+
+@dataclass(frozen=True)
+class Miss:
+    """A check the case's run misses, asserted as a strict expected miss.
+
+    ``measured``: the error ``mjpoincare margins`` measures, one number, or (low, high) where the same run gives
+    different errors on different machines; ``spread``: the largest change of that error under :data:`PERTURBATIONS`,
+    measured with it; ``tolerance``: the check's tolerance at the case's preset (quoted in the reason;
+    tests/test_gate.py compares it with the run's); ``mechanism``: why MuJoCo misses, in words (the numbers behind it
+    are in the scenario modules and the Findings of docs/scenarios/<scenario>.md); ``resolved``: False for a miss
+    whose band is wider than its tolerance (its spread is over half of it), which the gate cannot resolve: it is
+    asserted in its band only, never as a strict expected failure, and the margins table says so.
+    """
+
+    check: str
+    measured: float | tuple[float, float]
+    spread: float
+    tolerance: float
+    mechanism: str
+    resolved: bool = True
+
+    @property
+    def bounds(self) -> tuple[float, float]:
+        """(low, high) of the declared error (low == high for one number)."""
+        return self.measured if isinstance(self.measured, tuple) else (self.measured, self.measured)
+
+    @property
+    def band(self) -> tuple[float, float]:
+        """The errors the miss accepts: the declared error widened by its spread on both sides."""
+        low, high = self.bounds
+        return low - self.spread, high + self.spread
+
+    def reason(self, preset: str) -> str:
+        """The xfail reason: the declared error and spread against the tolerance, and the mechanism."""
+        unresolved = "" if self.resolved else "unresolved, "
+        return (f"{unresolved}measured {span(*self.bounds)} ± {self.spread:.2g} vs {self.tolerance:g} ({preset}): "
+                f"{self.mechanism}")
+
+    def matches(self, error: float) -> bool:
+        """Whether ``error`` lies within the miss's band."""
+        low, high = self.band
+        return low <= error <= high
+
+
+@dataclass(frozen=True)
+class Watch:
+    """A check that passes without the gate's margin: asserted to stay within its tolerance plus ``spread``, the
+    largest change of its error under :data:`PERTURBATIONS` that ``mjpoincare margins`` measured; ``why``: why it
+    sits there (what sets its error at this preset)."""
+
+    check: str
+    spread: float
+    why: str
+
+
+@dataclass(frozen=True)
+class GateCase:
+    """One validation run of the gate and what the tests assert of it.
+
+    ``gated``: checks asserted to pass; ``misses``: checks asserted as strict expected misses; ``watched``: checks
+    asserted within their tolerance plus their spread. Together they name every check of the run
+    (tests/test_gate.py).
+    """
+
+    scenario: str
+    preset: str
+    values: tuple[tuple[str, Value], ...] = ()
+    gated: tuple[str, ...] = ()
+    misses: tuple[Miss, ...] = field(default=())
+    watched: tuple[Watch, ...] = field(default=())
+
+    @property
+    def label(self) -> str:
+        """``scenario[preset,name=value,...]``, the case's test id."""
+        return f"{self.scenario}[{','.join([self.preset, *(f'{k}={v}' for k, v in self.values)])}]"
+
+    @classmethod
+    def of(cls, scenario: str, preset: str, gated: str, misses: Iterable[Miss] = (), watched: Iterable[Watch] = (),
+           **values: Value) -> GateCase:
+        """The case of ``scenario`` at ``preset`` with parameter ``values``; ``gated``: the gated checks' names,
+        space-separated."""
+        return cls(scenario=scenario, preset=preset, values=tuple(values.items()), gated=tuple(gated.split()),
+                   misses=tuple(misses), watched=tuple(watched))
+
+
+def span(low: float, high: float) -> str:
+    """A declared error as the reason and the margins table print it: ``0.0123`` or ``0.109-0.131``."""
+    return f"{low:g}" if low == high else f"{low:g}-{high:g}"
