@@ -3,9 +3,17 @@ padding, the bookkeeping of a finished chunk and the flagging of a divergence (:
 
 from __future__ import annotations
 
+from types import TracebackType
+
+import mujoco
 import numpy as np
 
-from mjpoincare.seam import RolloutReport
+from mjpoincare.seam import RolloutReport, switch_contact
+
+#: The model fields a trajectory's events change on the array engines, one copy per trajectory: contacts are
+#: released through ``geom_margin`` (neither MJX nor MuJoCo Warp can change ``geom_contype`` at run time), friction
+#: through ``geom_friction``, actuators through ``actuator_biasprm`` and ``actuator_gear``.
+EVENT_FIELDS = ("geom_margin", "geom_friction", "actuator_biasprm", "actuator_gear")
 
 #: MuJoCo's bound on a position or velocity (``mjMAXVAL``): beyond it MuJoCo C warns and resets the data, which
 #: :class:`~mjpoincare.backends.mujoco_c.MujocoBatch` flags as a divergence; an engine that does not reset is flagged
@@ -41,17 +49,53 @@ class ArrayBatch:
     _diverged: np.ndarray
     #: B, the trajectories the caller asked for.
     _real: int
+    #: Every row's own copy of the model fields its events change (:data:`EVENT_FIELDS`), (rows, ...) each.
+    _fields: dict[str, np.ndarray]
+    #: Every row's ``eq_active``, (rows, neq).
+    _eq: np.ndarray
+    #: (row, geom) -> the margin a released contact had (:func:`mjpoincare.seam.switch_contact`).
+    _released: dict[tuple[int, int], float]
     report: RolloutReport
+    timestep: float
 
-    def _start(self, state0: np.ndarray, size: int) -> int:
-        """Hold the starts ``state0`` (B, nstate), padded to ``size`` rows when ``size`` > B; the number of rows."""
+    def _start(self, model: mujoco.MjModel, state0: np.ndarray, size: int) -> int:
+        """Hold the starts ``state0`` (B, nstate), padded to ``size`` rows when ``size`` > B, and every row's copy of
+        ``model``'s event fields; the number of rows."""
         real = state0.shape[0]
         rows = max(real, size)
         self._real = real
         self._current = np.concatenate([state0, np.repeat(state0[-1:], rows - real, axis=0)]).astype(float)
         self._diverged = np.zeros(rows, bool)
         self.report = RolloutReport(diverged=np.zeros(real, bool))
+        self.timestep = model.opt.timestep
+        self._fields = {name: np.tile(getattr(model, name), (rows,) + (1,) * getattr(model, name).ndim)
+                        for name in EVENT_FIELDS}
+        self._eq = np.tile(model.eq_active0.astype(bool), (rows, 1))
+        self._released = {}
         return rows
+
+    def __enter__(self) -> ArrayBatch:
+        return self
+
+    def __exit__(self, kind: type[BaseException] | None, error: BaseException | None,
+                 trace: TracebackType | None) -> None:
+        self._finish()
+
+    def set_contact(self, index: int, geom: int, on: bool) -> None:
+        switch_contact(self._released, self._fields["geom_margin"][index], index, geom, on)
+
+    def set_eq_active(self, index: int, eq: int, on: bool) -> None:
+        self._eq[index, eq] = on
+
+    def set_actuator(self, index: int, actuator: int, *, bias: float | None = None, gear: float | None = None
+                     ) -> None:
+        if bias is not None:
+            self._fields["actuator_biasprm"][index, actuator, 0] = bias
+        if gear is not None:
+            self._fields["actuator_gear"][index, actuator, 0] = gear
+
+    def set_friction(self, index: int, mu: float) -> None:
+        self._fields["geom_friction"][index, :, 0] = mu
 
     def states(self) -> np.ndarray:
         return self._current[: self._real].copy()

@@ -19,7 +19,6 @@ import copy
 import time
 from collections.abc import Callable, Iterator
 from contextlib import AbstractContextManager, contextmanager
-from types import TracebackType
 from typing import Any
 
 import jax
@@ -29,9 +28,8 @@ import numpy as np
 from mujoco import mjx
 
 from mjpoincare.backends import state_layout
-from mjpoincare.backends.arrays import ArrayBatch
+from mjpoincare.backends.arrays import EVENT_FIELDS, ArrayBatch
 from mjpoincare.params import ParameterError
-from mjpoincare.seam import switch_contact
 
 #: Compiled chunks and fractional steps, by (kind, model structure, argument shapes): shared by every batch.
 _COMPILED: dict[tuple, Any] = {}
@@ -118,14 +116,7 @@ class MjxBatch(ArrayBatch):
     def __init__(self, model: mujoco.MjModel, state0: np.ndarray, precision: str = "float64", size: int = 0) -> None:
         state_layout(model, "mjx")
         self._model, self._precision = model, precision
-        batch = self._start(np.asarray(state0, float), size)
-        self.timestep = model.opt.timestep
-        self._margin = np.tile(model.geom_margin, (batch, 1))
-        self._friction = np.tile(model.geom_friction, (batch, 1, 1))
-        self._biasprm = np.tile(model.actuator_biasprm, (batch, 1, 1))
-        self._gear = np.tile(model.actuator_gear, (batch, 1, 1))
-        self._eq = np.tile(model.eq_active0.astype(bool), (batch, 1))
-        self._released: dict[tuple[int, int], float] = {}
+        batch = self._start(model, np.asarray(state0, float), size)
         with self._scope():
             self._mx = put_model(model)
             self._single = mjx.make_data(self._mx)
@@ -135,21 +126,14 @@ class MjxBatch(ArrayBatch):
     def _scope(self) -> AbstractContextManager[None]:
         return precision_scope(self._precision)
 
-    def __enter__(self) -> MjxBatch:
-        return self
-
-    def __exit__(self, kind: type[BaseException] | None, error: BaseException | None,
-                 trace: TracebackType | None) -> None:
-        self._finish()
-
-    def _fields(self, rows: slice | int = slice(None)) -> tuple[jax.Array, ...]:
-        return tuple(jnp.asarray(a[rows], self._dtype) for a in (self._margin, self._friction, self._biasprm,
-                                                                  self._gear))
+    def _event_fields(self, rows: slice | int = slice(None)) -> tuple[jax.Array, ...]:
+        """Rows ``rows``' (geom_margin, geom_friction, actuator_biasprm, actuator_gear), as :func:`_step` takes them."""
+        return tuple(jnp.asarray(self._fields[name][rows], self._dtype) for name in EVENT_FIELDS)
 
     def run_chunk(self, nstep: int, control: np.ndarray | None = None) -> np.ndarray:
         ctrl = self._controls(control, nstep, self._model.nu)
         with self._scope():
-            args = (self._mx, self._fields(), self._data, jnp.asarray(self._current, self._dtype),
+            args = (self._mx, self._event_fields(), self._data, jnp.asarray(self._current, self._dtype),
                     jnp.asarray(self._eq), jnp.asarray(ctrl, self._dtype))
             chunk, seconds = _compiled("chunk", _chunk, *args)
             self.report.compile_s += seconds
@@ -158,26 +142,10 @@ class MjxBatch(ArrayBatch):
             states, sensordata = np.asarray(rows, float), np.asarray(sensors, float)
         return self._finish_chunk(states, sensordata, nstep, time.perf_counter() - start)
 
-    def set_contact(self, index: int, geom: int, on: bool) -> None:
-        switch_contact(self._released, self._margin[index], index, geom, on)
-
-    def set_eq_active(self, index: int, eq: int, on: bool) -> None:
-        self._eq[index, eq] = on
-
-    def set_actuator(self, index: int, actuator: int, *, bias: float | None = None, gear: float | None = None
-                     ) -> None:
-        if bias is not None:
-            self._biasprm[index, actuator, 0] = bias
-        if gear is not None:
-            self._gear[index, actuator, 0] = gear
-
-    def set_friction(self, index: int, mu: float) -> None:
-        self._friction[index, :, 0] = mu
-
     def advance(self, index: int, state: np.ndarray, seconds: float) -> np.ndarray:
         """One compiled single-trajectory step from fresh data (no solver warmstart carried over)."""
         with self._scope():
-            args = (self._mx, self._fields(index), self._single, jnp.asarray(state, self._dtype),
+            args = (self._mx, self._event_fields(index), self._single, jnp.asarray(state, self._dtype),
                     jnp.asarray(self._eq[index]), jnp.asarray(seconds, self._dtype))
             fraction, seconds = _compiled("fraction", _fraction, *args)
             self.report.compile_s += seconds

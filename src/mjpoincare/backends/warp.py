@@ -24,12 +24,9 @@ import numpy as np
 import warp as wp
 
 from mjpoincare.backends import state_layout
-from mjpoincare.backends.arrays import ArrayBatch
+from mjpoincare.backends.arrays import EVENT_FIELDS, ArrayBatch
 from mjpoincare.params import ParameterError
-from mjpoincare.seam import switch_contact
 
-#: The per-trajectory model fields, batched over the worlds.
-BATCHED = ("geom_margin", "geom_friction", "actuator_biasprm", "actuator_gear")
 #: Most steps captured in one graph: capturing issues every launch from Python once (slow on the CPU), replaying
 #: runs them natively; a chunk replays its graph nstep / block times.
 BLOCK = 50
@@ -92,10 +89,10 @@ def _block(nstep: int) -> int:
 
 
 def put_model(model: mujoco.MjModel, worlds: int) -> Any:
-    """``mujoco_warp.put_model`` with :data:`BATCHED` per world (``worlds`` of them); a feature MuJoCo Warp lacks
-    raises :class:`ParameterError` naming it."""
+    """``mujoco_warp.put_model`` with the event fields (:data:`~mjpoincare.backends.arrays.EVENT_FIELDS`) per world
+    (``worlds`` of them); a feature MuJoCo Warp lacks raises :class:`ParameterError` naming it."""
     try:
-        return mjw.put_model(model, batch_sizes=dict.fromkeys(BATCHED, worlds))
+        return mjw.put_model(model, batch_sizes=dict.fromkeys(EVENT_FIELDS, worlds))
     except NotImplementedError as error:
         raise ParameterError(f"backend=warp cannot run this model: {error}") from error
 
@@ -119,12 +116,7 @@ class WarpBatch(ArrayBatch):
     def __init__(self, model: mujoco.MjModel, state0: np.ndarray, size: int = 0) -> None:
         state_layout(model, "warp")
         self._model = model
-        batch = self._start(np.asarray(state0, float), size)
-        self.timestep = model.opt.timestep
-        self._fields = {name: np.tile(getattr(model, name), (batch, 1, 1)) for name in BATCHED}
-        self._fields["geom_margin"] = np.tile(model.geom_margin, (batch, 1))
-        self._eq = np.tile(model.eq_active0.astype(bool), (batch, 1))
-        self._released: dict[tuple[int, int], float] = {}
+        batch = self._start(model, np.asarray(state0, float), size)
         with quiet():
             self._device = wp.get_device()
             self._mw = put_model(model, batch)
@@ -137,12 +129,9 @@ class WarpBatch(ArrayBatch):
         self._buffers: dict[int, tuple[wp.array, wp.array, wp.array, Any]] = {}
         self._warm = False
 
-    def __enter__(self) -> WarpBatch:
-        return self
-
     def __exit__(self, kind: type[BaseException] | None, error: BaseException | None,
                  trace: TracebackType | None) -> None:
-        self._finish()
+        super().__exit__(kind, error, trace)
         self.report.warnings += _overflow_lines(self._data.overflow.numpy()[: self._real])
 
     def _load(self, model: Any, data: Any, rows: slice, state: np.ndarray) -> None:
@@ -201,22 +190,6 @@ class WarpBatch(ArrayBatch):
             wp.synchronize_device(self._device)
             states, sensordata = rows.numpy().astype(float), sensors.numpy().astype(float)
         return self._finish_chunk(states, sensordata, nstep, time.perf_counter() - start)
-
-    def set_contact(self, index: int, geom: int, on: bool) -> None:
-        switch_contact(self._released, self._fields["geom_margin"][index], index, geom, on)
-
-    def set_eq_active(self, index: int, eq: int, on: bool) -> None:
-        self._eq[index, eq] = on
-
-    def set_actuator(self, index: int, actuator: int, *, bias: float | None = None, gear: float | None = None
-                     ) -> None:
-        if bias is not None:
-            self._fields["actuator_biasprm"][index, actuator, 0] = bias
-        if gear is not None:
-            self._fields["actuator_gear"][index, actuator, 0] = gear
-
-    def set_friction(self, index: int, mu: float) -> None:
-        self._fields["geom_friction"][index, :, 0] = mu
 
     def advance(self, index: int, state: np.ndarray, seconds: float) -> np.ndarray:
         """One step on the one-world event model and data (its solver warmstart carries over, as in MuJoCo C's)."""
