@@ -9,7 +9,7 @@ from heel strike until the foot is ahead of the stance foot and clear of the gro
 through the slope mid-swing, as the exact model's foot does; how deep is reported, without a
 verdict), and the trailing foot's contact is switched off just before the next heel strike
 (so the impact impulse acts at the new foot only). The switching is done by
-:class:`mjpoincare.scenarios.compass_gait_controller.GaitController` through the rollout seam: MuJoCo steps natively
+:class:`mjpoincare.scenarios.compass_biped_controller.GaitController` through the rollout seam: MuJoCo steps natively
 between events and each event restarts from the recorded state where it happened.
 
 Poincaré section: legs parallel (003 eq 4.20), mid-swing, far from the soft impact. Its samples are
@@ -29,7 +29,7 @@ import numpy as np
 from mjpoincare import settings as sim_settings
 from mjpoincare.analysis import checks
 from mjpoincare.analysis.adaptive_stopping import FitSettling, StoppingRule, return_map_settling
-from mjpoincare.analysis.compass_gait import crossing_steps, swing_foot_detail, swing_foot_report
+from mjpoincare.analysis.compass_biped_steps import crossing_steps, swing_foot_detail, swing_foot_report
 from mjpoincare.analysis.eigenvalues import match_eigenvalues
 from mjpoincare.analysis.returnmap import fit_return_map, regress_at, sample_pairs
 from mjpoincare.analysis.start_designs import sphere_offsets
@@ -49,8 +49,8 @@ from mjpoincare.scenarios.base import (
     Values,
     at_preset,
 )
+from mjpoincare.scenarios.compass_biped_controller import GaitController
 from mjpoincare.scenarios.compass_biped_drake import drake_peer
-from mjpoincare.scenarios.compass_gait_controller import GaitController
 from mjpoincare.scenarios.gate_cases import GateCase, Watch
 from mjpoincare.seam import STATE_SPEC, RolloutReport
 from mjpoincare.settings import rollout_options, search_space

@@ -7,7 +7,7 @@ transport eq 29); re-derived in :mod:`mjpoincare.analysis.theory.compass_biped_f
 MuJoCo side: the ``compass-biped`` model rebuilt with 002's parameters (l = 1.6 m, d = 0.8 m: a = b = 0.8 m,
 m = 4 kg, m_h = 2 kg, g = 9.8 m/s^2) by :func:`mjpoincare.scenarios.compass_biped.build`, and its contact
 protocol (swing foot off until ahead and clear, trailing foot released at heel strike;
-:class:`mjpoincare.scenarios.compass_gait_controller.FrictionGaitController`). Angles: the stance hinge
+:class:`mjpoincare.scenarios.compass_biped_controller.FrictionGaitController`). Angles: the stance hinge
 is 002's theta1, the swing hinge is -theta2 (002 eq 27: theta2 is the swing leg's hip->foot direction), so the
 paper's generalised forces map to hinge torques as stance = Q_theta1, swing = -Q_theta2:
 
@@ -41,7 +41,7 @@ import numpy as np
 from mjpoincare.analysis import checks
 from mjpoincare.analysis.adaptive_stopping import FitSettling, StoppingRule, return_map_settling
 from mjpoincare.analysis.compass_biped_stance import stance_rows
-from mjpoincare.analysis.compass_gait import crossing_steps, swing_foot_report
+from mjpoincare.analysis.compass_biped_steps import crossing_steps, swing_foot_report
 from mjpoincare.analysis.eigenvalues import match_eigenvalues
 from mjpoincare.analysis.returnmap import fit_return_map, regress_at, sample_pairs
 from mjpoincare.analysis.start_designs import sphere_offsets
@@ -58,9 +58,9 @@ from mjpoincare.scenarios.base import (
     Values,
     at_preset,
 )
+from mjpoincare.scenarios.compass_biped_controller import FrictionGaitController
 from mjpoincare.scenarios.compass_biped_friction_gate import GATE_CASES
 from mjpoincare.scenarios.compass_biped_friction_stance import stance_checks
-from mjpoincare.scenarios.compass_gait_controller import FrictionGaitController
 from mjpoincare.seam import RolloutReport
 from mjpoincare.settings import rollout_options
 from mjpoincare.simulate import KeptRows, event_rollout, initial_states

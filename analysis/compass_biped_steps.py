@@ -1,5 +1,5 @@
-"""Per-step measurements of a compass gait from a simulator's event records (numpy only): the step table at the
-legs-parallel section and the switched-off swing foot's depth below the slope.
+"""Per-step measurements of the compass biped's gait from a simulator's event records (numpy only): the step table at
+the legs-parallel section and the switched-off swing foot's depth below the slope.
 
 The records are per trajectory, as a gait controller keeps them: legs-parallel section samples y_k and their
 times, heel strikes (time, x of the new stance foot; the first stance foot is at x = 0) and, per swing while the
