@@ -19,7 +19,7 @@ import pytest
 from mjpoincare import gate, scenarios
 from mjpoincare.cli import main
 from mjpoincare.gate import MARGIN, case, cases, margin_rows
-from mjpoincare.scenarios.gate_cases import GateCase, Miss, Watch
+from mjpoincare.scenarios.gate_cases import GateCase, Miss, Watch, span
 
 pytestmark = pytest.mark.mujoco
 
@@ -120,7 +120,7 @@ def test_margins_show_and_hold_an_expected_miss_by_its_declared_error(capsys: py
     assert not next(r["holds"] for r in margin_rows([stale], perturb=False) if r["check"] == miss.check)
     assert main(["margins", "--case", missed.label, "--base-only"]) == 0
     line = next(x for x in capsys.readouterr().out.splitlines() if miss.check in x).split()
-    assert line[2:4] == [f"{row['error']:.3g}", gate._span(*miss.bounds)]
+    assert line[2:4] == [f"{row['error']:.3g}", span(*miss.bounds)]
 
 
 def test_margins_command(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:

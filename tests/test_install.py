@@ -50,7 +50,8 @@ def test_wheel_ships_no_generic_top_level_name(wheel: Path) -> None:
         names = archive.namelist()
     assert {n.split("/")[0] for n in names} == {"mjpoincare", wheel.name.split("-")[0] + "-" +
                                                 wheel.name.split("-")[1] + ".dist-info"}
-    assert {f"mjpoincare/mjcf/{m.name}" for m in (REPO / "models").glob("*.xml")} <= set(names)
+    models = REPO / "models"  # the models and the files they include (common/)
+    assert {f"mjpoincare/mjcf/{m.relative_to(models).as_posix()}" for m in models.rglob("*.xml")} <= set(names)
     assert "mjpoincare/analysis/returnmap.py" in names
 
 

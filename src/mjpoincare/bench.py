@@ -27,6 +27,7 @@ from mujoco import rollout as mj_rollout
 
 from mjpoincare import progress, scenarios
 from mjpoincare.analysis.checks import jsonable
+from mjpoincare.analysis.tables import markdown_table
 from mjpoincare.params import Value
 from mjpoincare.peers.compare import bench_block
 from mjpoincare.result import write_json
@@ -121,7 +122,7 @@ def run_bench(name: str, assignments: Mapping[str, str], output: str, json_path:
     raw = raw_rollout_rate(name, assignments)
     _, _, params, _ = resolve_inputs(name, assignments, None)
     reference = [scenario.reference_bench(params, rtol) for rtol in ([1e-3, 1e-7] if quick else REFERENCE_RTOLS)]
-    peer_text, peer = bench_block(name, params)
+    peer_text, peer = bench_block(scenario.peers, params)
     print(format_table(rows, accuracy, raw, reference) + peer_text)
     _plot(rows, reference, key, output.format(scenario=name), name, peer)
     if json_path:
@@ -157,13 +158,10 @@ def run_skips(name: str, assignments: Mapping[str, str], json_path: str | None) 
             bar.set_postfix_str(f"{label}: x{rows[-1]['speedup']:.2f}")
             bar.update(1)
     key = scenario.accuracy_checks[0]
-    lines = [f"{name}: what each skip buys (default preset, best of 2 validations; error = {key})",
-             "| skip | what | wall with / without (s) | speedup | error with | error without |",
-             "|---|---|---|---|---|---|"]
-    for r in rows:
-        lines.append(f"| {r['skip']} | {r['what']} | {r['with']['wall_s']:.2f} / {r['without']['wall_s']:.2f} | "
-                     f"x{r['speedup']:.2f} | {r['with']['error']:.3e} | {r['without']['error']:.3e} |")
-    print("\n".join(lines))
+    print(f"{name}: what each skip buys (default preset, best of 2 validations; error = {key})")
+    print(markdown_table(("skip", "what", "wall with / without (s)", "speedup", "error with", "error without"), [
+        (r["skip"], r["what"], f"{r['with']['wall_s']:.2f} / {r['without']['wall_s']:.2f}", f"x{r['speedup']:.2f}",
+         f"{r['with']['error']:.3e}", f"{r['without']['error']:.3e}") for r in rows]))
     if json_path:
         write_json(jsonable({"scenario": name, "mujoco_version": mujoco.__version__, "skips": rows}),
                    json_path.format(scenario=name))
@@ -173,22 +171,17 @@ def run_skips(name: str, assignments: Mapping[str, str], json_path: str | None) 
 def format_table(rows: list[dict[str, Any]], accuracy: tuple[str, ...], raw: dict[str, float],
                  reference: list[dict[str, float]]) -> str:
     """Markdown table (the README's time-against-error table is pasted from it)."""
-    head = "| settings | wall s | steps/s | " + " | ".join(f"{c} error" for c in accuracy) + " | Pareto |"
-    lines = [head, "|" + "---|" * (4 + len(accuracy))]
-    for r in rows:
-        errs = " | ".join(f"{r[f'{c}_error']:.2e}" for c in accuracy)
-        stable = "" if r["stable"] else " (UNSTABLE)"
-        lines.append(f"| {r['config']}{stable} | {r['wall_s']:.2f} | {r['steps_per_s']:.3g} | {errs} | "
-                     f"{'*' if r['pareto'] else ''} |")
+    lines = [markdown_table(
+        ("settings", "wall s", "steps/s", *(f"{c} error" for c in accuracy), "Pareto"),
+        [(f"{r['config']}{'' if r['stable'] else ' (UNSTABLE)'}", f"{r['wall_s']:.2f}", f"{r['steps_per_s']:.3g}",
+          *(f"{r[f'{c}_error']:.2e}" for c in accuracy), "*" if r["pareto"] else "") for r in rows])]
     lines.append(f"\nmujoco.rollout alone on the same batches (default preset): {raw['steps_per_s']:.3g} steps/s "
                  f"({raw['steps']:.3g} steps in {raw['wall_s']:.2f} s); the whole validation right after: "
                  f"{raw['pipeline_steps_per_s']:.3g} steps/s = {100 * raw['pipeline_fraction']:.0f} % of it")
     metrics = [k for k in reference[0] if k not in ("rtol", "wall_s")]
-    lines.append("\n| solve_ivp reference (DOP853), same fit | wall s | " + " | ".join(metrics) + " |")
-    lines.append("|" + "---|" * (2 + len(metrics)))
-    for ref in reference:
-        lines.append(f"| rtol={ref['rtol']:g} | {ref['wall_s']:.2f} | "
-                     + " | ".join(f"{ref[k]:.2e}" for k in metrics) + " |")
+    lines.append("\n" + markdown_table(
+        ("solve_ivp reference (DOP853), same fit", "wall s", *metrics),
+        [(f"rtol={ref['rtol']:g}", f"{ref['wall_s']:.2f}", *(f"{ref[k]:.2e}" for k in metrics)) for ref in reference]))
     return "\n".join(lines)
 
 

@@ -33,12 +33,12 @@ from typing import Any
 
 import numpy as np
 
-from mjpoincare import progress
 from mjpoincare.analysis.checks import Check, jsonable
 from mjpoincare.analysis.convergence import ANALYTIC_FLOOR, SANE_ORDER, Verdict, analyze
-from mjpoincare.parallel import check_engine, point_assignments, run_jobs
+from mjpoincare.analysis.tables import markdown_table
+from mjpoincare.parallel import ResumableRows, check_engine, point_assignments
 from mjpoincare.params import ParameterError
-from mjpoincare.result import resumed_rows, write_json
+from mjpoincare.result import write_json
 from mjpoincare.validation import resolve_inputs, run_validation
 
 AXES = ("timestep", "solref_timeconst", "solref_dampratio", "foot_radius")
@@ -204,32 +204,24 @@ def converge(name: str, assignments: Mapping[str, str], preset: str | None = Non
     check_engine(workers, engine)
     if seed < 0:
         raise ParameterError(f"--seed must be an integer >= 0 (got {seed})")
-    if resume and (not json_path or json_path == "-"):
-        raise ParameterError("--resume needs --json PATH (the results file to resume from)")
     # every rung runs the full experiment design, so that rungs differ in the refined setting alone
     assignments = {"adaptive_stopping": "0", **assignments}
     plan = check_request(name, assignments, preset, axes, points, ratio)
     _, preset, _, start_settings = resolve_inputs(name, assignments, preset)
     header = {"command": "converge", "scenario": name, "assignments": dict(assignments), "preset": preset,
               "seed": seed, "ratio": ratio}
-    done = resumed_rows(json_path, header) if resume else []
-    rows = {r["key"]: r for r in done}
     wanted = {rung_key(o): o for rungs in plan.values() for o in rungs}
-    todo = sorted((o for k, o in wanted.items() if k not in rows), key=lambda o: -_cost(o, start_settings))
+    ladder = ResumableRows.open(header, json_path, "key", wanted, resume=resume)
+    todo = sorted((wanted[k] for k in ladder.todo), key=lambda o: -_cost(o, start_settings))
     point_set = point_assignments(assignments, workers)
     began = time.perf_counter()
-    jobs = [(name, o, point_set, preset, seed) for o in todo]
-    with progress.bar(len(wanted), "converge", unit="rung", initial=len(wanted) - len(todo)) as bar:
-        for row in run_jobs(ladder_rung, jobs, workers=workers, engine=engine, scheduler=scheduler):
-            rows[row["key"]] = row
-            if json_path and json_path != "-":
-                write_json(jsonable({**header, "rows": list(rows.values())}), json_path)
-            bar.set_postfix_str(f"{row['key']}: {row['failed'] or 'done'}")
-            bar.update(1)
-    skipped = sorted({n for r in rows.values() for n in r["not_applicable"]})
-    return jsonable({**header, "axes": list(axes), "points": points, "rows": list(rows.values()),
+    rows = ladder.run(ladder_rung, [(name, o, point_set, preset, seed) for o in todo], label="converge", unit="rung",
+                      describe=lambda new: f"{new[0]['key']}: {new[0]['failed'] or 'done'}", workers=workers,
+                      engine=engine, scheduler=scheduler)
+    skipped = sorted({n for r in rows for n in r["not_applicable"]})
+    return jsonable({**header, "axes": list(axes), "points": points, "rows": rows,
                      "ladders": {a: [rung_key(o) for o in rungs] for a, rungs in plan.items()},
-                     "analysis": {a: _analyse_axis(a, rungs, rows) for a, rungs in plan.items()},
+                     "analysis": {a: _analyse_axis(a, rungs, ladder.rows) for a, rungs in plan.items()},
                      "not_applicable": skipped, "rungs_run": len(todo), "rungs_resumed": len(wanted) - len(todo),
                      "wall_s": time.perf_counter() - began, "workers": workers, "engine": engine})
 
@@ -258,6 +250,20 @@ def _fit_is_sound(fit: Mapping[str, Any]) -> bool:
             and sigma is not None and sigma < order)
 
 
+def _component_row(name: str, entry: Mapping[str, Any]) -> tuple[str, ...]:
+    """One component's cells of an axis's table (dashes where the ladder gave no three-grid estimate)."""
+    if "three_grid" not in entry:
+        return (name, *["—"] * 6, str(entry["verdict"]))
+    tg, fit = entry["three_grid"], entry["fit"]
+    order = _num(tg["observed_order"], ".3g") + ("" if tg["safety_factor"] in (None, 1.25) else " *")
+    fitted = "—" if fit["order"] is None else f"{fit['order']:.3g} ± {_num(fit['order_stderr'], '.2g')}"
+    if fit["order"] is not None and not _fit_is_sound(fit):
+        fitted += " †"
+    return (f"{name} (error)" if entry.get("analysed") == "error" else name, order, fitted,
+            _num(tg["extrapolated"], ".7g"), _num(entry["band"], ".2g"), _num(entry["analytic"], ".7g"),
+            _num(entry["bias"], ".2g"), _verdict_text(entry))
+
+
 def table(payload: Mapping[str, Any]) -> str:
     """Markdown tables, one per axis: order (three-grid; least squares ± 1 sigma), Richardson value, GCI band,
     analytic value, bias and verdict per component."""
@@ -265,21 +271,8 @@ def table(payload: Mapping[str, Any]) -> str:
              + " ".join(f"{k}={v}" for k, v in payload["assignments"].items())).rstrip()]
     for axis, res in payload["analysis"].items():
         lines += ["", f"axis {axis}: " + ", ".join(f"{h:.4g}" for h in res["h"]) + _AXIS_NOTES.get(axis, ""),
-                  "| component | p (3-grid) | p (fit ± σ) | Richardson | GCI band | analytic | bias | verdict |",
-                  "|---|---|---|---|---|---|---|---|"]
-        for n, e in res["components"].items():
-            if "three_grid" not in e:
-                lines.append(f"| {n} | — | — | — | — | — | — | {e['verdict']} |")
-                continue
-            tg, fit = e["three_grid"], e["fit"]
-            order = _num(tg["observed_order"], ".3g") + ("" if tg["safety_factor"] in (None, 1.25) else " *")
-            fitted = "—" if fit["order"] is None else f"{fit['order']:.3g} ± {_num(fit['order_stderr'], '.2g')}"
-            if fit["order"] is not None and not _fit_is_sound(fit):
-                fitted += " †"
-            name = f"{n} (error)" if e.get("analysed") == "error" else n
-            lines.append(f"| {name} | {order} | {fitted} | "
-                         f"{_num(tg['extrapolated'], '.7g')} | {_num(e['band'], '.2g')} | {_num(e['analytic'], '.7g')}"
-                         f" | {_num(e['bias'], '.2g')} | {_verdict_text(e)} |")
+                  markdown_table(("component", "p (3-grid)", "p (fit ± σ)", "Richardson", "GCI band", "analytic",
+                                  "bias", "verdict"), [_component_row(n, e) for n, e in res["components"].items()])]
         lines += [f"FAILED rung {b}" for b in res["bad_rungs"]]
     lines += ["", "* order outside [0.5, 4]: band with Fs = 3 at the formal order (analysis/convergence.py)",
               "† least-squares fit degenerate (order outside [0.5, 4] or its sigma above the order): not an order",

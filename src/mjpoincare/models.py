@@ -14,6 +14,8 @@ from mjpoincare.settings import apply_unskip
 
 #: The package holding the MJCF files (``models/`` in the source tree, ``mjpoincare/mjcf/`` in a wheel).
 MODELS_PACKAGE = "mjpoincare.mjcf"
+#: The files the models ``<include>``, by the name they include them with (relative to the models' folder).
+INCLUDES = ("common/looks.xml",)
 
 
 def model_file(filename: str) -> Traversable:
@@ -22,12 +24,14 @@ def model_file(filename: str) -> Traversable:
 
 
 def load_spec(filename: str) -> mujoco.MjSpec:
-    """Parse the shipped model ``filename``; a missing or malformed file raises :class:`ParameterError`."""
+    """Parse the shipped model ``filename`` with the files it includes (:data:`INCLUDES`: a string has no folder to
+    resolve ``<include file=...>`` from); a missing or malformed file raises :class:`ParameterError`."""
     source = model_file(filename)
     if not source.is_file():
         raise ParameterError(f"model file {filename} not found in {MODELS_PACKAGE}")
+    include = {name: model_file(name).read_bytes() for name in INCLUDES}
     try:
-        return mujoco.MjSpec.from_string(source.read_text())
+        return mujoco.MjSpec.from_string(source.read_text(), include=include)
     except ValueError as err:  # MuJoCo's XML parser reports malformed models as ValueError
         raise ParameterError(f"model {filename} is malformed: {str(err).splitlines()[0]}") from None
 

@@ -28,10 +28,10 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
+from mjpoincare.analysis.tables import markdown_table, table_cell
 from mjpoincare.gate import PERTURBATIONS
 from mjpoincare.params import ParameterError
-from mjpoincare.result import write_json, write_text
-from mjpoincare.results import format_json_value, table_cell
+from mjpoincare.result import format_value, write_json, write_text
 
 #: The releases of the history: the oldest admitted (``pyproject.toml``: ``MjSpec.delete``, which the models' builds
 #: use, first ships in 3.3.4), then the newest patch of every minor line up to the newest release.
@@ -99,14 +99,14 @@ def _check_rows(base: dict[str, Any], variants: Sequence[dict[str, Any]]) -> lis
 def run_scenario(name: str, preset: str) -> dict[str, Any]:
     """One scenario's default validation at ``preset`` on the loaded MuJoCo, with its :data:`SPREAD` runs: the
     verdict, the wall time and each check's value, error and spread; or the refusal of its seam self-test."""
-    from mjpoincare.api import validate
     from mjpoincare.seam_check import MechanismFailed
+    from mjpoincare.validation import run_validation
 
     try:
-        base = validate(name, preset, 0)
+        base = run_validation(name, {}, preset, 0)
     except MechanismFailed as refusal:
         return {"scenario": name, "preset": preset, "refused": str(refusal)}
-    variants = [validate(name, preset, seed, **extra).to_dict() for _, seed, extra in SPREAD]
+    variants = [run_validation(name, extra, preset, seed).to_dict() for _, seed, extra in SPREAD]
     return {"scenario": name, "preset": preset, "refused": None, "passed": base.passed,
             "wall_s": base.timing["wall_s"], "warnings": base.warnings,
             "checks": _check_rows(base.to_dict(), variants)}
@@ -192,16 +192,17 @@ def render(payloads: Sequence[dict[str, Any]]) -> str:
              "scaled by 1 + 1e-12 and 1 + 1e-9 on that release. Between consecutive releases a change is **real** when "
              "it exceeds the larger of the two spreads, **jitter** otherwise. Values are the simulated ones (complex "
              "numbers as [re, im]); errors are against the analytic values, of the kind the scenario pages state.",
-             "", "## Releases", "",
-             "| MuJoCo | numpy / scipy / Python | verdicts (fast) | git commit | CPU | date (UTC) |",
-             "|---|---|---|---|---|---|"]
+             "", "## Releases", ""]
+    releases = []
     for p in payloads:
         env = p["environment"]
         sha = (env["git_sha"] or "unknown")[:12] + ("+" if env["git_dirty"] else "")
         verdicts = ", ".join(f"{r['scenario']} {_verdict(r)}" for r in p["runs"] if r["preset"] == "fast")
-        lines.append(f"| {p['mujoco']} | {env['numpy']} / {env['scipy']} / {env['python']} | {table_cell(verdicts)} "
-                     f"| {sha} | {table_cell(env['cpu'])} | {env['date']} |")
-    lines += ["", "A `+` after the commit: the run had uncommitted changes to tracked files.", ""]
+        releases.append((p["mujoco"], f"{env['numpy']} / {env['scipy']} / {env['python']}", table_cell(verdicts),
+                         sha, table_cell(env["cpu"]), env["date"]))
+    lines += [markdown_table(("MuJoCo", "numpy / scipy / Python", "verdicts (fast)", "git commit", "CPU",
+                              "date (UTC)"), releases),
+              "", "A `+` after the commit: the run had uncommitted changes to tracked files.", ""]
     all_real: list[tuple[str, str, dict[str, Any]]] = []
     for preset in ("fast", "accurate"):
         names = list(dict.fromkeys(r["scenario"] for p in payloads for r in p["runs"] if r["preset"] == preset))
@@ -214,13 +215,14 @@ def render(payloads: Sequence[dict[str, Any]]) -> str:
               "bisect` finds the patch release within a minor line). Real is not large: the last column is the change "
               "against the check's tolerance.", ""]
     if all_real:
-        lines += ["| scenario | preset | check | first in | after | change | spread | change / spread "
-                  "| change / tolerance |", "|---|---|---|---|---|---|---|---|---|"]
+        rows = []
         for name, preset, c in all_real:
             ratio = c["change"] / c["spread"] if c["spread"] > 0 else math.inf
             to_tol = c["change"] / c["tolerance"] if c["tolerance"] > 0 else math.inf
-            lines.append(f"| {name} | {preset} | {c['check']} | {c['to']} | {c['from']} | {_number(c['change'])} "
-                         f"| {_number(c['spread'])} | {_number(ratio)} | {_number(to_tol)} |")
+            rows.append((name, preset, c["check"], c["to"], c["from"], _number(c["change"]), _number(c["spread"]),
+                         _number(ratio), _number(to_tol)))
+        lines.append(markdown_table(("scenario", "preset", "check", "first in", "after", "change", "spread",
+                                     "change / spread", "change / tolerance"), rows))
     else:
         lines.append("None.")
     lines.append("")
@@ -242,11 +244,11 @@ def _scenario_section(payloads: Sequence[dict[str, Any]], name: str, preset: str
     lines = [f"## {name} [{preset}]", "",
              "Each cell: the simulated value, then `err` the error (`FAIL` when beyond the tolerance), `±` the spread "
              "on that release, and **real**, jitter or identical (bit for bit) for the change from the release "
-             "above.", "",
-             "| MuJoCo | verdict | " + " | ".join(checks) + " |", "|---|---|" + "---|" * len(checks)]
+             "above.", ""]
+    rows: list[tuple[str | None, ...]] = []
     for version, run in runs:
         if run["refused"]:
-            lines.append(f"| {version} | refused: {table_cell(run['refused'])} |" + " |" * len(checks))
+            rows.append((version, f"refused: {table_cell(run['refused'])}", *[None] * len(checks)))
             continue
         by_name = {c["name"]: c for c in run["checks"]}
         cells = []
@@ -259,9 +261,10 @@ def _scenario_section(payloads: Sequence[dict[str, Any]], name: str, preset: str
             mark = ("" if change is None else " **real**" if change["real"]
                     else " identical" if change["change"] == 0 else " jitter")
             fail = "" if c["passed"] else " FAIL"
-            cells.append(f"{format_json_value(c['simulated'])}<br>err {_number(c['error'])}{fail} "
+            cells.append(f"{format_value(c['simulated'], from_json=True)}<br>err {_number(c['error'])}{fail} "
                          f"±{_number(c['spread'], 2)}{mark}")
-        lines.append(f"| {version} | {_verdict(run)} | " + " | ".join(table_cell(x) for x in cells) + " |")
+        rows.append((version, _verdict(run), *(table_cell(x) for x in cells)))
+    lines.append(markdown_table(("MuJoCo", "verdict", *checks), rows))
     tolerances = {c["name"]: c["tolerance"] for _, r in runs if not r["refused"] for c in r["checks"]}
     lines += ["", "Tolerances: " + ", ".join(f"{k} {_number(v)}" for k, v in tolerances.items()) + ".", ""]
     return lines

@@ -11,6 +11,7 @@ from pathlib import Path
 from typing import Any
 
 from mjpoincare.analysis.checks import Check, jsonable
+from mjpoincare.analysis.tables import text_table
 from mjpoincare.params import ParameterError
 
 
@@ -59,13 +60,10 @@ class Result:
                   else f"MuJoCo {self.mujoco_version} models on {backend} ({self.settings.get('precision')})")
         head = (f"{self.scenario}  preset={self.preset}  {engine}  "
                 + " ".join(f"{k}={v}" for k, v in self.params.items()))
-        rows = [("check", "analytic", "simulated", "error", "tolerance", "verdict")]
-        for c in self.checks:
-            rows.append((c.name, format_value(c.analytic), format_value(c.simulated),
-                         f"{format_value(c.error)} {c.kind[:3]}", f"{c.tolerance:.3g}", "PASS" if c.passed else "FAIL"))
-        widths = [max(len(r[i]) for r in rows) for i in range(len(rows[0]))]
-        lines = [head] + ["  ".join(cell.ljust(w) for cell, w in zip(r, widths, strict=True)).rstrip()
-                          for r in rows]
+        rows = [(c.name, format_value(c.analytic), format_value(c.simulated),
+                 f"{format_value(c.error)} {c.kind[:3]}", f"{c.tolerance:.3g}", "PASS" if c.passed else "FAIL")
+                for c in self.checks]
+        lines = [head, text_table(("check", "analytic", "simulated", "error", "tolerance", "verdict"), rows)]
         t = self.timing
         lines.append(f"wall {t['wall_s']:.2f} s, {t['steps']:.3g} steps, {t['steps_per_s']:.3g} steps/s "
                      f"(MuJoCo alone {t['rollout_steps_per_s']:.3g} steps/s)")
@@ -77,12 +75,27 @@ class Result:
         return "\n".join(lines)
 
 
-def format_value(value: Any) -> str:
-    """A value as the check table prints it: 6 significant digits, arrays and lists element-wise, complex ``a+bj``."""
+def format_value(value: Any, *, from_json: bool = False) -> str:
+    """A value as the tables print it: 6 significant digits, arrays and lists element-wise, complex ``a+bj``.
+
+    Args:
+        value: a check's value, a parameter or a setting: as the run holds it, or as its JSON holds it
+            (:meth:`Result.to_dict`, read back by the generated pages).
+        from_json: ``value`` is JSON: ``null`` is a non-finite or missing number, written ``nan``, and booleans are
+            written as JSON writes them, ``true`` and ``false`` (without it, ``None``, ``True`` and ``False``, as
+            Python writes them).
+
+    Returns:
+        The text of the value.
+    """
+    if from_json and value is None:
+        return "nan"
+    if from_json and isinstance(value, bool):
+        return str(value).lower()
     if hasattr(value, "tolist") and not isinstance(value, float | complex):
         value = value.tolist()
     if isinstance(value, list | tuple):
-        return "[" + ", ".join(format_value(v) for v in value) + "]"
+        return "[" + ", ".join(format_value(v, from_json=from_json) for v in value) + "]"
     if isinstance(value, complex):
         return f"{value.real:.5g}{value.imag:+.5g}j" if value.imag else f"{value.real:.6g}"
     if isinstance(value, float):

@@ -24,8 +24,9 @@ from importlib import metadata
 from pathlib import Path
 from typing import Any
 
+from mjpoincare.analysis.tables import markdown_table, table_cell
 from mjpoincare.params import ParameterError
-from mjpoincare.result import write_json, write_text
+from mjpoincare.result import format_value, write_json, write_text
 
 #: Where ``make results`` writes, relative to the repository root.
 RESULTS_DIR = Path("docs/results")
@@ -86,13 +87,13 @@ def run_scenario(name: str, out_dir: Path = RESULTS_DIR, seed: int = 0) -> dict[
     """Validate scenario ``name`` with its defaults at each of its presets and write ``out_dir/json/<name>.json``
     (whole or not at all); returns the payload."""
     from mjpoincare import scenarios
-    from mjpoincare.api import validate
+    from mjpoincare.validation import run_validation
 
     scenario = scenarios.get(name)
     env = environment()
     runs = []
     for preset in scenario.presets:
-        result = validate(name, preset, seed)
+        result = run_validation(name, {}, preset, seed)
         print(result.table(), end="\n\n", flush=True)
         runs.append(result.to_dict())
     if _git_state() != (env["git_sha"], False):  # the tree changed while the validations ran
@@ -103,48 +104,36 @@ def run_scenario(name: str, out_dir: Path = RESULTS_DIR, seed: int = 0) -> dict[
     return payload
 
 
-def format_json_value(value: Any) -> str:
-    """A JSON value as a table cell: numbers to 6 significant digits, lists element-wise, null (a non-finite or
-    missing number) as ``nan``."""
-    if value is None:
-        return "nan"
-    if isinstance(value, bool):
-        return str(value).lower()
-    if isinstance(value, float):
-        return f"{value:.6g}"
-    if isinstance(value, list):
-        return "[" + ", ".join(format_json_value(v) for v in value) + "]"
-    return str(value)
-
-
-def table_cell(text: str) -> str:
-    """``text`` safe inside a markdown table cell (pipes escaped, one line)."""
-    return " ".join(text.split()).replace("|", "\\|")
-
-
 def _assignments(values: dict[str, Any]) -> str:
-    return ", ".join(f"`{k}={format_json_value(v)}`" for k, v in values.items())
+    return ", ".join(f"`{k}={format_value(v, from_json=True)}`" for k, v in values.items())
 
 
-def stamp_table(env: dict[str, Any]) -> list[str]:
+def stamp_table(env: dict[str, Any]) -> str:
     """The run-stamp table of a generated page: MuJoCo, numpy/scipy/Python, git commit, CPU and date."""
     sha = env["git_sha"] or "unknown"
     if env["git_dirty"]:
         sha += " (with uncommitted changes)"
-    return [
-        "| run | |",
-        "|---|---|",
-        f"| MuJoCo | {env['mujoco']} |",
-        f"| numpy / scipy / Python | {env['numpy']} / {env['scipy']} / {env['python']} |",
-        f"| git commit | {sha} |",
-        f"| CPU | {table_cell(env['cpu'])} ({env['logical_cpus']} logical CPUs), {table_cell(env['platform'])} |",
-        f"| date (UTC) | {env['date']} |",
-    ]
+    return markdown_table(("run", None), [
+        ("MuJoCo", env["mujoco"]),
+        ("numpy / scipy / Python", f"{env['numpy']} / {env['scipy']} / {env['python']}"),
+        ("git commit", sha),
+        ("CPU", f"{table_cell(env['cpu'])} ({env['logical_cpus']} logical CPUs), {table_cell(env['platform'])}"),
+        ("date (UTC)", env["date"]),
+    ])
 
 
 def _verdict(run: dict[str, Any]) -> str:
     passed = sum(c["passed"] for c in run["checks"])
     return f"{'PASS' if run['passed'] else 'FAIL'} ({passed} of {len(run['checks'])} checks)"
+
+
+def _check_row(check: dict[str, Any]) -> tuple[str, ...]:
+    """One check's cells of a scenario page's check table."""
+    error = "nan" if check["error"] is None else f"{check['error']:.3g}"
+    unit = f" {check['unit']}" if check["unit"] else ""
+    return (table_cell(check["name"]), f"{table_cell(format_value(check['analytic'], from_json=True))}{unit}",
+            f"{table_cell(format_value(check['simulated'], from_json=True))}{unit}", f"{error} {check['error_kind']}",
+            f"{check['tolerance']:.3g}", "PASS" if check["passed"] else "FAIL", table_cell(check["why"]))
 
 
 def render_scenario(payload: dict[str, Any]) -> str:
@@ -153,25 +142,19 @@ def render_scenario(payload: dict[str, Any]) -> str:
     lines = [GENERATED.format(source=f"json/{name}.json"), "", f"# {name}: measured results", "",
              f"{payload['summary']}. Analytic reference: {payload['source']}. Model, section, checks and why each "
              f"tolerance is what it is: [docs/scenarios/{name}.md](../scenarios/{name}.md).", "",
-             *stamp_table(payload["environment"]), "",
+             stamp_table(payload["environment"]), "",
              f"Each preset's default validation, seed {payload['seed']}. Each error is followed by its kind (relative, "
              "absolute, max-abs over components, count or fraction); complex values are written [re, im].", ""]
     for run in payload["runs"]:
         lines += [f"## preset `{run['preset']}`: {_verdict(run)}", "",
                   f"Parameters: {_assignments(run['params'])}.", "",
-                  "| check | analytic | simulated | error | tolerance | verdict | why |",
-                  "|---|---|---|---|---|---|---|"]
-        for c in run["checks"]:
-            error = "nan" if c["error"] is None else f"{c['error']:.3g}"
-            unit = f" {c['unit']}" if c["unit"] else ""
-            lines.append(f"| {table_cell(c['name'])} | {table_cell(format_json_value(c['analytic']))}{unit} "
-                         f"| {table_cell(format_json_value(c['simulated']))}{unit} | {error} {c['error_kind']} "
-                         f"| {c['tolerance']:.3g} | {'PASS' if c['passed'] else 'FAIL'} | {table_cell(c['why'])} |")
+                  markdown_table(("check", "analytic", "simulated", "error", "tolerance", "verdict", "why"),
+                                 [_check_row(c) for c in run["checks"]])]
         t = run["timing"]
         lines += ["", f"Wall {t['wall_s']:.3g} s for {t['steps']:.3g} steps ({t['steps_per_s']:.3g} steps/s; "
                   f"MuJoCo alone {t['rollout_steps_per_s']:.3g} steps/s)."]
         for item, rep in run.get("reported", {}).items():
-            lines.append(f"Reported, not judged: {item} = {format_json_value(rep['value'])} {rep['unit']} "
+            lines.append(f"Reported, not judged: {item} = {format_value(rep['value'], from_json=True)} {rep['unit']} "
                          f"({table_cell(rep['note'])}).")
         if run["diverged_trajectories"]:
             lines.append(f"Diverged trajectories: {run['diverged_trajectories']}.")
@@ -184,18 +167,18 @@ def render_index(payloads: Sequence[dict[str, Any]]) -> str:
     """The overview page of all scenarios' payloads, in the order given (a pure function of them)."""
     lines = [GENERATED.format(source="json/*.json"), "", "# Measured results", "",
              "Every scenario's default validation at each of its presets, as the last `make results` ran it. One page "
-             "per scenario holds the check tables and its run's stamp.", "",
-             "| scenario | preset | verdict | failed checks | wall s | MuJoCo | git commit | date (UTC) |",
-             "|---|---|---|---|---|---|---|---|"]
+             "per scenario holds the check tables and its run's stamp.", ""]
+    rows = []
     for payload in payloads:
         env = payload["environment"]
         sha = (env["git_sha"] or "unknown")[:12] + ("+" if env["git_dirty"] else "")
         for run in payload["runs"]:
             failed = ", ".join(c["name"] for c in run["checks"] if not c["passed"]) or "none"
-            lines.append(f"| [{payload['scenario']}]({payload['scenario']}.md) | {run['preset']} | {_verdict(run)} "
-                         f"| {table_cell(failed)} | {run['timing']['wall_s']:.3g} | {env['mujoco']} | {sha} "
-                         f"| {env['date']} |")
-    lines += ["", "A `+` after the commit: the run had uncommitted changes to tracked files. A failed check may be an "
+            rows.append((f"[{payload['scenario']}]({payload['scenario']}.md)", run["preset"], _verdict(run),
+                         table_cell(failed), f"{run['timing']['wall_s']:.3g}", env["mujoco"], sha, env["date"]))
+    lines += [markdown_table(("scenario", "preset", "verdict", "failed checks", "wall s", "MuJoCo", "git commit",
+                              "date (UTC)"), rows),
+              "", "A `+` after the commit: the run had uncommitted changes to tracked files. A failed check may be an "
               "expected miss that the regression gate declares with its mechanism (`src/mjpoincare/gate.py`, "
               "`mjpoincare margins`). Regenerate with `make results` (runs everything) or `make results-render` "
               "(re-renders these pages from `json/`). The presets come from the studies in [tune/](tune/) "

@@ -23,6 +23,7 @@ import mujoco
 from mujoco import rollout as mj_rollout
 
 from mjpoincare.analysis.checks import jsonable
+from mjpoincare.analysis.tables import markdown_table
 from mjpoincare.parallel import run_jobs
 from mjpoincare.params import ParameterError, parse_values
 from mjpoincare.result import write_json
@@ -78,12 +79,11 @@ def run_scaling(name: str, param: str, values_text: str, assignments: Mapping[st
     print("\n".join([
         f"{name}: 1 -> {n} cores (best of {r['repeats']}; {len(r['values'])} sweep points over {param}, "
         f"{r['cpu_count']} cores seen)",
-        "| measurement | 1 process, s | " + f"{n} processes, s | gain |",
-        "|---|---|---|---|",
-        f"| machine ceiling: one validation's rollouts, x{n} copies at once | {r['rollout_alone_s']:.2f} | "
-        f"{r['rollout_together_s']:.2f} (x{n} work) | x{r['ceiling']:.2f} |",
-        f"| sweep ({len(r['values'])} validations) | {r['sweep_serial_s']:.2f} | {r['sweep_parallel_s']:.2f} | "
-        f"x{r['speedup']:.2f} |",
+        markdown_table(("measurement", "1 process, s", f"{n} processes, s", "gain"), [
+            (f"machine ceiling: one validation's rollouts, x{n} copies at once", f"{r['rollout_alone_s']:.2f}",
+             f"{r['rollout_together_s']:.2f} (x{n} work)", f"x{r['ceiling']:.2f}"),
+            (f"sweep ({len(r['values'])} validations)", f"{r['sweep_serial_s']:.2f}", f"{r['sweep_parallel_s']:.2f}",
+             f"x{r['speedup']:.2f}")]),
         f"\nthe sweep gets {100 * r['efficiency']:.0f} % of the gain the machine gives independent MuJoCo work"]))
     if json_path:
         write_json(jsonable(r), json_path.format(scenario=name))

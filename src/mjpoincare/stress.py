@@ -31,6 +31,7 @@ import numpy as np
 from mjpoincare import scenarios
 from mjpoincare import settings as sim_settings
 from mjpoincare.analysis.checks import jsonable
+from mjpoincare.analysis.tables import markdown_table
 from mjpoincare.parallel import run_jobs
 from mjpoincare.params import ParameterError
 from mjpoincare.result import write_json
@@ -169,10 +170,8 @@ def table(report: dict[str, Any]) -> str:
     ladder = [float(r["assignments"]["timestep"]) for r in report["cases"] if r["case"].startswith("timestep x")]
     at_top = bool(ladder) and stable == max(ladder)
     lines = [f"{report['scenario']} (fast preset): largest stable timestep "
-             f"{'>= ' if at_top else ''}{stable:.3g} s, largest accurate {accurate:.3g} s",
-             "| case | verdict | first check error / tol | failed checks | max penetration (mm) | max KE (J) "
-             "| wall (s) |",
-             "|---|---|---|---|---|---|---|"]
+             f"{'>= ' if at_top else ''}{stable:.3g} s, largest accurate {accurate:.3g} s"]
+    rows = []
     for r in report["cases"]:
         err = (f"{r['error']:.2e} / {r['tolerance']:.0e}" if r.get("check") and np.isfinite(r.get("error", math.nan))
                else "—")
@@ -180,9 +179,11 @@ def table(report: dict[str, Any]) -> str:
         if r["verdict"] in ("refused", "crashed"):
             err = r["message"][:70]
         failed = ", ".join(c for c in r.get("failed_checks", []) if c != "stable") or "—"
-        lines.append(f"| {r['case']} | {r['verdict']}{note} | {err} | {failed} | "
-                     f"{1e3 * r.get('max_penetration_m', math.nan):.3g} | "
-                     f"{r.get('max_kinetic_energy_J', math.nan):.3g} | {r['wall_s']:.1f} |")
+        rows.append((r["case"], f"{r['verdict']}{note}", err, failed,
+                     f"{1e3 * r.get('max_penetration_m', math.nan):.3g}",
+                     f"{r.get('max_kinetic_energy_J', math.nan):.3g}", f"{r['wall_s']:.1f}"))
+    lines.append(markdown_table(("case", "verdict", "first check error / tol", "failed checks", "max penetration (mm)",
+                                 "max KE (J)", "wall (s)"), rows))
     s = report["soak"]
     if s:
         lines.append(f"soak: {s['impacts_seen']} impacts ({s['label']}), analytic {s['analytic']:.6g}, first tenth "

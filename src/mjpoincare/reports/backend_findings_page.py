@@ -12,6 +12,8 @@ from typing import Any
 
 import numpy as np
 
+from mjpoincare.analysis.tables import markdown_table
+
 #: The columns of the table, in order: (backend, precision).
 COLUMNS = (("mujoco", "float64"), ("mjx", "float64"), ("mjx", "float32"), ("warp", "float32"))
 #: Relative changes of MuJoCo C's start velocities (the ``start_perturbation`` setting) whose runs make the table's
@@ -43,8 +45,7 @@ def table(runs: Sequence[dict[str, Any]]) -> str:
     seconds, the steps per second spent stepping and the wall seconds; a refused run shows its reason."""
     heads = [f"{b} {p}" for b, p in COLUMNS]
     heads.insert(1, f"mujoco float64, starts x (1 + {min(PERTURBATIONS):g} to {max(PERTURBATIONS):g})")
-    lines = ["| scenario | preset | check | tolerance | " + " | ".join(heads) + " |",
-             "|---|---|---|---|" + "---|" * len(heads)]
+    rows: list[list[str | None]] = []
     perturbed = [r for r in runs if r.get("start_perturbation")]
     runs = [r for r in runs if not r.get("start_perturbation")]
     keyed = {(r["scenario"], r["preset"], r["backend"], r["precision"]): r for r in runs}
@@ -62,7 +63,7 @@ def table(runs: Sequence[dict[str, Any]]) -> str:
                                                                                                strict=True)]
             cells.insert(1, _spread(row_runs[0], [r for r in perturbed if (r["scenario"], r["preset"]) ==
                                                   (scenario, preset)], name))
-            lines.append(f"| {scenario} | {preset} | {name} | {tolerance:.3g} | " + " | ".join(cells) + " |")
+            rows.append([scenario, preset, name, f"{tolerance:.3g}", *cells])
         compile_cells = ["refused: " + r["refused"] if r and "refused" in r else
                          (f"{r['compile_s']:.3g}" if r else "not run") for r in row_runs]
         rate_cells = [f"{r['timing']['rollout_steps_per_s']:.3g}" if r and "timing" in r else "" for r in row_runs]
@@ -70,14 +71,13 @@ def table(runs: Sequence[dict[str, Any]]) -> str:
         for label, cells in (("compile s", compile_cells), ("steps/s (stepping)", rate_cells),
                              ("wall s", wall_cells)):
             cells.insert(1, "")
-            lines.append(f"| {scenario} | {preset} | {label} | | " + " | ".join(cells) + " |")
-    return "\n".join(lines)
+            rows.append([scenario, preset, label, None, *cells])
+    return markdown_table(["scenario", "preset", "check", "tolerance", *heads], rows)
 
 
 def map_table(maps: Sequence[dict[str, Any]]) -> str:
     """Markdown: each map run's backend, size, batch, agreement with the reference and seconds."""
-    lines = ["| map | backend | precision | starts | batch | agreement with the reference | exit | wall s |",
-             "|---|---|---|---|---|---|---|---|"]
+    rows = []
     for m in sorted(maps, key=lambda m: (m["map"], COLUMNS.index((m["backend"], m["precision"])))):
         if "failed" in m:
             agreement = "failed: " + " ".join(m["failed"])
@@ -88,9 +88,10 @@ def map_table(maps: Sequence[dict[str, Any]]) -> str:
             agreement = (f"gait type agrees on {m['agreement']:.1%} ({m['agreement_without_d_plus']:.1%} without "
                          f"the D+ band); largest eigenvalue error "
                          f"{'none' if m['max_eigenvalue_error'] is None else format(m['max_eigenvalue_error'], '.3g')}")
-        lines.append(f"| {m['map']} | {m['backend']} | {m['precision']} | {m.get('starts', '')} | {m['batch']} "
-                     f"| {agreement} | {m['exit_code']} | {m['wall_s']:.3g} |")
-    return "\n".join(lines)
+        rows.append((m["map"], m["backend"], m["precision"], str(m.get("starts", "")), str(m["batch"]), agreement,
+                     str(m["exit_code"]), f"{m['wall_s']:.3g}"))
+    return markdown_table(("map", "backend", "precision", "starts", "batch", "agreement with the reference", "exit",
+                           "wall s"), rows)
 
 
 def scaling_fit(sizes: Sequence[dict[str, Any]]) -> tuple[float, float]:
@@ -107,24 +108,22 @@ def scaling_fit(sizes: Sequence[dict[str, Any]]) -> tuple[float, float]:
 def scaling_table(scalings: Sequence[dict[str, Any]]) -> str:
     """Markdown: per backend, the seconds per batched step and the trajectory-steps per second at each batch size,
     with the fitted latency and per-trajectory seconds (:func:`scaling_fit`)."""
-    lines = ["| scenario | backend | precision | batch | ms per batched step | trajectory-steps/s |",
-             "|---|---|---|---|---|---|"]
+    rows: list[tuple[str | None, ...]] = []
     for s in sorted(scalings, key=lambda s: (s["scenario"], COLUMNS.index((s["backend"], s["precision"])))):
-        for row in s["sizes"]:
-            lines.append(f"| {s['scenario']} | {s['backend']} | {s['precision']} | {row['batch']} "
-                         f"| {1e3 * row['seconds_per_step']:.3g} | {row['steps_per_s']:.3g} |")
+        rows += [(s["scenario"], s["backend"], s["precision"], str(row["batch"]),
+                  f"{1e3 * row['seconds_per_step']:.3g}", f"{row['steps_per_s']:.3g}") for row in s["sizes"]]
         latency, per_trajectory = scaling_fit(s["sizes"])
-        lines.append(f"| {s['scenario']} | {s['backend']} | {s['precision']} | fit | latency "
-                     f"{1e3 * latency:.3g} ms + {1e6 * per_trajectory:.3g} µs per trajectory | |")
-    return "\n".join(lines)
+        rows.append((s["scenario"], s["backend"], s["precision"], "fit",
+                     f"latency {1e3 * latency:.3g} ms + {1e6 * per_trajectory:.3g} µs per trajectory", None))
+    return markdown_table(("scenario", "backend", "precision", "batch", "ms per batched step", "trajectory-steps/s"),
+                          rows)
 
 
-def estimate_lines(runs: Sequence[dict[str, Any]]) -> list[str]:
+def estimate_table(runs: Sequence[dict[str, Any]]) -> str:
     """What a GPU needs for the validations of these runs to take 10 minutes, per preset and array backend: their
     batched steps (each chunk once: the same on any device, set by the designs and the chunks) and so the largest
     time per batched step, after this machine's compile time."""
-    lines = ["| preset | backend | precision | scenarios run | batched steps | compile s here | at most per batched "
-             "step for 10 minutes |", "|---|---|---|---|---|---|---|"]
+    rows = []
     done = [r for r in runs if "timing" in r and r["backend"] != "mujoco"]  # MuJoCo C runs on the CPU only
     for preset, backend, precision in sorted({(r["preset"], r["backend"], r["precision"]) for r in done},
                                              key=lambda k: (k[0], COLUMNS.index(k[1:]))):
@@ -132,12 +131,13 @@ def estimate_lines(runs: Sequence[dict[str, Any]]) -> list[str]:
         steps = sum(r["timing"]["batch_steps"] for r in mine)
         compile_s = sum(r["compile_s"] for r in mine)
         budget = max(0.0, 600.0 - compile_s)
-        lines.append(f"| {preset} | {backend} | {precision} | {len(mine)} | {steps:.4g} | {compile_s:.3g} "
-                     f"| {1e6 * budget / steps:.3g} µs |")
-    return lines
+        rows.append((preset, backend, precision, str(len(mine)), f"{steps:.4g}", f"{compile_s:.3g}",
+                     f"{1e6 * budget / steps:.3g} µs"))
+    return markdown_table(("preset", "backend", "precision", "scenarios run", "batched steps", "compile s here",
+                           "at most per batched step for 10 minutes"), rows)
 
 
-def _stamp(records: Sequence[dict[str, Any]]) -> list[str]:
+def _stamp(records: Sequence[dict[str, Any]]) -> str:
     """The runs' environments: every distinct value of each field (runs of one ``make backends`` share most)."""
     def values(get: Any) -> str:
         return ", ".join(sorted({str(get(r)) for r in records}))
@@ -147,14 +147,15 @@ def _stamp(records: Sequence[dict[str, Any]]) -> list[str]:
     packages = sorted({f"{k} {v}" for e in env for k, v in e["backend_packages"].items()})
     sha = values(lambda r: (r["environment"]["git_sha"] or "unknown")[:12] + ("+" if r["environment"]["git_dirty"]
                                                                                else ""))
-    return ["| run | |", "|---|---|",
-            f"| MuJoCo | {values(lambda r: r['environment']['mujoco'])} |",
-            f"| backend packages | {', '.join(packages)} |",
-            f"| devices | {values(lambda r: r.get('device', 'none (refused or a map)'))} |",
-            f"| git commit | {sha} |",
-            f"| CPU | {values(lambda r: r['environment']['cpu'])} "
-            f"({values(lambda r: r['environment']['logical_cpus'])} logical CPUs) |",
-            f"| dates (UTC) | {dates[0]} to {dates[-1]} |"]
+    return markdown_table(("run", None), [
+        ("MuJoCo", values(lambda r: r["environment"]["mujoco"])),
+        ("backend packages", ", ".join(packages)),
+        ("devices", values(lambda r: r.get("device", "none (refused or a map)"))),
+        ("git commit", sha),
+        ("CPU", f"{values(lambda r: r['environment']['cpu'])} "
+                f"({values(lambda r: r['environment']['logical_cpus'])} logical CPUs)"),
+        ("dates (UTC)", f"{dates[0]} to {dates[-1]}"),
+    ])
 
 
 def render(records: Sequence[dict[str, Any]]) -> str:
@@ -165,7 +166,7 @@ def render(records: Sequence[dict[str, Any]]) -> str:
     scalings = [r for r in records if r["kind"] == "scaling"]
     batches = sorted({r["batch"] for r in records if "batch" in r})
     lines = [GENERATED, "", "# Backends: MuJoCo C, MJX and MuJoCo Warp against the same analytic results", "",
-             *_stamp(records), "",
+             _stamp(records), "",
              "Each cell is a check's error in the check's own units (✗: over its tolerance, the same tolerance on "
              "every backend); `compile s` is the time the backend spent compiling (MJX: XLA; Warp: loading its kernels "
              "on the first step and capturing a graph per chunk length); `steps/s (stepping)` counts trajectory-steps "
@@ -185,7 +186,7 @@ def render(records: Sequence[dict[str, Any]]) -> str:
         lines += ["## What a GPU needs", "", "The validations above step each chunk of a batch once, whatever the "
                   "batch size: these batched steps are what a GPU runs one after the other (they are the same on "
                   "any device). The last column is the time per batched step a device must stay under for all of "
-                  "them to take 10 minutes, after this machine's compile time.", "", *estimate_lines(base_runs), ""]
+                  "them to take 10 minutes, after this machine's compile time.", "", estimate_table(base_runs), ""]
     return "\n".join(lines)
 
 
