@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 
 from mjpoincare import gate
+from mjpoincare.cli import main
 from mjpoincare.params import ParameterError
 from mjpoincare.scenarios import rimless_wheel_friction_basins as basins
 from mjpoincare.scenarios import rimless_wheel_friction_sweep as mu_sweep
@@ -91,11 +92,12 @@ def test_type_edges() -> None:
 def test_mu_sweep_batches_and_resumes(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     """Two mu values in one rollout, then a resumed run that only simulates the new value."""
     target = tmp_path / "sweep.json"
-    mu_sweep.run_mu_sweep(["0.3", "1.1"], {}, "fast", str(target), workers=1)
+    args = ["sweep", "rimless-wheel-friction", "--param", "mu", "--preset", "fast", "--json", str(target)]
+    main([*args, "--values", "0.3,1.1"])
     first = json.loads(target.read_text())
     assert [r["simulated"] for r in first["rows"]] == ["B", "A"]
     assert all(r["eigenvalue_error"] <= 0.02 for r in first["rows"])
-    mu_sweep.run_mu_sweep(["0.3", "1.1", "0.24"], {}, "fast", str(target), resume=True, workers=1)
+    main([*args, "--values", "0.3,1.1,0.24", "--resume"])
     out = capsys.readouterr().out
     assert "1 mu values run" in out
     rows = json.loads(target.read_text())["rows"]
@@ -140,8 +142,8 @@ def test_basin_map_small(tmp_path: Path) -> None:
     exit code allows), the sticking starts inside the window converge, the slowest rolls back; the PNG and JSON are
     written."""
     png, js = tmp_path / "basins.png", tmp_path / "basins.json"
-    code = basins.run_basin_map("theta_dot0=0.05:1.2:8,x_dot0=0:0.04:5", {"batch": "16"}, "coarse", str(js),
-                                str(png), workers=1)
+    code = main(["sweep", "rimless-wheel-friction", "--grid", "theta_dot0=0.05:1.2:8,x_dot0=0:0.04:5", "--set",
+                 "batch=16", "--preset", "coarse", "--json", str(js), "-o", str(png)])
     result = json.loads(js.read_text())
     assert png.stat().st_size > 10_000
     assert code == 0 and result["diverged"] == 0

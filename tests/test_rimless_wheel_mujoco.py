@@ -17,6 +17,7 @@ from mjpoincare.analysis.theory import rimless_wheel as theory
 from mjpoincare import gate, scenarios
 from mjpoincare.cli import main
 from mjpoincare.scenarios import rimless_wheel as rw
+from mjpoincare.scenarios import rimless_wheel_runs as runs
 from mjpoincare.simulate import initial_states, rollout_batch
 from mjpoincare.validation import resolve_inputs, run_validation
 
@@ -138,8 +139,8 @@ def test_the_basin_grid_stops_once_every_outcome_is_settled_and_its_outcomes_are
     speeds = theory.basin_initial_speeds(w)
     outcomes, steps = [], []
     for until_decided in (True, False):
-        rec, report = rw._simulate(model, w, speeds, rw.BASIN_SECONDS, s, until_decided=until_decided)
-        outcomes.append(list(rw._tail_outcomes(w, rec)))
+        rec, report = runs.simulate(model, w, speeds, rw.BASIN_SECONDS, s, until_decided=until_decided)
+        outcomes.append(list(runs.tail_outcomes(w, rec)))
         steps.append(report.steps)
     assert outcomes[0] == outcomes[1]
     assert set(outcomes[0]) <= {"standing", "rolling"}

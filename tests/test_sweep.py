@@ -4,8 +4,11 @@ from __future__ import annotations
 
 import json
 import math
+from collections.abc import Mapping
+from dataclasses import replace
 from pathlib import Path
 
+import numpy as np
 import pytest
 from conftest import require_module
 
@@ -107,22 +110,113 @@ def test_a_facet_the_scenario_lacks_is_refused(command: list[str], needle: str, 
     assert needle in err and err.count("\n") == 1, err
 
 
-def test_the_scenario_facets_are_dispatched(monkeypatch: pytest.MonkeyPatch) -> None:
-    """``--grid`` and a scenario's own ``--param`` sweep reach the hooks it declares, with its default PNG path and at
-    least two processes for the friction wheel's reference (the hooks are replaced: no simulation)."""
+def _with_facets(monkeypatch: pytest.MonkeyPatch, **facets: object) -> None:
+    """The friction wheel, as every lookup of it answers, with ``facets`` (its region map, its own sweeps) replaced."""
+    from mjpoincare import scenarios
+
+    wheel = replace(scenarios.get("rimless-wheel-friction"), **facets)
+    monkeypatch.setattr(scenarios, "get", lambda name: wheel)
+
+
+def test_a_region_map_gets_resolved_inputs_and_the_command_writes_its_data(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> None:
+    """``--grid`` over the map's axes and the inputs are checked before the map runs; the map gets the resolved inputs
+    and the axes' values, and the command prints its summary, writes the PNG (the map's default path) and the JSON
+    (``scenario``, then the map's data, NaN as null) and exits by the map's verdict."""
     from mjpoincare.scenarios import rimless_wheel_friction_basins as basins
-    from mjpoincare.scenarios import rimless_wheel_friction_sweep as mu_sweep
+    from mjpoincare.scenarios.base import RegionMap
 
     _no_simulation(monkeypatch)
     calls: list[tuple[object, ...]] = []
-    monkeypatch.setattr(basins, "run_basin_map", lambda *a, **k: calls.append((*a, k)) or 0)
-    monkeypatch.setattr(mu_sweep, "run_mu_sweep", lambda *a, **k: calls.append((*a, k)) or 0)
-    grid = "theta_dot0=0.05:1.2:8,x_dot0=0:0.04:5"
-    assert main(["sweep", "rimless-wheel-friction", "--grid", grid]) == 0
-    assert calls.pop() == (grid, {}, None, None, "renders/basins-rimless-wheel-friction.png", {"workers": 2})
-    assert main(["sweep", "rimless-wheel-friction", "--param", "mu", "--values", "0.3,1.1", "--workers", "3"]) == 0
-    assert calls.pop() == (["0.3", "1.1"], {}, None, None, {"resume": False, "workers": 3})
 
+    def compute(p: Mapping[str, object], s: Mapping[str, object], preset: str, x: np.ndarray, y: np.ndarray, *,
+                workers: int) -> dict[str, object]:
+        calls.append((p["mu"], s["timestep"], preset, x.tolist(), y.tolist(), workers))
+        return {"cells": np.array([[1.0, math.nan]]), "agrees": False}
+
+    region = RegionMap(axes=basins.AXES, output="maps/{scenario}.png", compute=compute,
+                       summary=lambda data: f"{data['cells'].size} cells",
+                       plot=lambda data, path: Path(path).write_text("png"), passed=lambda data: bool(data["agrees"]))
+    _with_facets(monkeypatch, region_map=region)
+    out = tmp_path / "map.json"
+    args = ["sweep", "rimless-wheel-friction", "--set", "mu=0.4", "--preset", "coarse", "--workers", "3"]
+    assert main([*args, "--grid", "theta_dot0=0.5:1:2,x_dot0=0:0.1:3", "--json", str(out)]) == 1
+    assert calls == [(0.4, 4e-4, "coarse", [0.5, 1.0], [0.0, 0.05, 0.1], 3)]
+    png = Path("maps/rimless-wheel-friction.png")
+    assert capsys.readouterr().out == f"2 cells\nwrote {png}\n" and png.read_text() == "png"
+    assert json.loads(out.read_text()) == {"scenario": "rimless-wheel-friction", "cells": [[1.0, None]],
+                                           "agrees": False}
+    for bad, needle in [(["--grid", "theta_dot0=0:1:2,x_dot0=0:0.1:3"], "--grid theta_dot0 = post-impact"),
+                        (["--grid", "theta_dot0=0.5:1:2,x_dot0=0:0.1:3", "--set", "kappa=0"], "kappa must be in")]:
+        assert main([*args, *bad]) == 2
+        err = capsys.readouterr().err
+        assert needle in err and err.count("\n") == 1, err
+    assert len(calls) == 1
+
+
+def test_a_scenario_sweep_gets_resolved_inputs_and_the_command_resumes_its_rows(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> None:
+    """A scenario's own ``--param`` sweep: the values are checked against the parameter's range before the sweep
+    plans; the command runs the planned jobs into the results file, one row per value in increasing order, resumes
+    from it (a NaN written as null read back as NaN), prints the sweep's table and the timing, writes the summary and
+    exits by the sweep's verdict."""
+    from mjpoincare.scenarios.base import ParamSweep
+
+    _no_simulation(monkeypatch)
+    planned: list[tuple[list[float], int]] = []
+    computed: list[float] = []
+
+    def plan(p: Mapping[str, object], s: Mapping[str, object], values: list[float], *,
+             workers: int) -> list[tuple[object, ...]]:
+        planned.append((list(values), workers))
+        return [([v],) for v in values]
+
+    def compute(p: Mapping[str, object], s: Mapping[str, object], preset: str, mus: list[float]) -> list[dict]:
+        computed.extend(mus)
+        return [{"mu": mu, "x": math.nan if mu > 1 else mu} for mu in mus]
+
+    def summarize(p: Mapping[str, object], rows: list[dict]) -> dict[str, object]:
+        return {"mus": [r["mu"] for r in rows], "nan": sum(math.isnan(r["x"]) for r in rows)}
+
+    sweep = ParamSweep(plan=plan, compute=compute, summarize=summarize, table=lambda rows, _: f"{len(rows)} rows",
+                       passed=lambda summary: summary["nan"] == 0)
+    _with_facets(monkeypatch, param_sweeps={"mu": sweep})
+    out = tmp_path / "mu.json"
+    args = ["sweep", "rimless-wheel-friction", "--param", "mu", "--json", str(out)]
+    assert main([*args, "--values", "1.1,0.3", "--workers", "3"]) == 1
+    first = json.loads(out.read_text())
+    assert planned == [([0.3, 1.1], 3)]
+    assert first["rows"] == [{"mu": 0.3, "x": 0.3}, {"mu": 1.1, "x": None}]
+    assert first["summary"] == {"mus": [0.3, 1.1], "nan": 1} and first["preset"] == "fast"
+    assert capsys.readouterr().out.startswith("2 rows\n2 mu values run in ")
+    assert main([*args, "--values", "0.3,1.1,0.24", "--resume"]) == 1
+    assert planned[-1] == ([0.24], 1) and computed == [0.3, 1.1, 0.24]
+    assert json.loads(out.read_text())["summary"] == {"mus": [0.24, 0.3, 1.1], "nan": 1}
+    assert capsys.readouterr().out.startswith("3 rows\n1 mu values run in ")
+    for bad, needle in [(["--values", "0.3,-1"], "mu must be in [0, 1000] (got -1)"),
+                        (["--values", "0.3", "--set", "kappa=0"], "kappa must be in"),
+                        (["--values", "0.3", "--resume", "--json", "-"], "--resume needs --json PATH")]:
+        assert main([*args, *bad]) == 2
+        err = capsys.readouterr().err
+        assert needle in err and err.count("\n") == 1, err
+    assert len(planned) == 2
+
+
+def test_the_mu_sweeps_references_run_in_two_processes_at_least(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The friction wheel's mu sweep plans its references in two processes or more, the mu values interleaved, and
+    groups them in increasing mu into the rollouts the batch setting allows (the processes are replaced)."""
+    from mjpoincare.scenarios import rimless_wheel_friction_sweep as mu_sweep
+
+    seen: list[tuple[int, list[list[float]]]] = []
+
+    def jobs(_: object, work: list[tuple[dict, list[float]]], *, workers: int) -> list[list[dict]]:
+        seen.append((workers, [mus for _, mus in work]))
+        return [[{"mu": mu} for mu in mus] for _, mus in work]
+
+    monkeypatch.setattr(mu_sweep, "run_jobs", jobs)
+    plan = mu_sweep.plan({}, {"batch": 2 * len(mu_sweep.SWEEP_OFFSETS)}, [0.2, 0.3, 0.4], workers=1)
+    assert seen == [(2, [[0.2, 0.4], [0.3]])]
+    assert plan == [([{"mu": 0.2}, {"mu": 0.3}],), ([{"mu": 0.4}],)]
 
 
 def test_workers_are_spawned_once_a_threaded_library_is_loaded(monkeypatch: pytest.MonkeyPatch) -> None:

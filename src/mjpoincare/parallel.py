@@ -10,18 +10,26 @@ that keeps native threads of its own is loaded (JAX, Warp: the MJX and Warp back
 multithreaded process can deadlock the child. With
 ``engine="dask"`` they go to a Dask cluster: ``scheduler`` names a running one, or a local cluster of
 ``workers`` processes is started for the call. Results are yielded as jobs finish.
+
+A resumable run (a sweep's values, a convergence ladder's rungs) keeps its rows in a results file,
+:class:`ResumableRows`: the rows a previous run of it left there are kept on ``--resume``, and the file is rewritten
+whole after every finished job, so an interruption loses at most the jobs in flight.
 """
 
 from __future__ import annotations
 
 import os
 import sys
-from collections.abc import Callable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Hashable, Iterable, Iterator, Mapping, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
+from dataclasses import dataclass, field
 from multiprocessing import get_context
 from typing import Any
 
+from mjpoincare import progress
+from mjpoincare.analysis.checks import jsonable
 from mjpoincare.params import ParameterError
+from mjpoincare.result import resumed_rows, write_json
 
 ENGINES = ("local", "dask")
 #: Modules that start native threads when imported: a process holding them is not forked.
@@ -88,3 +96,90 @@ def point_assignments(assignments: Mapping[str, str], workers: int) -> dict[str,
     if workers <= 1 or "threads" in assignments:
         return dict(assignments)
     return {**assignments, "threads": str(max(1, (os.cpu_count() or 1) // workers))}
+
+
+Row = dict[str, Any]
+
+
+@dataclass
+class ResumableRows:
+    """The rows of a resumable run and its results file (the rows under ``"rows"``, after the header).
+
+    Attributes:
+        header: what identifies the run (scenario, parameter, assignments, preset, ...): every write of the file
+            starts with it, and a file with another header is refused on resume.
+        path: the results file (None or ``-``: nothing is written while the run goes).
+        key: the row field that identifies a row (the swept value, the rung).
+        keys: the wanted rows' keys, in the order :meth:`ordered` lists the rows.
+        rows: key -> row: the resumed rows, then each finished one.
+    """
+
+    header: dict[str, Any]
+    path: str | None
+    key: str
+    keys: list[Hashable]
+    rows: dict[Hashable, Row] = field(default_factory=dict)
+
+    @classmethod
+    def open(cls, header: Mapping[str, Any], path: str | None, key: str, keys: Iterable[Hashable], *, resume: bool,
+             restore: Callable[[Row], Row] | None = None) -> ResumableRows:
+        """A run of the rows ``keys`` (duplicates once), holding the rows ``path`` has of them when ``resume``.
+
+        Args:
+            header: as the attribute.
+            path: the results file (needed when ``resume``).
+            key: as the attribute.
+            keys: the wanted rows' keys, in order.
+            resume: keep the rows a previous run of the same header left in ``path``.
+            restore: applied to each resumed row (e.g. JSON null back to NaN).
+
+        Returns:
+            The run, its :attr:`todo` the keys without a row.
+
+        Raises:
+            ParameterError: ``resume`` without a file, a file that cannot be read or one of another run.
+        """
+        if resume and (not path or path == "-"):
+            raise ParameterError("--resume needs --json PATH (the results file to resume from)")
+        wanted = list(dict.fromkeys(keys))
+        held = resumed_rows(path, dict(header)) if resume else []
+        rows = {row[key]: restore(row) if restore else row for row in held if row[key] in set(wanted)}
+        return cls(dict(header), path, key, wanted, rows)
+
+    @property
+    def todo(self) -> list[Hashable]:
+        """The wanted keys with no row yet, in order."""
+        return [k for k in self.keys if k not in self.rows]
+
+    def ordered(self) -> list[Row]:
+        """The rows held, in the order of :attr:`keys`."""
+        return [self.rows[k] for k in self.keys if k in self.rows]
+
+    def run(self, fn: Callable[..., Row | list[Row]], jobs: Sequence[tuple[Any, ...]], *, label: str, unit: str,
+            describe: Callable[[list[Row]], str], workers: int = 1, engine: str = "local",
+            scheduler: str | None = None) -> list[Row]:
+        """Run ``jobs`` (:func:`run_jobs`) and keep their rows: after each finished job, rewrite the results file whole
+        and advance the progress bar over :attr:`keys` by its rows.
+
+        Args:
+            fn: module-level function, ``fn(*job)`` -> one row or a list of rows, each with its :attr:`key`.
+            jobs: the arguments of each call (for the keys in :attr:`todo`).
+            label: the progress bar's label.
+            unit: what the bar counts (one per row).
+            describe: the bar's note on a finished job, from its rows.
+            workers: jobs run at once (processes, or Dask workers).
+            engine: ``local`` or ``dask``.
+            scheduler: a running Dask scheduler's address (None: a local cluster).
+
+        Returns:
+            Every row held, in the order of :attr:`keys`.
+        """
+        with progress.bar(len(self.keys), label, unit=unit, initial=len(self.rows)) as bar:
+            for result in run_jobs(fn, jobs, workers=workers, engine=engine, scheduler=scheduler):
+                new = result if isinstance(result, list) else [result]
+                self.rows.update({row[self.key]: row for row in new})
+                if self.path and self.path != "-":
+                    write_json(jsonable({**self.header, "rows": self.ordered()}), self.path)
+                bar.set_postfix_str(describe(new))
+                bar.update(len(new))
+        return self.ordered()

@@ -117,8 +117,11 @@ def unknown(names: Iterable[str], *declared: Sequence[Param]) -> None:
 
 def _span(start: str, stop: str, count: str) -> list[str]:
     """``count`` evenly spaced values from ``start`` to ``stop`` (both included), each as text of 10 significant
-    digits (ValueError for text that is not a number or a count)."""
-    return [f"{v:.10g}" for v in numpy.linspace(float(start), float(stop), int(count))]
+    digits (ValueError for text that is not a finite number or a count)."""
+    ends = float(start), float(stop)
+    if not all(map(math.isfinite, ends)):
+        raise ValueError(f"not finite: {start}:{stop}")
+    return [f"{v:.10g}" for v in numpy.linspace(*ends, int(count))]
 
 
 def parse_values(text: str) -> list[str]:
@@ -168,14 +171,14 @@ def parse_grid(text: str, axes: Sequence[Param]) -> dict[str, numpy.ndarray]:
             values = numpy.array([float(v) for v in _span(*spec.split(":"))])
         except (TypeError, ValueError):  # TypeError: not three fields
             values = numpy.zeros(0)
-        if values.size < 2 or not numpy.isfinite(values).all():
+        if values.size < 2:
             raise ParameterError(f"--grid {axis.name} expects START:STOP:N with numbers START, STOP and an integer "
                                  f"N >= 2 (got {axis.name}={spec})")
         for value in values:
             try:
                 axis.coerce(float(value))
             except ParameterError:
-                raise ParameterError(f"--grid {axis.name} ({axis.doc}) must be {axis.range_text()} "
+                raise ParameterError(f"--grid {axis.name} = {axis.doc} must be {axis.range_text()} "
                                      f"(got {value:g})") from None
         grid[axis.name] = values
     return grid

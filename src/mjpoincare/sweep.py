@@ -13,6 +13,11 @@ processes (each with ``threads`` = cores / N unless ``--set threads=`` says othe
 of N worker processes). Each finished point goes into the results file at once (whole or not at
 all), and ``--resume`` skips the values that file already holds, so an interrupted sweep loses at
 most the points in flight.
+
+A scenario's own facets run here too, on inputs resolved and checked before any simulation: its region map
+(``--grid``, :func:`run_region_map`) and its own sweep of a parameter (``--param NAME`` where it declares one,
+:func:`run_own_sweep`, resumable as above). The facets compute; this module prints, writes the files and returns
+the exit code.
 """
 
 from __future__ import annotations
@@ -20,13 +25,15 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Mapping, Sequence
+from pathlib import Path
 from typing import Any
 
-from mjpoincare import progress
 from mjpoincare.analysis.checks import jsonable
-from mjpoincare.parallel import check_engine, point_assignments, run_jobs
-from mjpoincare.params import ParameterError
-from mjpoincare.result import resumed_rows, write_json
+from mjpoincare.analysis.tables import markdown_table
+from mjpoincare.parallel import ResumableRows, check_engine, point_assignments
+from mjpoincare.params import parse_grid
+from mjpoincare.result import write_json
+from mjpoincare.scenarios.base import ParamSweep, RegionMap
 from mjpoincare.validation import resolve_inputs, run_validation
 
 
@@ -72,35 +79,25 @@ def run_sweep(name: str, param: str, values: list[str], assignments: Mapping[str
               scheduler: str | None = None, resume: bool = False) -> int:
     """Validate at each value; print the table (and the located bifurcation); exit 0, or 1 if a check failed."""
     check_engine(workers, engine)
-    if resume and (not json_path or json_path == "-"):
-        raise ParameterError("--resume needs --json PATH (the results file to resume from)")
     point_set = point_assignments(assignments, workers)
     for value in values:  # every input is checked before the first simulation
         resolve_inputs(name, {**point_set, param: value}, preset)
     header = {"scenario": name, "param": param, "assignments": dict(assignments), "preset": preset}
-    done = resumed_rows(json_path, header) if resume else []
-    finished = {r["value"] for r in done}
-    todo = [v for v in values if v not in finished]
-    rows = [r for r in done if r["value"] in set(values)]
+    points = ResumableRows.open(header, json_path, "value", values, resume=resume, restore=_null_as_nan)
+    todo = points.todo
     start = time.perf_counter()
-    jobs = [(name, param, value, point_set, preset) for value in todo]
-    with progress.bar(len(values), f"sweep {param}", unit="point", initial=len(rows)) as bar:
-        for row in run_jobs(sweep_point, jobs, workers=workers, engine=engine, scheduler=scheduler):
-            rows.append(row)
-            if json_path and json_path != "-":
-                write_json(jsonable({**header, "rows": rows}), json_path)
-            bar.set_postfix_str(f"{param}={row['value']}: {'pass' if row['passed'] else 'FAIL'}")
-            bar.update(1)
+    rows = points.run(sweep_point, [(name, param, value, point_set, preset) for value in todo],
+                      label=f"sweep {param}", unit="point",
+                      describe=lambda new: f"{param}={new[0]['value']}: {'pass' if new[0]['passed'] else 'FAIL'}",
+                      workers=workers, engine=engine, scheduler=scheduler)
     wall = time.perf_counter() - start
-    rows.sort(key=lambda r: values.index(r["value"]))
     names = list(dict.fromkeys(n for r in rows for n in r["errors"]))  # rows may carry different checks
-    lines = [f"| {param} | " + " | ".join(f"{n} error" for n in names) + " | lowest Re λ fitted | analytic |",
-             "|" + "---|" * (3 + len(names))]
-    for r in rows:
-        errs = " | ".join("—" if r["errors"].get(n) is None else f"{r['errors'][n]:.2e}" for n in names)
-        lines.append(f"| {r[param]:g} | {errs} | {r['fitted_lowest']:.4f} | {r['analytic_lowest']:.4f} |")
+    lines = [markdown_table(
+        (param, *(f"{n} error" for n in names), "lowest Re λ fitted", "analytic"),
+        [(f"{r[param]:g}", *("—" if r["errors"].get(n) is None else f"{r['errors'][n]:.2e}" for n in names),
+          f"{r['fitted_lowest']:.4f}", f"{r['analytic_lowest']:.4f}") for r in rows])]
     busy = sum(r["wall_s"] for r in rows if r["value"] in todo)
-    lines.append(f"\n{len(todo)} points run ({len(values) - len(todo)} resumed) in {wall:.1f} s wall with "
+    lines.append(f"\n{len(todo)} points run ({len(points.keys) - len(todo)} resumed) in {wall:.1f} s wall with "
                  f"{engine} engine, {workers} worker(s); {busy:.1f} s of validation")
     payload: dict[str, Any] = {**header, "rows": rows, "wall_s": wall, "workers": workers, "engine": engine}
     if locate == "period-doubling":
@@ -123,3 +120,81 @@ def run_sweep(name: str, param: str, values: list[str], assignments: Mapping[str
     if json_path:
         write_json(jsonable(payload), json_path)
     return 0 if all(r["passed"] for r in rows) else 1
+
+
+def _null_as_nan(row: dict[str, Any]) -> dict[str, Any]:
+    """A resumed row's fields as the run made them: JSON null (how a NaN is written) back to NaN."""
+    return {k: math.nan if v is None else v for k, v in row.items()}
+
+
+def run_region_map(name: str, facet: RegionMap, grid: str, assignments: Mapping[str, str], preset: str | None,
+                   json_path: str | None, output: str, *, workers: int) -> int:
+    """``mjpoincare sweep SCENARIO --grid``: the scenario's region map over the grid.
+
+    Args:
+        name: the scenario.
+        facet: its region map.
+        grid: the ``--grid`` text (:func:`mjpoincare.params.parse_grid` over the map's axes).
+        assignments: ``--set`` parameters and settings.
+        preset: the preset (None: the scenario's default).
+        json_path: where the map's data goes as JSON (None: nowhere; ``-``: stdout).
+        output: the PNG's path.
+        workers: processes the map may use.
+
+    Returns:
+        The exit code: 0 when the map passes (:attr:`RegionMap.passed`), 1 when not.
+    """
+    x, y = parse_grid(grid, facet.axes).values()
+    _, preset_name, params, settings = resolve_inputs(name, assignments, preset)
+    data = facet.compute(params, settings, preset_name, x, y, workers=workers)
+    Path(output).parent.mkdir(parents=True, exist_ok=True)
+    facet.plot(data, output)
+    print(facet.summary(data))
+    print(f"wrote {output}")
+    if json_path:
+        write_json(jsonable({"scenario": name, **data}), json_path)
+    return 0 if facet.passed(data) else 1
+
+
+def run_own_sweep(name: str, param: str, facet: ParamSweep, values: Sequence[str], assignments: Mapping[str, str],
+                  preset: str | None, json_path: str | None, *, resume: bool, workers: int) -> int:
+    """``mjpoincare sweep SCENARIO --param NAME`` where the scenario has its own sweep of ``NAME``.
+
+    The other inputs are resolved as a validation's (an assignment of ``param`` itself is left out: the values replace
+    it), and the values are checked against ``param``'s declared range only, both before any simulation. The rows,
+    one per value in increasing order, go into ``json_path`` after every job of the sweep, and ``resume`` skips the
+    values that file holds.
+
+    Args:
+        name: the scenario.
+        param: the swept parameter.
+        facet: the scenario's sweep of it.
+        values: the values as given (``--values``).
+        assignments: ``--set`` parameters and settings.
+        preset: the preset (None: the scenario's default).
+        json_path: the results file (None: none; ``-``: stdout at the end).
+        resume: keep the rows ``json_path`` holds of the same sweep.
+        workers: processes the sweep's references may use (it may use more).
+
+    Returns:
+        The exit code: 0 when the sweep passes (:attr:`ParamSweep.passed`), 1 when not.
+    """
+    scenario, preset_name, params, settings = resolve_inputs(
+        name, {k: v for k, v in assignments.items() if k != param}, preset)
+    declared = next(p for p in scenario.params if p.name == param)
+    points = sorted(float(declared.coerce(v)) for v in values)
+    header = {"scenario": name, "param": param, "assignments": dict(assignments), "preset": preset_name}
+    sweep = ResumableRows.open(header, json_path, param, points, resume=resume, restore=_null_as_nan)
+    todo = sweep.todo
+    start = time.perf_counter()
+    jobs = facet.plan(params, settings, todo, workers=workers)
+    plan_wall = time.perf_counter() - start
+    rows = sweep.run(facet.compute, [(params, settings, preset_name, *job) for job in jobs], label=f"{param} sweep",
+                     unit=param, describe=lambda new: f"{param} {new[0][param]:.4g}..{new[-1][param]:.4g}")
+    summary = facet.summarize(params, rows)
+    wall = time.perf_counter() - start
+    print(facet.table(rows, summary))
+    print(f"{len(todo)} {param} values run in {wall:.1f} s ({plan_wall:.1f} s of reference)")
+    if json_path:
+        write_json(jsonable({**header, "rows": rows, "summary": summary, "wall_s": wall}), json_path)
+    return 0 if facet.passed(summary) else 1

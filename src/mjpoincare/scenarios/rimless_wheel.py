@@ -22,11 +22,9 @@ import numpy as np
 
 from mjpoincare import settings as sim_settings
 from mjpoincare.analysis import checks
-from mjpoincare.analysis.adaptive_stopping import FitSettling, StoppingRule, return_map_settling
-from mjpoincare.analysis.outcomes import classify_outcomes
+from mjpoincare.analysis.adaptive_stopping import StoppingRule, return_map_settling
 from mjpoincare.analysis.period_regression import period_at
 from mjpoincare.analysis.returnmap import fit_return_map, sample_pairs
-from mjpoincare.analysis.sections import Crossings, level_crossings, wrap_events, wrap_phase
 from mjpoincare.analysis.theory import rimless_wheel as theory
 from mjpoincare.analysis.theory.rimless_wheel_hybrid import simulate_hybrid
 from mjpoincare.models import compile_spec, load_spec
@@ -34,7 +32,6 @@ from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios.base import (
     CoveragePoint,
     Evaluation,
-    JointIndex,
     ReturnMapPlot,
     Scenario,
     Soak,
@@ -45,9 +42,18 @@ from mjpoincare.scenarios.base import (
 )
 from mjpoincare.scenarios.gate_cases import GateCase, Watch
 from mjpoincare.scenarios.rimless_wheel_drake import drake_peer
-from mjpoincare.seam import Chunk, RolloutReport
-from mjpoincare.settings import rollout_options, search_space
-from mjpoincare.simulate import initial_states, plain_clip, rollout_batch
+from mjpoincare.scenarios.rimless_wheel_runs import (
+    FIT_STEPS,
+    Recorder,
+    fit_seconds,
+    post_impact_samples,
+    post_impact_states,
+    simulate,
+    tail_outcomes,
+    whole_chunks,
+)
+from mjpoincare.settings import search_space
+from mjpoincare.simulate import plain_clip
 
 PARAMS: tuple[Param, ...] = (
     Param("spokes", 8, "number of spokes n (alpha = pi/n)", int, 3, 64),
@@ -87,21 +93,12 @@ TOLERANCES: dict[str, Tolerances] = {
 #: Floor on the hub's radius of gyration / leg_length (kappa >= 1e-4; why: docs/scenarios/rimless-wheel.md).
 MIN_GYRATION = 1e-2
 
-FIT_STEPS = 6  # impacts per fitting trajectory, at most: beta^12 of the initial offset remains (0.016 for n = 8)
 #: The fitting batch stops once more impacts no longer sharpen the fit (:mod:`mjpoincare.analysis.adaptive_stopping`);
 #: 3 samples per trajectory give the step period's quadratic regression in two speeds 12 pairs for its 6 terms.
 STOPPING = StoppingRule(min_samples=3)
 FIT_DEGREE = 2  # the map omega+ -> omega+ is fitted as a quadratic
 FIT_BATCH = 6
 BASIN_SECONDS = 6.0  # at most; the slowest standing case of the default grid settles after 3.3 s
-#: Forward impacts with no backward motion between or after them that make rolling a settled outcome: the first
-#: of them was followed by a whole step, so its post-impact speed exceeded omega_f, and the return map (increasing,
-#: with omega* its only fixed point) keeps every later one above it (003 Sec. 3.3, Def. 3.20).
-ROLLING_IMPACTS = 2
-TAIL_SECONDS = 1.0  # final window classified by the basin check
-TAIL_CHUNKS = 4  # rollout chunks per tail window: the basin grid's outcome is looked at every quarter window
-#: All feet this far (x leg_length) above the ground = flight (a centimetre, above MuJoCo's ~1 mm impact hop).
-FLIGHT_CLEARANCE = 1e-2
 
 
 def wheel(p: Values) -> theory.RimlessWheel:
@@ -168,115 +165,11 @@ def build(p: Values, s: Values) -> mujoco.MjModel:
     return compile_spec(spec, s)
 
 
-def post_impact_states(model: mujoco.MjModel, w: theory.RimlessWheel, omega0: np.ndarray,
-                       foot_radius: float, slip: np.ndarray | float = 0.0) -> np.ndarray:
-    """Initial states just after an impact (two feet on the ground) with post-impact speeds ``omega0``.
-
-    As in the map's section (003 Sec. 3.2): omega0 > 0 pivots on the downhill foot (hinge angle
-    -alpha), omega0 < 0 on the uphill foot (+alpha); the hub moves as rotation about the pivot.
-    ``slip`` (m/s, default 0: sticking) is the pivot's velocity along the slope, added to the hub's
-    (Gamus & Or's x_dot of the stance tip, for the stick-slip scenario).
-    """
-    a, l = w.alpha, w.leg_length
-    psi = np.where(omega0 >= 0, -a, a)
-    qpos = np.stack([np.zeros_like(omega0), np.full_like(omega0, (l - foot_radius) * math.cos(a) + foot_radius),
-                     psi], axis=1)
-    qvel = np.stack([l * omega0 * np.cos(psi) + slip, -l * omega0 * np.sin(psi), omega0], axis=1)
-    return initial_states(model, qpos, qvel)
-
-
-class _Recorder:
-    """Consumes rollout chunks: mid-stance samples, impacts, flight flags and the final window."""
-
-    def __init__(self, model: mujoco.MjModel, w: theory.RimlessWheel, batch: int, foot_radius: float) -> None:
-        self.w, self.radius = w, foot_radius
-        self.x, self.z, self.pitch = (JointIndex.of(model, name) for name in ("x", "z", "pitch"))
-        self.mid = Crossings.empty(3)
-        self.impacts = Crossings.empty(1)
-        self.max_clearance = np.zeros(batch)
-        self.window: list[Chunk] = []  # the last TAIL_CHUNKS chunks
-        self.last_backward = np.full(batch, -np.inf)  # time of each trajectory's last sample with omega <= 0
-
-    def __call__(self, chunk: Chunk) -> None:
-        w = self.w
-        psi = wrap_phase(chunk.qpos[:, :, self.pitch.qpos], w.alpha)
-        values = np.stack([chunk.qvel[:, :, self.pitch.dof], chunk.qpos[:, :, self.x.qpos],
-                           chunk.qpos[:, :, self.z.qpos]], axis=2)
-        self.mid = self.mid.concat(level_crossings(chunk.time, psi, values, max_jump=w.alpha))
-        self.impacts = self.impacts.concat(wrap_events(chunk.time, psi, w.alpha))
-        clearance = chunk.qpos[:, :, self.z.qpos] - (w.leg_length - self.radius) * np.cos(psi) - self.radius
-        self.max_clearance = np.fmax(self.max_clearance, np.nanmax(clearance, axis=1))
-        self.window = [*self.window, chunk][-TAIL_CHUNKS:]
-        backward = chunk.qvel[:, :, self.pitch.dof] <= 0.0
-        last = backward.shape[1] - 1 - np.argmax(backward[:, ::-1], axis=1)
-        rows = np.arange(len(last))
-        self.last_backward = np.where(backward.any(axis=1), chunk.time[rows, last], self.last_backward)
-
-    def settled(self) -> np.ndarray:
-        """Per trajectory: its outcome can no longer change. Standing over the last tail window (the rocking only
-        decays, 003 Sec. 3.3), or rolling over it after ROLLING_IMPACTS forward impacts with no backward motion."""
-        if len(self.window) < TAIL_CHUNKS:
-            return np.zeros(len(self.last_backward), bool)
-        outcome = _tail_outcomes(self.w, self)  # builds the tail window once per look
-        forward = np.bincount(self.impacts.trajectory[self.impacts.time > self.last_backward[self.impacts.trajectory]],
-                              minlength=len(self.last_backward))
-        return (outcome == "standing") | ((outcome == "rolling") & (forward >= ROLLING_IMPACTS))
-
-    @property
-    def tail(self) -> Chunk | None:
-        """The last tail window (TAIL_CHUNKS chunks, each chunk's repeated row 0 dropped), or None before it."""
-        if len(self.window) < TAIL_CHUNKS:
-            return None
-        parts = [self.window[0]] + [Chunk(c.time[:, 1:], c.qpos[:, 1:], c.qvel[:, 1:]) for c in self.window[1:]]
-        return Chunk(*(np.concatenate([getattr(c, f) for c in parts], axis=1) for f in ("time", "qpos", "qvel")))
-
-
-def _chunk(model: mujoco.MjModel) -> int:
-    """Steps per native rollout chunk: a TAIL_CHUNKS-th of a tail window."""
-    return max(1, round(TAIL_SECONDS / TAIL_CHUNKS / model.opt.timestep))
-
-
-def _whole_chunks(model: mujoco.MjModel, seconds: float) -> int:
-    """Steps covering ``seconds`` (at least one tail window) in whole chunks."""
-    return _chunk(model) * max(TAIL_CHUNKS, math.ceil(seconds / (_chunk(model) * model.opt.timestep)))
-
-
-def _fit_seconds(w: theory.RimlessWheel) -> float:
-    """Duration of the fitting runs: FIT_STEPS steps at the fixed point's period, plus half a second."""
-    return FIT_STEPS * theory.step_period(w, theory.rolling_fixed_point(w)) + 0.5
-
-
-def _simulate(model: mujoco.MjModel, w: theory.RimlessWheel, omega0: np.ndarray, seconds: float,
-              s: Values, *, until_decided: bool = False, settling: FitSettling | None = None
-              ) -> tuple[_Recorder, RolloutReport]:
-    """Roll the starts ``omega0`` for ``seconds``; with ``until_decided``, end at the first tail window in which
-    every start's outcome is settled (:meth:`_Recorder.settled`); with ``settling``, once it says the post-impact
-    samples so far are enough."""
-    radius = float(s["foot_radius"])
-    recorder = _Recorder(model, w, len(omega0), radius)
-    stop = None
-    if settling is not None:
-        def stop() -> bool:
-            return settling([post[:, None] for post in _post_impact_samples(w, recorder, len(omega0))])
-    elif until_decided:
-        def stop() -> bool:
-            return bool(recorder.settled().all())
-    report = rollout_batch(model, post_impact_states(model, w, omega0, radius), _whole_chunks(model, seconds),
-                           recorder, **rollout_options(s), chunk_steps=_chunk(model), stop=stop)
-    return recorder, report
-
-
-def _post_impact_samples(w: theory.RimlessWheel, rec: _Recorder, batch: int) -> list[np.ndarray]:
-    """Each trajectory's post-impact speeds, pulled back from its mid-stance crossings along the sticking stance
-    flow (003 eq 3.5, 002 eq 13)."""
-    return [np.asarray(theory.post_impact_speed(w, w.slope, seq[:, 0]), float) for seq in rec.mid.sequences(batch)]
-
-
-def _fit_checks(w: theory.RimlessWheel, rec: _Recorder, batch: int, tol: Tolerances,
+def _fit_checks(w: theory.RimlessWheel, rec: Recorder, batch: int, tol: Tolerances,
                 why: str, seed: int) -> tuple[list[checks.Check], dict[str, object]]:
     gamma, alpha = w.slope, w.alpha
     times = rec.mid.times(batch)
-    post = _post_impact_samples(w, rec, batch)
+    post = post_impact_samples(w, rec, batch)
     x, x_next = sample_pairs(post)
     fit = fit_return_map(x, x_next, degree=FIT_DEGREE, seed=seed)
     star_sim = float(fit.fixed_point[0])
@@ -306,21 +199,9 @@ def _fit_checks(w: theory.RimlessWheel, rec: _Recorder, batch: int, tol: Toleran
                  "return_map": plot.to_dict()}
 
 
-def _tail_outcomes(w: theory.RimlessWheel, rec: _Recorder) -> np.ndarray:
-    """Each start's outcome over the last recorded window (:func:`classify_outcomes`)."""
-    tail = rec.tail
-    assert tail is not None
-    runaway = 1.5 * math.sqrt(w.gravity / w.leg_length)
-    psi = wrap_phase(tail.qpos[:, :, rec.pitch.qpos], w.alpha)
-    clearance = tail.qpos[:, :, rec.z.qpos] - (w.leg_length - rec.radius) * np.cos(psi) - rec.radius
-    return classify_outcomes(tail.qvel[:, :, rec.pitch.dof], clearance,
-                             rest_speed=0.05 * theory.rolling_fixed_point(w), runaway_speed=runaway,
-                             flight_clearance=FLIGHT_CLEARANCE * w.leg_length)
-
-
-def _basin_checks(w: theory.RimlessWheel, rec: _Recorder, omega0: np.ndarray) -> tuple[list[checks.Check],
+def _basin_checks(w: theory.RimlessWheel, rec: Recorder, omega0: np.ndarray) -> tuple[list[checks.Check],
                                                                                         dict[str, object]]:
-    simulated = _tail_outcomes(w, rec)
+    simulated = tail_outcomes(w, rec)
     predicted = []
     for om in omega0:
         outcome = theory.predicted_outcome(w, float(om))
@@ -352,7 +233,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     settle = None if not s["adaptive_stopping"] else return_map_settling(
         STOPPING, degree=FIT_DEGREE, seed=seed, fixed_point_tolerance=tol["omega_post_impact"],
         eigenvalue_tolerance=tol["eigenvalue"], relative=True)
-    fit_rec, fit_report = _simulate(model, w, fit_speeds, _fit_seconds(w), s, settling=settle)
+    fit_rec, fit_report = simulate(model, w, fit_speeds, fit_seconds(w), s, settling=settle)
     try:
         fit_checks, extras = _fit_checks(w, fit_rec, len(fit_speeds), tol, why, seed)
     except ValueError as err:  # too few samples: a diverged or stalled run
@@ -360,7 +241,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
                                       tol["omega_post_impact"], "rad/s", f"no return map: {err}")]
         extras = {}
     basin_speeds = theory.basin_initial_speeds(w)
-    basin_rec, basin_report = _simulate(model, w, basin_speeds, BASIN_SECONDS, s, until_decided=True)
+    basin_rec, basin_report = simulate(model, w, basin_speeds, BASIN_SECONDS, s, until_decided=True)
     basin_checks, basin_extras = _basin_checks(w, basin_rec, basin_speeds)
     extras.update(basin_extras)
     extras["adaptive_stopping"] = None if settle is None else settle.to_dict()
@@ -381,9 +262,9 @@ def probe(p: Values, s: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, 
     model = build(p, s)
     radius = float(s["foot_radius"])
     batches = []
-    for speeds, seconds in ((theory.fit_initial_speeds(w, FIT_BATCH), _fit_seconds(w)),
+    for speeds, seconds in ((theory.fit_initial_speeds(w, FIT_BATCH), fit_seconds(w)),
                             (theory.basin_initial_speeds(w), BASIN_SECONDS)):
-        batches.append((post_impact_states(model, w, speeds, radius), _whole_chunks(model, seconds)))
+        batches.append((post_impact_states(model, w, speeds, radius), whole_chunks(model, seconds)))
     return model, batches
 
 
@@ -407,7 +288,7 @@ def soak(p: Values, s: Values, impacts: int) -> Soak:
     """``impacts`` steps from the rolling fixed point in one trajectory: the post-impact speed of each step."""
     w = wheel(p)
     star = theory.rolling_fixed_point(w)
-    rec, report = _simulate(build(p, s), w, np.array([star]), impacts * theory.step_period(w, star) + 0.5, s)
+    rec, report = simulate(build(p, s), w, np.array([star]), impacts * theory.step_period(w, star) + 0.5, s)
     post = np.asarray(theory.post_impact_speed(w, w.slope, rec.mid.sequences(1)[0][:, 0]), float)
     return Soak(post, star, "post-impact speed omega+ (rad/s)", report)
 

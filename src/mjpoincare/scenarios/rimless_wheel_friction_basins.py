@@ -1,25 +1,22 @@
 """``mjpoincare sweep rimless-wheel-friction --grid theta_dot0=..,x_dot0=..``: regions of attraction with finite
-friction (002 Sec. 3.4, eq 26, Fig. 3.8), simulated against the reference on a coarser grid (PNG + JSON)."""
+friction (002 Sec. 3.4, eq 26, Fig. 3.8), simulated against the reference on a coarser grid: the scenario's
+:class:`~mjpoincare.scenarios.base.RegionMap` (:data:`REGION_MAP`)."""
 
 from __future__ import annotations
 
 import math
 import time
-from collections.abc import Mapping
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from mjpoincare.analysis.checks import jsonable
 from mjpoincare.analysis.stick_slip_phases import outcome, steps_to_converge
 from mjpoincare.analysis.stick_slip_reference import labelled_steps
 from mjpoincare.analysis.theory import rimless_wheel_friction as theory
-from mjpoincare.params import ParameterError, parse_values
-from mjpoincare.result import write_json
-from mjpoincare.scenarios.base import Values
-from mjpoincare.scenarios.rimless_wheel_friction import (
-    MU_NO_SLIP,
+from mjpoincare.parallel import run_jobs
+from mjpoincare.params import Param
+from mjpoincare.scenarios.base import RegionMap, Values
+from mjpoincare.scenarios.rimless_wheel_friction_rollout import (
     friction_wheel,
     gait_start,
     period_seconds,
@@ -37,6 +34,10 @@ CONVERGE_TOL = 0.01  # converged: mid-stance theta_dot within 1 % of its last va
 BASIN_CHUNK = 250  # trajectories per rollout (every row of a rollout is kept); the batch setting overrides it
 REFERENCE_STRIDE = 4  # the reference map is evaluated on every 4th grid point in each direction
 FAILURES = ("backward", "detached", "painleve", "impact", "chatter", "unsettled", "")
+MU_NO_SLIP = 10.0  # "unbounded" friction in simulation: far above mu_c; the reference uses the same finite mu
+#: The map's axes: the post-impact state (002's nondimensional units).
+AXES = (Param("theta_dot0", 1.0, "post-impact theta_dot (nondimensional)", float, 0.0, low_open=True),
+        Param("x_dot0", 0.0, "post-impact slip speed (nondimensional)", float, 0.0))
 
 
 def _basin_reference_job(p: dict[str, Any], mu: float, theta_dot0: list[float], x_dot0: float, n: int,
@@ -94,17 +95,30 @@ def _first_step_seconds(p: Values, starts: np.ndarray) -> float:
 
 
 def basin_map(p: Values, s: Values, preset: str, theta_dot0: np.ndarray, x_dot0: np.ndarray, *,
-              workers: int = 2) -> dict[str, Any]:
+              workers: int) -> dict[str, Any]:
     """Regions of attraction (002 Sec. 3.4, eq 26, Fig. 3.8) from simulation, against the reference.
 
     * The map: every (theta_dot0, x_dot0) post-impact start at the scenario's mu, BASIN_STEPS steps, batched
       (BASIN_CHUNK trajectories per rollout); the reference on every REFERENCE_STRIDE-th point: the label after the
-      same steps and the eventual outcome (:func:`theory.basin_outcome`), run in ``workers`` processes.
+      same steps and the eventual outcome (:func:`theory.basin_outcome`), run in ``workers`` processes, at least two.
     * The lines: theta_dot0 alone (x_dot0 = 0) at mu and at MU_NO_SLIP (no slip along the gait: the paper's
       unbounded friction), CONVERGE_STEPS steps: the window edges and the steps to converge, simulated and reference.
-    """
-    from mjpoincare.parallel import run_jobs
 
+    Args:
+        p: the scenario's parameters (the map is at their mu).
+        s: the simulator settings (``batch``: trajectories per rollout, else BASIN_CHUNK).
+        preset: the preset (the classifier's thresholds).
+        theta_dot0: post-impact theta_dot of the map's columns, shape (nx,).
+        x_dot0: post-impact slip speed of its rows, shape (ny,).
+        workers: processes for the reference.
+
+    Returns:
+        ``params`` and ``preset``; ``mu``, the axes, ``simulated`` labels (ny, nx); the reference's axes (every
+        REFERENCE_STRIDE-th point), its labels after BASIN_STEPS steps and eventual outcomes; the ``lines``; the
+        disagreements (region, type, region by x_dot0), ``windows`` and ``convergence``; the timings, ``steps``,
+        ``diverged`` trajectories and MuJoCo ``warnings``.
+    """
+    workers = max(workers, 2)
     mu = float(p["mu"])
     start = time.perf_counter()
     grid = np.array([(th, xd) for xd in x_dot0 for th in theta_dot0])
@@ -140,7 +154,8 @@ def basin_map(p: Values, s: Values, preset: str, theta_dot0: np.ndarray, x_dot0:
     sub = sim_map[::REFERENCE_STRIDE, ::REFERENCE_STRIDE]
     inside_sim = ~np.isin(sub, FAILURES)
     inside_ref = ~np.isin(ref_eventual.astype(str), FAILURES)
-    result = {"mu": mu, "theta_dot0": theta_dot0, "x_dot0": x_dot0, "simulated": sim_map,
+    result = {"params": dict(p), "preset": preset, "mu": mu, "theta_dot0": theta_dot0, "x_dot0": x_dot0,
+              "simulated": sim_map,
               "reference_theta_dot0": ref_th, "reference_x_dot0": ref_xd,
               "reference_after_steps": ref_label.astype(str),
               "reference_eventual": ref_eventual.astype(str), "lines": lines,
@@ -253,48 +268,38 @@ def plot_basins(result: dict[str, Any], path: str) -> None:
                  "dashed: reference windows (Fig. 3.8a)", fontsize=8)
     bx.legend(fontsize=7)
     fig.tight_layout()
-    Path(path).parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=110)
 
 
-def run_basin_map(grid: str, assignments: Mapping[str, str], preset: str | None, json_path: str | None,
-                  output: str, *, workers: int = 2) -> int:
-    """``mjpoincare sweep rimless-wheel-friction --grid theta_dot0=0.02:1.3:100,x_dot0=0:0.3:100``: the basin map,
-    its PNG (``output``) and JSON; prints the disagreements, windows and convergence. Exit 0 when the simulated region
-    of attraction differs from the reference on at most 5 % of the reference points."""
-    from mjpoincare.validation import resolve_inputs
-
-    axes: dict[str, np.ndarray] = {}
-    for part in grid.split(","):
-        name, _, spec = part.partition("=")
-        axes[name.strip()] = np.array([float(v) for v in parse_values(spec)])
-    if set(axes) != {"theta_dot0", "x_dot0"} or min(a.size for a in axes.values()) < 2:
-        raise ParameterError(f"--grid expects theta_dot0=START:STOP:N,x_dot0=START:STOP:N with N >= 2 (got {grid!r})")
-    if axes["theta_dot0"].min() <= 0 or axes["x_dot0"].min() < 0:
-        raise ParameterError(f"--grid needs theta_dot0 > 0 and x_dot0 >= 0 (got {grid!r})")
-    _, preset_name, p, s = resolve_inputs("rimless-wheel-friction", assignments, preset)
-    result = basin_map(p, s, preset_name, axes["theta_dot0"], axes["x_dot0"], workers=workers)
-    target = output.format(scenario="rimless-wheel-friction")
-    plot_basins(result, target)
+def summary(result: dict[str, Any]) -> str:
+    """The map's disagreements with the reference, and per line its window and steps to converge against the
+    reference's."""
     w = result["windows"]
     c = result["convergence"]
-    print(f"rimless-wheel-friction basins, mu = {result['mu']:g}: {axes['theta_dot0'].size}x{axes['x_dot0'].size} "
-          f"map in {result['map_wall_s']:.1f} s ({result['steps']:.3g} steps in all, {result['rollout_wall_s']:.1f} s "
-          f"in MuJoCo), reference {result['reference_wall_s']:.1f} s, total {result['wall_s']:.1f} s")
-    print(f"  region of attraction differs on {result['region_disagreement']:.1%} of the reference points, the type "
-          f"after {BASIN_STEPS} steps on {result['type_disagreement']:.1%}; by x_dot0: " + ", ".join(
-              f"{x:.3g}: {d:.0%}" for x, d in zip(result["reference_x_dot0"], result["region_disagreement_by_x_dot0"],
-                                                   strict=True)))
+    lines = [f"rimless-wheel-friction basins, mu = {result['mu']:g}: {result['theta_dot0'].size}x"
+             f"{result['x_dot0'].size} map in {result['map_wall_s']:.1f} s ({result['steps']:.3g} steps in all, "
+             f"{result['rollout_wall_s']:.1f} s in MuJoCo), reference {result['reference_wall_s']:.1f} s, total "
+             f"{result['wall_s']:.1f} s",
+             f"  region of attraction differs on {result['region_disagreement']:.1%} of the reference points, the type "
+             f"after {BASIN_STEPS} steps on {result['type_disagreement']:.1%}; by x_dot0: " + ", ".join(
+                 f"{x:.3g}: {d:.0%}" for x, d in zip(result["reference_x_dot0"],
+                                                      result["region_disagreement_by_x_dot0"], strict=True))]
     for name in ("slip", "no_slip"):
-        print(f"  mu = {w[name]['mu']:g}: window simulated {w[name]['simulated'][0]:.4f}..{w[name]['simulated'][1]:.4f}"
-              f", reference {w[name]['reference'][0]:.4f}..{w[name]['reference'][1]:.4f} (region differs on "
-              f"{c[name]['region_disagreement']:.1%} of the line); steps to converge (median over "
-              f"{c[name]['points']}) simulated {c[name]['median_steps_simulated']:.1f}, reference "
-              f"{c[name]['median_steps_reference']:.1f}, mean |difference| {c[name]['mean_abs_difference']:.2f}")
-    print(f"  eq 26 (mu = inf): {w['eq26_unbounded'][0]:.4f}..{w['eq26_unbounded'][1]:.4f}; wrote {target}")
-    if json_path:
-        write_json(jsonable({"scenario": "rimless-wheel-friction", "params": dict(p), "preset": preset_name,
-                             **result}), json_path)
-    return 0 if result["region_disagreement"] <= 0.05 and result["diverged"] == 0 else 1
+        lines.append(f"  mu = {w[name]['mu']:g}: window simulated {w[name]['simulated'][0]:.4f}.."
+                     f"{w[name]['simulated'][1]:.4f}, reference {w[name]['reference'][0]:.4f}.."
+                     f"{w[name]['reference'][1]:.4f} (region differs on {c[name]['region_disagreement']:.1%} of the "
+                     f"line); steps to converge (median over {c[name]['points']}) simulated "
+                     f"{c[name]['median_steps_simulated']:.1f}, reference {c[name]['median_steps_reference']:.1f}, "
+                     f"mean |difference| {c[name]['mean_abs_difference']:.2f}")
+    lines.append(f"  eq 26 (mu = inf): {w['eq26_unbounded'][0]:.4f}..{w['eq26_unbounded'][1]:.4f}")
+    return "\n".join(lines)
 
 
+def passed(result: dict[str, Any]) -> bool:
+    """The simulated region of attraction differs from the reference's on at most 5 % of the reference points, and no
+    trajectory diverged."""
+    return result["region_disagreement"] <= 0.05 and result["diverged"] == 0
+
+
+REGION_MAP = RegionMap(axes=AXES, output="renders/basins-{scenario}.png", compute=basin_map, summary=summary,
+                       plot=plot_basins, passed=passed)

@@ -1,9 +1,10 @@
-"""The friction wheel's experiment design and MuJoCo runs (Gamus & Or 2015, Sec. 3): the reference gait and the starts
-around it, a batch rolled out with every recorded row kept, 002's variables of each row read from the wheel's joints
+"""The friction wheel's model, experiment design and MuJoCo runs (Gamus & Or 2015, Sec. 3): the model and its units,
+the reference gait and the starts around it, a batch rolled out with every recorded row kept and measured
+(:func:`run_batch`), 002's variables of each row read from the wheel's joints
 (:func:`mjpoincare.analysis.rimless_wheel_rows.wheel_rows`), the per-preset thresholds of the stick/slip
 classification, and the stance foot's sliding rows against MuJoCo's contact law (why each number is what it is:
-docs/scenarios/rimless-wheel-friction.md). Used by :mod:`mjpoincare.scenarios.rimless_wheel_friction` and, through
-it, its friction sweep and region maps."""
+docs/scenarios/rimless-wheel-friction.md). Used by :mod:`mjpoincare.scenarios.rimless_wheel_friction`, its friction
+sweep and its region map."""
 
 from __future__ import annotations
 
@@ -17,22 +18,60 @@ from mjpoincare import settings as sim_settings
 from mjpoincare.analysis.contact_modes import EXCLUDED
 from mjpoincare.analysis.rimless_wheel_rows import impact_window, stance_contact, wheel_rows
 from mjpoincare.analysis.soft_contact import SoftContact
-from mjpoincare.analysis.stick_slip_phases import Classifier, Rows, Steps
+from mjpoincare.analysis.stick_slip_phases import Classifier, Rows, Steps, step_table
 from mjpoincare.analysis.theory import rimless_wheel_friction as theory
 from mjpoincare.mjcompat import efc_diag_inverse_inertia
 from mjpoincare.params import ParameterError
+from mjpoincare.scenarios import rimless_wheel as rw
 from mjpoincare.scenarios.base import JointIndex, Values
 from mjpoincare.seam import Batch, Chunk, RolloutReport
 from mjpoincare.settings import rollout_options
 from mjpoincare.simulate import event_rollout
 
 FIT_OFFSETS = (-0.12, -0.06, 0.0, 0.06, 0.12)  # relative offsets of theta_dot0 around the gait's post-impact state
+FIT_PAIRS = 12  # mid-stance pairs per fitting trajectory (beta^24 of the offset remains: near the fixed point)
+SIM_STEPS = 30  # steps simulated per trajectory (the slowest reference transient settles to 1e-3 within ~25)
+D_SIM_STEPS = 12  # D gaits: theta_dot converges within ~5 steps (lambda ~ 0.34) and the slip speed keeps growing
+SETTLED_STEPS = 5  # the last steps of a run compared with the reference gait
+BACKWARD_RATE = -0.01  # nondimensional theta_dot below which the wheel rolls back
+FLIGHT_CLEARANCE = 1e-3  # lowest foot this high (x leg_length) = flight ("detached")
 SLIP_START = 0.05  # x_dot0 of the slipping start checked for its settled type (a D- transient at mu = 0.3)
 D_START_SLIP = 0.02  # x_dot0 of starts on a Type D gait (its theta_dot map does not depend on x_dot > 0)
 #: Speed (nondimensional, units l omega_c) above which the stance foot moves: impacts and the velocity-only
 #: classification.
 V_THRESHOLD: dict[str, float] = {"fast": 5e-3, "accurate": 2e-3, "coarse": 1e-2}
 IMPACT_WINDOW_TC = 5.0  # the impact window is at least this many contact time constants
+
+
+def friction_wheel(p: Values) -> theory.FrictionWheel:
+    """The nondimensional reference wheel (002 eq 11)."""
+    return theory.FrictionWheel(int(p["spokes"]), float(p["kappa"]), float(p["slope"]), float(p["mu"]))
+
+
+def rate_unit(p: Values) -> float:
+    """omega_c = sqrt(g/(l(1+kappa))), 1/s: theta_dot_SI = theta_dot omega_c, x_dot_SI = x_dot l omega_c."""
+    return theory.omega_c(float(p["leg_length"]), float(p["gravity"]), float(p["kappa"]))
+
+
+def rigid_params(p: Values) -> dict[str, float | int]:
+    """Parameters of :mod:`mjpoincare.scenarios.rimless_wheel` for the same wheel (hub mass 1 kg, gyration
+    sqrt(kappa) l, the same mu on feet and floor)."""
+    l = float(p["leg_length"])
+    return {"spokes": int(p["spokes"]), "slope": float(p["slope"]), "leg_length": l, "mass": 1.0,
+            "gyration": math.sqrt(float(p["kappa"])) * l, "mu": float(p["mu"]), "gravity": float(p["gravity"])}
+
+
+def build(p: Values, s: Values) -> mujoco.MjModel:
+    """The rimless wheel of ``rimless-wheel`` (same MJCF and MjSpec rebuild) with gyration sqrt(kappa) l and mu."""
+    return rw.build(rigid_params(p), s)
+
+
+def start_states(model: mujoco.MjModel, p: Values, s: Values, starts: np.ndarray) -> np.ndarray:
+    """Full-physics states just after an impact for nondimensional post-impact states ``starts`` (B, 2) =
+    (theta_dot0, x_dot0) of 002 (x_dot0: slip speed of the new stance tip)."""
+    unit, l = rate_unit(p), float(p["leg_length"])
+    w = rw.wheel(rigid_params(p))
+    return rw.post_impact_states(model, w, starts[:, 0] * unit, float(s["foot_radius"]), starts[:, 1] * l * unit)
 
 
 def reference_gait(w: theory.FrictionWheel) -> theory.Gait:
@@ -124,6 +163,25 @@ class FrictionRun:
     steps: Steps
     cls: Classifier
     report: RolloutReport
+
+
+def run_batch(p: Values, s: Values, preset: str, starts: np.ndarray, steps: int,
+              mus: np.ndarray | None = None, extra: float = 0.0) -> FrictionRun:
+    """Simulate ``starts`` for ``steps`` gait periods plus ``extra`` seconds (one rollout; ``mus`` gives each
+    trajectory its own friction) and measure them."""
+    model = build(p, s)
+    mu_all = np.full(len(starts), float(p["mu"])) if mus is None else np.asarray(mus, float)
+    period = period_seconds(p, mu_all)
+    rec, report = simulate(model, mu_all, start_states(model, p, s, starts), steps * period + extra, s)
+    cls = classifier(mu_all, s, preset, len(starts))
+    rows = row_signals(rec, model, p, s, rate_unit(p), cls)
+    table = step_table(rows, cls, steps + 2, backward_rate=BACKWARD_RATE, flight_clearance=FLIGHT_CLEARANCE)
+    return FrictionRun(rec=rec, model=model, rows=rows, steps=table, cls=cls, report=report)
+
+
+def period_seconds(p: Values, mus: np.ndarray) -> float:
+    """Longest gait period over the friction values (s), at least the sticking gait's, for sizing the runs."""
+    return theory.longest_period(friction_wheel(p), np.unique(mus)) / rate_unit(p)
 
 
 #: Sliding rows needed for the contact-law check (fewer: no sliding to check, e.g. Type A).

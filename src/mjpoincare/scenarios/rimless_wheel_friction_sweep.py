@@ -1,24 +1,22 @@
 """``mjpoincare sweep rimless-wheel-friction --param mu``: the gait type, eigenvalue and edges across friction
-(002 Sec. 3.3, Fig. 3.5), simulated in batches of mu values against the reference per mu (resumable)."""
+(002 Sec. 3.3, Fig. 3.5), simulated in batches of mu values against the reference per mu: the scenario's
+:class:`~mjpoincare.scenarios.base.ParamSweep` of mu (:data:`MU_SWEEP`)."""
 
 from __future__ import annotations
 
 import math
-import time
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
 
-from mjpoincare import progress
-from mjpoincare.analysis.checks import jsonable
 from mjpoincare.analysis.force_ratio import critical_ratio, ratio_profile
 from mjpoincare.analysis.stick_slip_phases import Steps, fit_midstance_map, outcome, settled_rows
+from mjpoincare.analysis.tables import markdown_table
 from mjpoincare.analysis.theory import rimless_wheel_friction as theory
-from mjpoincare.params import ParameterError
-from mjpoincare.result import resumed_rows, write_json
-from mjpoincare.scenarios.base import Values
-from mjpoincare.scenarios.rimless_wheel_friction import (
+from mjpoincare.parallel import run_jobs
+from mjpoincare.scenarios.base import ParamSweep, Values
+from mjpoincare.scenarios.rimless_wheel_friction_rollout import (
     D_SIM_STEPS,
     FIT_OFFSETS,
     FIT_PAIRS,
@@ -119,8 +117,11 @@ def type_edges(mus: Sequence[float], types: Sequence[str]) -> dict[str, float]:
     return edges
 
 
-def sweep_summary(rows: list[dict[str, Any]], boundaries: theory.GaitBoundaries) -> dict[str, Any]:
-    """Agreement, the located type edges against the reference's (gait_boundaries), eigenvalue errors per type."""
+def sweep_summary(p: Values, rows: list[dict[str, Any]]) -> dict[str, Any]:
+    """Agreement, the located type edges against the reference's (:func:`theory.gait_boundaries` of the wheel ``p``),
+    eigenvalue errors per type, over the sweep's ``rows`` (increasing mu)."""
+    w = friction_wheel(p)
+    boundaries = theory.gait_boundaries(w.kappa, w.spokes, w.slope)
     mus = [r["mu"] for r in rows]
     reference = {"A/B (mu_c)": boundaries.ab, "B/C": boundaries.bc, "C/D+": boundaries.d_sign,
                  "D+/backward": boundaries.d_lower}
@@ -158,64 +159,41 @@ def sweep_summary(rows: list[dict[str, Any]], boundaries: theory.GaitBoundaries)
             "max_eigenvalue_error_per_type": eig}
 
 
-def run_mu_sweep(values: Sequence[str], assignments: Mapping[str, str], preset: str | None, json_path: str | None,
-                 *, resume: bool = False, workers: int = 2) -> int:
-    """``mjpoincare sweep rimless-wheel-friction --param mu --values START:STOP:COUNT``: the settled gait type over mu,
-    batched (:func:`mu_per_rollout` mu values per rollout, a friction per trajectory), against the reference;
-    progress on stderr, each finished batch written to ``json_path`` (whole), ``resume`` skips the mu values that
-    file holds. Prints the agreement, the located edges (mu_c = A/B) and the eigenvalue errors; exit 0 when the
-    agreement is >= 95 %, every edge within 0.02 and every eigenvalue within 0.02, else 1."""
-    from mjpoincare.parallel import run_jobs
-    from mjpoincare.validation import resolve_inputs
+def plan(p: Values, s: Values, mus: Sequence[float], *, workers: int) -> list[tuple[list[dict[str, Any]]]]:
+    """The reference at each mu (:func:`sweep_reference`), grouped into the rollouts of :func:`sweep_batch`.
 
-    _, preset_name, p, s = resolve_inputs("rimless-wheel-friction", {k: v for k, v in assignments.items()
-                                                                      if k != "mu"}, preset)
-    mus = [float(v) for v in values]
-    for mu in mus:
-        if not 0.0 <= mu <= 1e3:
-            raise ParameterError(f"mu must be in [0, 1000] (got {mu})")
-    header = {"scenario": "rimless-wheel-friction", "param": "mu", "assignments": dict(assignments),
-              "preset": preset_name}
-    rows: list[dict[str, Any]] = []
-    if resume:
-        rows = [{k: (math.nan if v is None else v) for k, v in r.items()}  # JSON null = NaN
-                for r in resumed_rows(json_path, header) if r["mu"] in mus]
-    done = {r["mu"] for r in rows}
-    todo = [mu for mu in mus if mu not in done]
-    start = time.perf_counter()
-    parts = max(1, min(workers, len(todo)))
-    chunks = [todo[i::parts] for i in range(parts)]  # interleaved: the D range costs more
-    refs = [r for part in run_jobs(_sweep_reference_job, [(dict(p), c) for c in chunks], workers=workers)
-            for r in part]
-    refs.sort(key=lambda r: r["mu"])
-    ref_wall = time.perf_counter() - start
+    Args:
+        p: the wheel's parameters (mu aside).
+        s: the simulator settings (``batch``: :func:`mu_per_rollout`).
+        mus: the mu values to run, increasing.
+        workers: processes for the references, at least two (the mu values interleaved: the D range costs more).
+
+    Returns:
+        One job per rollout: ``(refs,)``, :func:`mu_per_rollout` references in increasing mu.
+    """
+    workers = max(workers, 2)
+    parts = max(1, min(workers, len(mus)))
+    chunks = [list(mus[i::parts]) for i in range(parts)]
+    refs = sorted((r for part in run_jobs(_sweep_reference_job, [(dict(p), c) for c in chunks], workers=workers)
+                   for r in part), key=lambda r: r["mu"])
     per_rollout = mu_per_rollout(s)
-    with progress.bar(len(mus), "mu sweep", unit="mu", initial=len(rows)) as bar:
-        for k in range(0, len(refs), per_rollout):
-            batch = refs[k : k + per_rollout]
-            rows += sweep_batch(p, s, preset_name, batch)
-            if json_path and json_path != "-":
-                write_json(jsonable({**header, "rows": sorted(rows, key=lambda r: r["mu"])}), json_path)
-            bar.set_postfix_str(f"mu {batch[0]['mu']:.4g}..{batch[-1]['mu']:.4g}")
-            bar.update(len(batch))
-    rows.sort(key=lambda r: r["mu"])
-    w = friction_wheel(p)
-    summary = sweep_summary(rows, theory.gait_boundaries(w.kappa, w.spokes, w.slope))
-    wall = time.perf_counter() - start
-    print(sweep_table(rows, summary, wall, ref_wall, len(todo)))
-    if json_path:
-        write_json(jsonable({**header, "rows": rows, "summary": summary, "wall_s": wall}), json_path)
-    ok = (summary["agreement"] >= 0.95 and all(e <= 0.02 for e in summary["edge_errors"].values() if math.isfinite(e))
-          and all(e <= 0.02 for e in summary["max_eigenvalue_error_per_type"].values()))
-    return 0 if ok else 1
+    return [(refs[k : k + per_rollout],) for k in range(0, len(refs), per_rollout)]
 
 
-def sweep_table(rows: list[dict[str, Any]], summary: dict[str, Any], wall: float, ref_wall: float, run: int) -> str:
+def sweep_passed(summary: dict[str, Any]) -> bool:
+    """The simulated type agrees with the reference's at >= 95 % of the mu values, every located edge is within 0.02
+    of the reference's and every type's largest eigenvalue error is within 0.02."""
+    return (summary["agreement"] >= 0.95
+            and all(e <= 0.02 for e in summary["edge_errors"].values() if math.isfinite(e))
+            and all(e <= 0.02 for e in summary["max_eigenvalue_error_per_type"].values()))
+
+
+def sweep_table(rows: list[dict[str, Any]], summary: dict[str, Any]) -> str:
     """The sweep as a table a person reads, with the summary lines."""
-    lines = ["| mu | reference | simulated | before failure | lambda ref | lambda sim |", "|---|---|---|---|---|---|"]
-    for r in rows:
-        lines.append(f"| {r['mu']:.4g} | {r['reference']} | {r['simulated']}{'' if r['agree'] else ' (!)'} | "
-                     f"{r['simulated_before_failure']} | {r['eigenvalue']:.4f} | {r['eigenvalue_simulated']:.4f} |")
+    lines = [markdown_table(
+        ("mu", "reference", "simulated", "before failure", "lambda ref", "lambda sim"),
+        [(f"{r['mu']:.4g}", r["reference"], f"{r['simulated']}{'' if r['agree'] else ' (!)'}",
+          r["simulated_before_failure"], f"{r['eigenvalue']:.4f}", f"{r['eigenvalue_simulated']:.4f}") for r in rows])]
     lines.append(f"\nagreement {summary['agreement']:.1%} of {summary['points']} "
                  f"({summary['agreement_before_failure']:.1%} counting the type before a flight); without the D+ "
                  f"band {summary['agreement_without_d_plus']:.1%} of {summary['points_without_d_plus']}")
@@ -230,7 +208,9 @@ def sweep_table(rows: list[dict[str, Any]], summary: dict[str, Any], wall: float
                  f"reference {summary['edges_reference']['A/B (mu_c)']:.6f}")
     lines.append("largest eigenvalue error per type: " + ", ".join(
         f"{k} {v:.4f}" for k, v in summary["max_eigenvalue_error_per_type"].items()))
-    lines.append(f"{run} mu values run in {wall:.1f} s ({ref_wall:.1f} s of reference)")
     return "\n".join(lines)
+
+
+MU_SWEEP = ParamSweep(plan=plan, compute=sweep_batch, summarize=sweep_summary, table=sweep_table, passed=sweep_passed)
 
 

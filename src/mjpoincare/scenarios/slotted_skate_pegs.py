@@ -1,4 +1,5 @@
-"""The slotted skate's peg protocol as a chunk controller for :func:`mjpoincare.simulate.event_rollout`.
+"""The slotted skate's MJCF model (:func:`build`) and its peg protocol, a chunk controller for
+:func:`mjpoincare.simulate.event_rollout` (:class:`PegController`).
 
 Coleman & Holmes (1999): each stance ends where the peg reaches a slot end (3.5), the peg is retracted and a new
 one inserted at the other slot end, and the next constraint solve is the plastic impact (3.6)-(3.7). The model is
@@ -14,8 +15,29 @@ import math
 import mujoco
 import numpy as np
 
+from mjpoincare import settings as sim_settings
+from mjpoincare.models import compile_spec, load_spec
 from mjpoincare.scenarios.base import JointIndex, Values
 from mjpoincare.seam import Batch, Chunk
+
+
+def build(p: Values, s: Values) -> mujoco.MjModel:
+    """The MJCF skate with mass, inertia, slot geometry and the peg constraint's solver settings."""
+    spec = load_spec("slotted_skate.xml")
+    sim_settings.apply_options(spec, s)
+    body = spec.body("skate")
+    mass, rho = float(p["mass"]), float(p["rho"])
+    body.mass = mass
+    body.inertia = [mass * rho**2] * 3
+    l0, delta = float(p["l0"]), float(p["delta"])
+    spec.geom("slot").size = [0.5 * delta, 0.02 * rho, 0.021 * rho]
+    spec.geom("slot").pos = [-(l0 + 0.5 * delta), 0, 0.05 * rho]
+    spec.geom("body").size = [0.5 * abs(l0 + delta) + 0.3 * rho, 0.25 * rho, 0.02 * rho]
+    spec.geom("body").pos = [-0.5 * (l0 + delta), 0, 0.05 * rho]
+    slot = spec.equality("slot")
+    slot.solref = sim_settings.solref(s)
+    slot.solimp = sim_settings.solimp(s)
+    return compile_spec(spec, s)
 
 
 class PegController:

@@ -1,42 +1,25 @@
 """``mjpoincare sweep slotted-skate --grid x=START:STOP:N,y=START:STOP:N``: stability regions of straight motion over
-(L0/Delta, 1/Delta^2), the axes of Coleman & Holmes 1999 Fig. 2, simulated against the analytic sigma4 (3.10)
-(PNG + JSON)."""
+(L0/Delta, 1/Delta^2), the axes of Coleman & Holmes 1999 Fig. 2, simulated against the analytic sigma4 (3.10): the
+scenario's :class:`~mjpoincare.scenarios.base.RegionMap` (:data:`REGION_MAP`)."""
 
 from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Mapping
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from mjpoincare.analysis.checks import jsonable
 from mjpoincare.analysis.stability_classes import boundary_cells, region_classes
 from mjpoincare.analysis.theory import slotted_skate as theory
-from mjpoincare.params import ParameterError, parse_values
-from mjpoincare.result import write_json
-from mjpoincare.scenarios import slotted_skate as skate
-from mjpoincare.scenarios.base import Values
-from mjpoincare.scenarios.slotted_skate_pegs import PegController
+from mjpoincare.params import Param
+from mjpoincare.scenarios.base import RegionMap, Values
+from mjpoincare.scenarios.slotted_skate_pegs import PegController, build
 from mjpoincare.settings import rollout_options
 from mjpoincare.simulate import event_rollout, initial_states
-from mjpoincare.validation import resolve_inputs
 
-
-def parse_grid(text: str) -> tuple[np.ndarray, np.ndarray]:
-    """``x=-1.5:0.5:30,y=0.05:1:30`` -> the two axes (x = l0/delta, y = 1/delta^2)."""
-    axes: dict[str, np.ndarray] = {}
-    for part in text.split(","):
-        name, _, spec = part.partition("=")
-        values = parse_values(spec)
-        axes[name.strip()] = np.array([float(v) for v in values])
-    if set(axes) != {"x", "y"} or min(len(a) for a in axes.values()) < 2:
-        raise ParameterError(f"--grid expects x=START:STOP:N,y=START:STOP:N with N >= 2 (got {text!r})")
-    if axes["y"].min() <= 0:
-        raise ParameterError(f"--grid y = 1/delta^2 must be > 0 (got {text!r})")
-    return axes["x"], axes["y"]
+#: The grid's axes (Coleman & Holmes 1999 Fig. 2; rho = 1).
+AXES = (Param("x", 0.0, "l0/delta", float), Param("y", 1.0, "1/delta^2", float, 0.0, low_open=True))
 
 
 def region_map(p: Values, s: Values, x: np.ndarray, y: np.ndarray, impacts: int = 3,
@@ -56,7 +39,7 @@ def region_map(p: Values, s: Values, x: np.ndarray, y: np.ndarray, impacts: int 
     V = np.concatenate([np.ones(cells), -np.ones(cells)])
     l0_all, delta_all = np.tile(l0, 2), np.tile(delta, 2)
     base = {**p, "rho": 1.0, "mass": 1.0, "V0": 1.0, "heading0": 0.0}
-    model = skate.build(base, s)
+    model = build(base, s)
     entry = np.where(V > 0, l0_all, l0_all + delta_all)
     controller = PegController(model, base, entry, (l0_all, l0_all + delta_all))
     start = initial_states(model, np.stack([np.zeros_like(V), entry, np.zeros_like(V)], 1),
@@ -79,44 +62,65 @@ def region_map(p: Values, s: Values, x: np.ndarray, y: np.ndarray, impacts: int 
             "wall_s": report.wall_s, "diverged": int(report.diverged.sum())}
 
 
-def run_regions(grid: str, assignments: Mapping[str, str], preset: str | None, json_path: str | None,
-                output: str) -> int:
-    """Stability regions on a grid from simulation against the analytic ones, with a PNG; exit 0 when every cell off
-    the analytic boundaries has the analytic class and no trajectory diverged."""
-    name = skate.SLOTTED_SKATE.name
-    x, y = parse_grid(grid)
-    _, _, params, settings = resolve_inputs(name, assignments, preset)
-    result = region_map(params, settings, x, y)
+def compute(p: Values, s: Values, preset: str, x: np.ndarray, y: np.ndarray, *, workers: int) -> dict[str, Any]:
+    """The stability classes of straight motion on the grid, simulated (:func:`region_map`) and analytic (3.11-3.12).
+
+    Args:
+        p: the scenario's parameters (rho, mass, V0 and heading0 are replaced: rho = 1, the paper's Fig. 2).
+        s: the simulator settings.
+        preset: not used (the classes are judged against the analytic ones, not a preset's tolerance).
+        x: l0/delta, shape (nx,).
+        y: 1/delta^2, shape (ny,).
+        workers: not used (the whole grid is one batched rollout).
+
+    Returns:
+        ``x``, ``y``; ``simulated`` and ``analytic`` classes (:func:`region_classes`), ``boundary`` (cells on an
+        analytic boundary, not judged), ``sigma4_measured`` and ``sigma4_analytic``, each shape (2, ny, nx) with
+        index 0 forward and 1 backward; ``mismatches`` (judged cells whose classes differ), and the rollout's
+        ``steps``, ``rollout_wall_s`` and ``diverged`` trajectories.
+    """
+    result = region_map(p, s, x, y)
     simulated, analytic = region_classes(result["measured"]), region_classes(result["analytic"])
     edge = boundary_cells(analytic, result["analytic"])
-    judged = ~edge
+    return {"x": x, "y": y, "simulated": simulated, "analytic": analytic, "boundary": edge,
+            "sigma4_measured": result["measured"], "sigma4_analytic": result["analytic"],
+            "mismatches": int(((simulated != analytic) & ~edge).sum()), "steps": result["steps"],
+            "rollout_wall_s": result["wall_s"], "diverged": result["diverged"]}
+
+
+def summary(data: dict[str, Any]) -> str:
+    """Per direction: the mismatches off the analytic boundaries and in all cells, and the largest sigma4 error."""
+    x, y, simulated, analytic = data["x"], data["y"], data["simulated"], data["analytic"]
+    judged = ~data["boundary"]
     mismatch = (simulated != analytic) & judged
-    lines = [f"{name}: {x.size}x{y.size} grid (l0/delta, 1/delta^2), forward and backward, "
-             f"{result['steps']:.3g} steps in {result['wall_s']:.1f} s of rollout"]
+    lines = [f"slotted-skate: {x.size}x{y.size} grid (l0/delta, 1/delta^2), forward and backward, "
+             f"{data['steps']:.3g} steps in {data['rollout_wall_s']:.1f} s of rollout"]
     for i, label in enumerate(("forward", "backward")):
+        error = np.nanmax(np.abs(data["sigma4_measured"][i] - data["sigma4_analytic"][i]))
         lines.append(f"  {label}: {int(mismatch[i].sum())} mismatches in {int(judged[i].sum())} cells off the analytic "
                      f"boundaries ({int((simulated[i] != analytic[i]).sum())} in all {x.size * y.size}); "
-                     f"max |sigma4 error| {np.nanmax(np.abs(result['measured'][i] - result['analytic'][i])):.2e}")
-    print("\n".join(lines))
-    _plot_regions(result, simulated, analytic, output.format(scenario=name))
-    if json_path:
-        write_json(jsonable({"scenario": name, "x": x, "y": y, "simulated": simulated, "analytic": analytic,
-                             "boundary": edge, "sigma4_measured": result["measured"],
-                             "sigma4_analytic": result["analytic"], "mismatches": int(mismatch.sum())}), json_path)
-    return 0 if not mismatch.any() and result["diverged"] == 0 else 1
+                     f"max |sigma4 error| {error:.2e}")
+    return "\n".join(lines)
 
 
-def _plot_regions(result: dict[str, Any], simulated: np.ndarray, analytic: np.ndarray, path: str) -> None:
+def passed(data: dict[str, Any]) -> bool:
+    """Every cell off the analytic boundaries has the analytic class, and no trajectory diverged."""
+    return data["mismatches"] == 0 and data["diverged"] == 0
+
+
+def plot(data: dict[str, Any], path: str) -> None:
+    """Both directions' simulated classes under the analytic boundaries |sigma4| = 1 and sigma4 = 0, mismatches
+    marked."""
     from matplotlib.colors import ListedColormap
     from matplotlib.figure import Figure
 
     cmap = ListedColormap(["#d9d9d9", "#f4a6a6", "#9fd49f", "#7fb3e6", "#f7d07a"])  # nan, unstable, stable, wobble..
     fig = Figure(figsize=(11, 4.5))
     axes = fig.subplots(1, 2, sharey=True)
-    x, y = result["x"], result["y"]
+    x, y, simulated, analytic = data["x"], data["y"], data["simulated"], data["analytic"]
     for i, (ax, label) in enumerate(zip(axes, ("V > 0 (forward)", "V < 0 (backward)"), strict=True)):
         ax.pcolormesh(x, y, simulated[i] + 1, cmap=cmap, vmin=0, vmax=4, shading="nearest")
-        sig = result["analytic"][i]
+        sig = data["sigma4_analytic"][i]
         ax.contour(x, y, np.abs(sig), levels=[1.0], colors="k", linewidths=1.2)
         ax.contour(x, y, sig, levels=[0.0], colors="k", linestyles="--", linewidths=1.0)
         bad = (simulated[i] != analytic[i])
@@ -128,5 +132,8 @@ def _plot_regions(result: dict[str, Any], simulated: np.ndarray, analytic: np.nd
     fig.text(0.5, 0.01, "red: unstable, green: stable, blue: stable wobble, yellow: unstable wobble; x: mismatch",
              ha="center", fontsize=8)
     fig.tight_layout(rect=(0, 0.04, 1, 1))
-    Path(path).parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=110)
+
+
+REGION_MAP = RegionMap(axes=AXES, output="renders/regions-{scenario}.png", compute=compute, summary=summary,
+                       plot=plot, passed=passed)

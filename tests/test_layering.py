@@ -1,0 +1,206 @@
+"""The package's layers point one way, and no module imports itself through others.
+
+The layers, lowest first (a module may import its own layer and those below, never one above):
+
+- ``analysis``: formulas, fits, the exact references (numpy and scipy only);
+- ``core``: parameters, settings, the result record, the rollout seam's protocol, the job loop, progress;
+- ``engines``: the seam's implementations (MuJoCo C, MJX, Warp) and the outside peers (Drake);
+- ``simulation``: the chunked event loop over any engine and the seam's self-test;
+- ``scenarios``: one module family per system;
+- ``registry``: the list of scenarios and the resolution of a run's inputs;
+- ``commands``: validate, sweep, converge, bench, stress, tune, releases, gate, the report pages;
+- ``face``: what a user touches (the CLI, the Python API, the pytest plugin, the environments).
+
+Every import counts, a late one inside a function too: a late import dodges a cycle at import time, not the
+dependency. The model is Drake's ``BUILD`` dependencies and dm_control's domain modules (which import only
+``base``, ``common`` and ``utils``).
+"""
+
+from __future__ import annotations
+
+import ast
+import shutil
+from collections import defaultdict
+from collections.abc import Iterator, Mapping
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+#: Where each top-level package of the distribution lives in the checkout.
+SOURCES = {"mjpoincare": ROOT / "src" / "mjpoincare", "mjpoincare.analysis": ROOT / "analysis"}
+LAYERS = ("analysis", "core", "engines", "simulation", "scenarios", "registry", "commands", "face")
+#: Module (or package prefix) -> layer; the longest matching prefix wins.
+LAYER_OF: dict[str, str] = {
+    "mjpoincare.analysis": "analysis",
+    "mjpoincare.params": "core", "mjpoincare.settings": "core", "mjpoincare.result": "core",
+    "mjpoincare.seam": "core", "mjpoincare.parallel": "core", "mjpoincare.progress": "core",
+    "mjpoincare.mjlog": "core", "mjpoincare.mjcompat": "core", "mjpoincare.models": "core",
+    "mjpoincare.backends": "engines", "mjpoincare.peers": "engines",
+    "mjpoincare.simulate": "simulation", "mjpoincare.seam_check": "simulation",
+    "mjpoincare.scenarios": "scenarios",
+    "mjpoincare.scenarios.__init__": "registry", "mjpoincare.inputs": "registry",
+    "mjpoincare.validation": "commands", "mjpoincare.peer_compare": "commands", "mjpoincare.sweep": "commands",
+    "mjpoincare.converge": "commands", "mjpoincare.extrapolate": "commands", "mjpoincare.bench": "commands",
+    "mjpoincare.stress": "commands", "mjpoincare.tune": "commands", "mjpoincare.tune_pages": "commands",
+    "mjpoincare.releases": "commands", "mjpoincare.gate": "commands", "mjpoincare.results": "commands",
+    "mjpoincare.report": "commands", "mjpoincare.render": "commands", "mjpoincare.reports": "commands",
+    "mjpoincare.scaling": "commands",
+    "mjpoincare.cli": "face", "mjpoincare.api": "face", "mjpoincare.pytest_plugin": "face", "mjpoincare.envs": "face",
+    "mjpoincare.__init__": "face",
+}
+
+
+def modules(sources: Mapping[str, Path]) -> dict[str, Path]:
+    """Every module of the distribution: dotted name (a package as ``pkg.__init__``) -> file."""
+    found = {}
+    for package, base in sources.items():
+        for path in sorted(base.rglob("*.py")):
+            found[".".join([package, *path.relative_to(base).with_suffix("").parts])] = path
+    return found
+
+
+def _target(name: str, known: Mapping[str, Path]) -> str | None:
+    """The module an import of ``name`` loads, if it is one of ours (a package as its ``__init__``)."""
+    if name in known:
+        return name
+    if f"{name}.__init__" in known:
+        return f"{name}.__init__"
+    return None
+
+
+def imports(name: str, path: Path, known: Mapping[str, Path]) -> Iterator[tuple[str, int]]:
+    """(imported module of ours, line) for every import statement of module ``name``, late ones included;
+    ``from package import submodule`` counts as importing the submodule, not the package."""
+    package = name.rsplit(".", 1)[0] if not name.endswith(".__init__") else name[: -len(".__init__")]
+    for node in ast.walk(ast.parse(path.read_text(), str(path))):
+        if isinstance(node, ast.Import):
+            for alias in node.names:
+                if (target := _target(alias.name, known)) is not None:
+                    yield target, node.lineno
+        elif isinstance(node, ast.ImportFrom):
+            base = node.module or ""
+            if node.level:
+                parts = package.split(".")
+                base = ".".join(parts[: len(parts) - node.level + 1] + ([base] if base else []))
+            for alias in node.names:
+                target = _target(f"{base}.{alias.name}", known) or _target(base, known)
+                if target is not None:
+                    yield target, node.lineno
+
+
+def layer(name: str) -> str:
+    """The layer of module ``name`` (the longest prefix in :data:`LAYER_OF`); KeyError for an unplaced module."""
+    for prefix in sorted(LAYER_OF, key=len, reverse=True):
+        if name == prefix or name.startswith(prefix + "."):
+            return LAYER_OF[prefix]
+    raise KeyError(name)
+
+
+def graph(sources: Mapping[str, Path]) -> dict[str, dict[str, int]]:
+    """module -> {imported module of ours: first line}."""
+    known = modules(sources)
+    edges: dict[str, dict[str, int]] = defaultdict(dict)
+    for name, path in known.items():
+        edges[name]
+        for target, line in imports(name, path, known):
+            if target != name:
+                edges[name].setdefault(target, line)
+    return dict(edges)
+
+
+def upward(edges: Mapping[str, Mapping[str, int]]) -> list[str]:
+    """Every import of a higher layer, as ``module:line (layer) -> module (layer)``."""
+    rank = {name: i for i, name in enumerate(LAYERS)}
+    found = []
+    for name, targets in sorted(edges.items()):
+        for target, line in sorted(targets.items()):
+            if rank[layer(target)] > rank[layer(name)]:
+                found.append(f"{name}:{line} ({layer(name)}) -> {target} ({layer(target)})")
+    return found
+
+
+def cycles(edges: Mapping[str, Mapping[str, int]]) -> list[list[str]]:
+    """The import cycles: the strongly connected components of more than one module (Tarjan)."""
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    on_stack: set[str] = set()
+    found: list[list[str]] = []
+
+    def visit(v: str) -> None:
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        on_stack.add(v)
+        for w in edges.get(v, {}):
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in on_stack:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            component = []
+            while True:
+                w = stack.pop()
+                on_stack.discard(w)
+                component.append(w)
+                if w == v:
+                    break
+            if len(component) > 1:
+                found.append(sorted(component))
+
+    for v in sorted(edges):
+        if v not in index:
+            visit(v)
+    return found
+
+
+def test_every_module_has_a_layer() -> None:
+    unplaced = []
+    for name in modules(SOURCES):
+        try:
+            layer(name)
+        except KeyError:
+            unplaced.append(name)
+    assert not unplaced, f"modules with no layer in LAYER_OF: {unplaced}"
+
+
+def test_no_layer_imports_one_above_it() -> None:
+    assert upward(graph(SOURCES)) == []
+
+
+def test_no_import_cycles() -> None:
+    assert cycles(graph(SOURCES)) == []
+
+
+def test_analysis_knows_no_simulator() -> None:
+    """The analysis layer imports neither MuJoCo nor dm_control (it works on arrays and formulas only)."""
+    offenders = []
+    for name, path in modules({"mjpoincare.analysis": SOURCES["mjpoincare.analysis"]}).items():
+        for node in ast.walk(ast.parse(path.read_text())):
+            names = ([a.name for a in node.names] if isinstance(node, ast.Import)
+                     else [node.module or ""] if isinstance(node, ast.ImportFrom) else [])
+            offenders += [f"{name}: {n}" for n in names if n.split(".")[0] in {"mujoco", "dm_control"}]
+    assert offenders == []
+
+
+@pytest.fixture()
+def planted(tmp_path: Path) -> dict[str, Path]:
+    """A copy of the sources in which the core's parameter module imports the CLI inside a function."""
+    copies = {}
+    for package, base in SOURCES.items():
+        copies[package] = tmp_path / package
+        shutil.copytree(base, copies[package], ignore=shutil.ignore_patterns("__pycache__"))
+    params = copies["mjpoincare"] / "params.py"
+    params.write_text(params.read_text() + "\n\ndef _planted() -> None:\n    from mjpoincare import cli  # noqa\n")
+    return copies
+
+
+def test_a_planted_upward_import_is_found(planted: dict[str, Path]) -> None:
+    found = upward(graph(planted))
+    assert any(f.startswith("mjpoincare.params:") and f.endswith("-> mjpoincare.cli (face)") for f in found), found
+
+
+def test_a_planted_cycle_is_found(planted: dict[str, Path]) -> None:
+    """The planted import closes a cycle: the CLI reaches the parameter module through the registry."""
+    assert any({"mjpoincare.params", "mjpoincare.cli"} <= set(c) for c in cycles(graph(planted)))
