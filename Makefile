@@ -91,10 +91,10 @@ margins: $(STAMP)
 	$(BIN)/mjpoincare margins --compare renders/margins-oldest.json --json renders/margins.json
 
 results: $(STAMP)
-	$(BIN)/python -m mjpoincare.results
+	$(BIN)/python -m mjpoincare.reports.results_pages
 
 results-render: $(STAMP)
-	$(BIN)/python -m mjpoincare.results --render-only
+	$(BIN)/python -m mjpoincare.reports.results_pages --render-only
 
 tune: $(STAMP)
 	set -e; for s in $(TUNE_SCENARIOS); do for t in accurate fast; do \

@@ -9,7 +9,8 @@ from typing import Any
 
 import pytest
 
-from mjpoincare import releases, results, scenarios
+from mjpoincare import releases, scenarios
+from mjpoincare.reports import results_pages as results
 
 RESULTS = Path(__file__).resolve().parent.parent / "docs" / "results"
 PAYLOADS = results.load_payloads(RESULTS)

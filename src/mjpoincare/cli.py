@@ -124,7 +124,7 @@ def _cmd_bench(args: argparse.Namespace) -> int:
     if args.param and not args.scaling:
         raise ParameterError(f"--param {args.param} is for bench --scaling only")
     if args.scaling:
-        from mjpoincare.scaling import run_scaling
+        from mjpoincare.bench_scaling import run_scaling
 
         json_path = args.json if args.json != "renders/bench-{scenario}.json" else "renders/scaling-{scenario}.json"
         check_output_path(json_path and json_path.format(scenario=args.scenario), "--json")
@@ -225,7 +225,7 @@ def _cmd_margins(args: argparse.Namespace) -> int:
 def _cmd_tune(args: argparse.Namespace) -> int:
     from mjpoincare import scenarios
     from mjpoincare.result import check_output_path, write_json
-    from mjpoincare.results import environment
+    from mjpoincare.stamp import environment
     from mjpoincare.tune import STUDY_DIR, run_study, summary
 
     name = scenarios.get(args.scenario).name

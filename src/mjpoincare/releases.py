@@ -118,7 +118,7 @@ def run_release(out: Path, presets: Sequence[str] | None = None, names: Sequence
     import mujoco
 
     from mjpoincare import scenarios
-    from mjpoincare.results import environment
+    from mjpoincare.stamp import environment
 
     version = mujoco.__version__
     presets = list(presets or (["fast", "accurate"] if version in ACCURATE_ON else ["fast"]))

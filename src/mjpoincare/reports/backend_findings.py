@@ -31,7 +31,7 @@ from mjpoincare.result import write_json, write_text
 #: needs the checks, and the JSON of every run of ``make backends`` stays small enough for git).
 RESULT_FIELDS = ("seed", "passed", "params", "settings", "mujoco_version", "checks", "timing", "warnings",
                  "diverged_trajectories", "reported")
-#: The packages whose versions stamp a run, beside :func:`mjpoincare.results.environment`'s.
+#: The packages whose versions stamp a run, beside :func:`mjpoincare.stamp.environment`'s.
 BACKEND_PACKAGES = ("jax", "jaxlib", "mujoco-mjx", "warp-lang", "mujoco-warp")
 #: The maps ``--maps N`` runs per backend: the friction wheel's basin map over (theta_dot0, x_dot0), an N x N grid,
 #: and its mu sweep, N mu values (each with its SWEEP_OFFSETS starts; each mu costs a reference run on the CPU).
@@ -63,8 +63,8 @@ def _device(backend: str) -> str:
 
 
 def environment() -> dict[str, Any]:
-    """:func:`mjpoincare.results.environment` with the backends' package versions."""
-    from mjpoincare.results import environment as base
+    """:func:`mjpoincare.stamp.environment` with the backends' package versions."""
+    from mjpoincare.stamp import environment as base
 
     return {**base(), "backend_packages": _versions()}
 

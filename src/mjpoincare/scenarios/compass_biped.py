@@ -35,7 +35,7 @@ from mjpoincare.analysis.returnmap import fit_return_map, regress_at, sample_pai
 from mjpoincare.analysis.start_designs import sphere_offsets
 from mjpoincare.analysis.theory import compass_biped as theory
 from mjpoincare.backends.mujoco_c import MujocoBatch
-from mjpoincare.models import compile_spec, load_spec
+from mjpoincare.mjcf_loader import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios.base import (
     CoveragePoint,

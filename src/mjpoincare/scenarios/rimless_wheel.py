@@ -27,7 +27,7 @@ from mjpoincare.analysis.period_regression import period_at
 from mjpoincare.analysis.returnmap import fit_return_map, sample_pairs
 from mjpoincare.analysis.theory import rimless_wheel as theory
 from mjpoincare.analysis.theory.rimless_wheel_hybrid import simulate_hybrid
-from mjpoincare.models import compile_spec, load_spec
+from mjpoincare.mjcf_loader import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios.base import (
     CoveragePoint,

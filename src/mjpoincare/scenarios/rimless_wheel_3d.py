@@ -36,7 +36,7 @@ from mjpoincare.analysis.returnmap import sample_pairs
 from mjpoincare.analysis.theory import rimless_wheel_3d as theory
 from mjpoincare.analysis.theory import rimless_wheel_3d_hybrid as hybrid
 from mjpoincare.analysis.theory.rimless_wheel_3d_section import MapFit, fit_map, planar_tails
-from mjpoincare.models import compile_spec, load_spec
+from mjpoincare.mjcf_loader import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios import rimless_wheel_3d_runs as runs
 from mjpoincare.scenarios.base import (

@@ -16,7 +16,7 @@ import mujoco
 import numpy as np
 
 from mjpoincare import settings as sim_settings
-from mjpoincare.models import compile_spec, load_spec
+from mjpoincare.mjcf_loader import compile_spec, load_spec
 from mjpoincare.scenarios.base import JointIndex, Values
 from mjpoincare.seam import Batch, Chunk
 
