@@ -1,0 +1,94 @@
+"""The compass biped's runs: post-impact starts on the 3-D section around the fixed point (003 eq 4.18), the walk of a
+batch of them with the gait controller switching the feet's contacts at the events, and the released trailing foot's
+fall the ``trailing_foot_release`` check is judged against."""
+
+from __future__ import annotations
+
+import copy
+import math
+
+import mujoco
+import numpy as np
+
+from mjpoincare.analysis.adaptive_stopping import FitSettling
+from mjpoincare.analysis.start_designs import sphere_offsets
+from mjpoincare.analysis.theory import compass_biped as theory
+from mjpoincare.backends.mujoco_c import MujocoBatch
+from mjpoincare.params import Values
+from mjpoincare.scenarios.base import JointIndex
+from mjpoincare.scenarios.compass_biped_controller import GaitController
+from mjpoincare.seam import STATE_SPEC, RolloutReport
+from mjpoincare.settings import rollout_options
+from mjpoincare.simulate import event_rollout, initial_states
+
+STEPS = 10  # heel strikes per trajectory, at most (adaptive stopping ends the batch earlier: STOPPING)
+#: Initial offsets from the fixed point on the 3-D post-impact section: STARTS random directions (fixed seed), of
+#: size PERTURBATION, x (timestep / 20 us)^(1/3) below 20 us, shrunk to a third as |lambda|max -> 1 (how the size
+#: and the count were chosen: docs/scenarios/compass-biped.md, "Presets and start design").
+STARTS = 16
+PERTURBATION = 0.03
+#: Steps of free fall the released trailing foot is allowed before its dip fails ``trailing_foot_release``: twice the
+#: controller's release lead (the new foot is predicted at the slope 2 steps ahead; see :func:`release_tolerance`).
+RELEASE_FALL_STEPS = 4
+CHUNK_SECONDS = 0.05  # native steps between controller looks: 5x fewer Python calls than 10 ms, same results
+
+
+def post_impact_states(model: mujoco.MjModel, bp: theory.CompassBiped, x_plus: np.ndarray,
+                       foot_radius: float) -> np.ndarray:
+    """MuJoCo states for post-impact states x = (theta_st, theta_sw, dtheta_st, dtheta_sw) (thesis frame).
+
+    Leg 0 is the stance leg with its foot at the origin; the hip moves as rotation about it.
+    """
+    q_st, q_sw = x_plus[:, 0] - bp.slope, x_plus[:, 1] - bp.slope
+    w_st, w_sw = x_plus[:, 2], x_plus[:, 3]
+    lever = bp.l - foot_radius
+    qpos = np.stack([lever * np.sin(q_st), lever * np.cos(q_st) + foot_radius, q_st, q_sw], axis=1)
+    qvel = np.stack([bp.l * w_st * np.cos(q_st), -bp.l * w_st * np.sin(q_st), w_st, w_sw], axis=1)
+    return initial_states(model, qpos, qvel)
+
+
+def initial_section_states(bp: theory.CompassBiped, timestep: float) -> np.ndarray:
+    """The fixed point and STARTS offsets from it on the 3-D post-impact section (theta_st by a tenth of the
+    size, keeping both feet on the slope; each rate by the size, rad/s), in random directions (seed 0)."""
+    x_star = theory.fixed_point(bp)
+    margin = 1.0 - float(np.max(np.abs(theory.eigenvalues(bp, x_star))))
+    size = PERTURBATION * min(1.0, (timestep / 2e-5) ** (1.0 / 3.0)) * min(1.0, max(1.0 / 3.0, margin / 0.4))
+    out = sphere_offsets(x_star, np.array([0.1 * size, 0.0, size, size]), STARTS)
+    out[:, 1] = 2.0 * bp.slope - out[:, 0]
+    return out
+
+
+def walk(model: mujoco.MjModel, bp: theory.CompassBiped, starts: np.ndarray, steps: int, s: Values,
+         settling: FitSettling | None = None) -> tuple[GaitController, RolloutReport]:
+    """Walk from the post-impact states ``starts`` for ``steps`` heel strikes, switching contacts at the events;
+    with ``settling``, stop once it says the legs-parallel samples so far are enough."""
+    controller = GaitController(model, bp, len(starts), float(s["foot_radius"]))
+    period = theory.step_period(bp, theory.fixed_point(bp))
+    nstep = math.ceil((steps + 0.5) * period / model.opt.timestep)
+    stop = None if settling is None else lambda: settling(controller.samples)
+    report = event_rollout(model, post_impact_states(model, bp, starts, float(s["foot_radius"])), nstep, controller,
+                           **rollout_options(s), chunk_steps=max(10, round(CHUNK_SECONDS / model.opt.timestep)),
+                           setup=controller.configure, stop=stop)
+    return controller, report
+
+
+def release_tolerance(model: mujoco.MjModel, bp: theory.CompassBiped, x_star: np.ndarray, foot_radius: float
+                      ) -> tuple[float, float]:
+    """(a, depth): the released trailing foot's slope-normal acceleration a (m/s^2, < 0 downward) at the exact
+    pre-impact state of the gait from ``x_star`` (MuJoCo's own, with no contact and the gait's torques), and the
+    depth it falls from rest in RELEASE_FALL_STEPS semi-implicit Euler steps, |a| dt^2 n (n + 1)/2."""
+    m = copy.copy(model)
+    controller = GaitController(m, bp, 1, foot_radius)
+    state = post_impact_states(m, bp, theory.step(bp, x_star).x_minus[None, :], foot_radius)
+    with MujocoBatch([m], state, threads=0) as batch:
+        controller.configure(batch)
+        batch.set_contact(0, controller.feet[0], False)
+    data = mujoco.MjData(m)
+    mujoco.mj_setState(m, data, state[0], STATE_SPEC)
+    mujoco.mj_forward(m, data)
+    z, leg = JointIndex.of(m, "z"), JointIndex.of(m, "leg0")
+    q, w = float(data.qpos[leg.qpos]), float(data.qvel[leg.dof])
+    accel = float(data.qacc[z.dof]) + (bp.l - foot_radius) * (math.sin(q) * float(data.qacc[leg.dof])
+                                                               + math.cos(q) * w * w)
+    n = RELEASE_FALL_STEPS
+    return accel, max(0.0, -accel) * m.opt.timestep**2 * n * (n + 1) / 2
