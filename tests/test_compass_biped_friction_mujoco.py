@@ -18,6 +18,7 @@ from mjpoincare import gate
 from mjpoincare.cli import main
 from mjpoincare.result import Result
 from mjpoincare.scenarios import compass_biped_friction as sc
+from mjpoincare.scenarios import compass_biped_friction_design as design
 from mjpoincare.validation import resolve_inputs
 
 pytestmark = pytest.mark.mujoco
@@ -51,7 +52,7 @@ def test_gait_b_starts_stay_on_the_sticking_impact_branch() -> None:
     0.0037 away (rate units), so the starts are kept inside it (the compass-biped size 0.023 straddled it and half
     the trajectories left Gait B)."""
     g = sc.gait(resolve_inputs("compass-biped-friction", {"gait": "b"}, "fast")[2])
-    assert 0.003 < sc.impact_border(g) < 0.0045
+    assert 0.003 < design.impact_border(g) < 0.0045
 
 
 def test_gait_b_phase_times_reference() -> None:
