@@ -42,6 +42,7 @@ from scipy.optimize import fsolve
 from mjpoincare.analysis.eigenvalues import sort_eigenvalues
 from mjpoincare.analysis.theory import compass_biped as compass_theory
 from mjpoincare.analysis.theory import rimless_wheel as rimless_theory
+from mjpoincare.analysis.theory.shooting import central_jacobian
 from mjpoincare.params import ParameterError, Values
 from mjpoincare.peers import Peer, PeerValues
 
@@ -242,17 +243,6 @@ def difference_step(accuracy: float) -> float:
     return min(1e-2, 0.1 * accuracy ** (1.0 / 3.0))
 
 
-def _jacobian(section_map: Callable[[NDArray[np.float64]], NDArray[np.float64]], z: NDArray[np.float64],
-              eps: float) -> NDArray[np.float64]:
-    """dP/dz of ``section_map`` by central differences with step ``eps``."""
-    jac = np.empty((z.size, z.size))
-    for k in range(z.size):
-        dz = np.zeros(z.size)
-        dz[k] = eps
-        jac[:, k] = (section_map(z + dz) - section_map(z - dz)) / (2.0 * eps)
-    return jac
-
-
 def rimless_wheel(w: rimless_theory.RimlessWheel, guess: float | None = None, accuracy: float = REFERENCE_ACCURACY,
                   scheme: str = SCHEME) -> RimlessWheelGait:
     """Drake's rolling gait of the rimless wheel ``w``.
@@ -279,7 +269,7 @@ def rimless_wheel(w: rimless_theory.RimlessWheel, guess: float | None = None, ac
         return step_map([slope - alpha, float(z[0])]).x_plus[1:]
 
     omega = float(_root(section_map, guess, accuracy)[0])
-    multiplier = float(_jacobian(section_map, np.array([omega]), difference_step(accuracy))[0, 0])
+    multiplier = float(central_jacobian(section_map, np.array([omega]), difference_step(accuracy))[0, 0])
     impact = step_map([slope - alpha, omega])
     return RimlessWheelGait(omega_post_impact=omega, multiplier=multiplier,
                             impact_coefficient=float(impact.x_plus[1] / impact.x_minus[1]),
@@ -315,7 +305,8 @@ def compass_gait(bp: compass_theory.CompassBiped, guess: ArrayLike | None = None
         return step_map(state(z)).x_plus[[0, 2, 3]]
 
     z = _root(section_map, x0[[0, 2, 3]], accuracy)
-    lam = sort_eigenvalues(np.linalg.eigvals(_jacobian(section_map, z, difference_step(accuracy))).astype(complex))
+    jac = central_jacobian(section_map, z, difference_step(accuracy))
+    lam = sort_eigenvalues(np.linalg.eigvals(jac).astype(complex))
     impact = step_map(state(z))
     return CompassGaitCycle(fixed_point=tuple(float(v) for v in state(z)),
                             eigenvalues=tuple(complex(v) for v in lam), step_period=impact.period,
