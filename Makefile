@@ -25,6 +25,8 @@
 #                     to TUNE_TRIALS trials per target preset, export it to docs/results/tune/json/ with its front's
 #                     plot, then render docs/results/tune/SCENARIO.md
 #   make tune-render  re-render docs/results/tune/*.md from the committed JSON (no simulation)
+#   make engines      the wheels on MuJoCo C beside Drake's MultibodyPlant under each contact approximation (resumable)
+#                     into docs/results/engines/json/, then docs/results/engines/README.md; engines-render: the page only
 #   make gpu-check    the same at a GPU's sizes (both presets, batches of 4096, 64 x 64 basin map, 64 mu values, batch
 #                     sizes 1 to 16384) into docs/results/backends-gpu/; on a CPU: make gpu-check BATCH=8 MAPS=2 ...
 PYTHON ?= python3
@@ -50,7 +52,7 @@ TUNE_TRIALS ?= 16
 BACKENDS_OUT ?= docs/results/backends
 
 .PHONY: validate test test-latest lock margins results results-render backends gpu-check bench gate clean releases \
-	releases-render bisect tune tune-render
+	releases-render bisect tune tune-render engines engines-render
 
 PYTHON_CHECK := $(PYTHON) -c 'import sys; sys.exit(0 if sys.version_info >= (3, 10) else "mjpoincare needs Python >= 3.10")'
 
@@ -108,6 +110,12 @@ tune-render: $(STAMP)
 backends: $(STAMP)
 	$(BIN)/python -m mjpoincare.reports.backend_findings all --presets $(PRESETS) --batch $(BATCH) --maps $(MAPS) \
 		--scaling $(SCALING) --workers $(WORKERS) --out $(BACKENDS_OUT)
+
+engines: $(STAMP)
+	$(BIN)/python -m mjpoincare.reports.engine_findings all --workers $(WORKERS) --out docs/results/engines
+
+engines-render: $(STAMP)
+	$(BIN)/python -m mjpoincare.reports.engine_findings render docs/results/engines
 
 releases: $(STAMP)
 	$(BIN)/python -m mjpoincare.releases matrix --workers $(RELEASE_WORKERS)

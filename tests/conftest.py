@@ -28,7 +28,7 @@ mjx_run_key = pytest.StashKey[tuple[subprocess.Popen[bytes], Path]]()
 
 
 #: The distribution that makes each optional backend (``mjpoincare.backends.REQUIRES``) required in CI.
-BACKEND_DISTRIBUTIONS = {"mjx": "mujoco-mjx", "warp": "mujoco-warp"}
+BACKEND_DISTRIBUTIONS = {"mjx": "mujoco-mjx", "warp": "mujoco-warp", "drake": "drake"}
 #: The extras ``make test`` installs (CI runs ``make test``).
 CI_EXTRAS = ("dev", "viz", "dask", "tune", "peers", "mjx", "warp")
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import Any
 
 import mujoco
 
@@ -30,9 +31,10 @@ JACOBIANS = {"auto": mujoco.mjtJacobian.mjJAC_AUTO, "dense": mujoco.mjtJacobian.
 #: Sensors the ``diagnostics`` setting adds (rollouts record their min and max): the smallest contact distance
 #: (negative = penetration) over all contacts, and the kinetic energy.
 DIAGNOSTIC_SENSORS = ("min_contact_distance", "kinetic_energy")
-BACKENDS = ("mujoco", "mjx", "warp")
+BACKENDS = ("mujoco", "mjx", "warp", "drake")
 #: The precisions each backend runs in (MuJoCo C: double only; MuJoCo Warp: single only).
-BACKEND_PRECISIONS = {"mujoco": ("float64",), "mjx": ("float64", "float32"), "warp": ("float32",)}
+BACKEND_PRECISIONS = {"mujoco": ("float64",), "mjx": ("float64", "float32"), "warp": ("float32",),
+                      "drake": ("float64",)}
 _CONTACT_DIST, _REDUCE_MINDIST = 8, 1  # MuJoCo contact-sensor data bit "dist" and reduce mode "mindist"
 
 
@@ -43,7 +45,8 @@ SETTINGS: tuple[Param, ...] = (
     Param("impratio", 10.0, "friction-to-normal impedance ratio (elliptic cone)", float, 0.0, None, True),
     Param("solref_timeconst", 1e-3, "contact time constant, s (MuJoCo clamps it to >= 2 timesteps)",
           float, 0.0, 1.0, low_open=True),
-    Param("solref_dampratio", 1.0, "contact damping ratio (>= 1: no rebound)", float, 0.0, 100.0, True),
+    Param("solref_dampratio", 1.0, "contact damping ratio of the penetration (the unilateral contact still rebounds a "
+          "little at 1: docs/adding-a-scenario.md)", float, 0.0, 100.0, True),
     Param("solimp_dmin", 0.99, "solimp d0: impedance at zero penetration", float, 0.0, 1.0, True, True),
     Param("solimp_dmax", 0.999, "solimp d_width: impedance at full width", float, 0.0, 1.0, True, True),
     Param("solimp_width", 1e-4, "solimp width, m", float, 0.0, 1.0, low_open=True),
@@ -61,9 +64,14 @@ SETTINGS: tuple[Param, ...] = (
     Param("unskip", "none", "undo one of the scene's skips, to measure it (bench --skips): collisions = every geom "
           "collides with every other (no filtering to the feet and the ground), contact = contact detection on where "
           "only equality constraints act", str, choices=("none", "collisions", "contact")),
-    Param("backend", "mujoco", "simulator the rollouts run on: MuJoCo C, MJX (JAX; extra mjpoincare[mjx]) or MuJoCo "
-          "Warp (extra mjpoincare[warp]); same models, experiment designs, checks and tolerances", str,
+    Param("backend", "mujoco", "simulator the rollouts run on: MuJoCo C, MJX (JAX; extra mjpoincare[mjx]), MuJoCo "
+          "Warp (extra mjpoincare[warp]) or Drake's MultibodyPlant (extra mjpoincare[peers]: the scenario's model "
+          "translated, docs/engines.md); same models, experiment designs, checks and tolerances", str,
           choices=BACKENDS),
+    Param("drake_approximation", "sap", "backend=drake: the discrete contact approximation (Drake's SAP, TAMSI, "
+          "Lagged or Similar)", str, choices=("sap", "tamsi", "lagged", "similar")),
+    Param("drake_contact", "point", "backend=drake: compliant point contact, or hydroelastic contact where the "
+          "geometry allows it (spheres on a half space)", str, choices=("point", "hydroelastic")),
     Param("precision", "auto", "floating point of the rollouts: auto (the backend's first: float64 for MuJoCo C and "
           "MJX, float32 for MuJoCo Warp), float64, or float32 (MJX as RL setups run it; MuJoCo Warp's only one)", str,
           choices=("auto", "float64", "float32")),
@@ -165,12 +173,14 @@ def apply_unskip(spec: mujoco.MjSpec, settings: Mapping[str, Value]) -> None:
         spec.option.disableflags &= ~int(mujoco.mjtDisableBit.mjDSBL_CONTACT)
 
 
-def rollout_options(settings: Mapping[str, Value]) -> dict[str, float | int | str]:
+def rollout_options(settings: Mapping[str, Value]) -> dict[str, Any]:
     """The keyword arguments every batched rollout takes from the settings (threads, start perturbation, backend,
-    precision, batch)."""
+    precision, batch, and the engine's own options: Drake's contact approximation and contact model)."""
+    engine = ({"approximation": str(settings["drake_approximation"]),
+               "hydroelastic": settings["drake_contact"] == "hydroelastic"} if settings["backend"] == "drake" else {})
     return {"threads": int(settings["threads"]), "start_perturbation": float(settings["start_perturbation"]),
             "backend": str(settings["backend"]), "precision": str(settings["precision"]),
-            "batch": int(settings["batch"])}
+            "batch": int(settings["batch"]), "engine_options": engine}
 
 
 def as_json(settings: Mapping[str, Value]) -> dict[str, object]:

@@ -14,7 +14,7 @@ per trajectory and MuJoCo's warnings, captured by :func:`mjpoincare.mjlog.captur
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 
 import mujoco
 import numpy as np
@@ -22,6 +22,7 @@ from mujoco import rollout as mj_rollout
 
 from mjpoincare.backends import open_batch
 from mjpoincare.mjlog import captured_mujoco_log
+from mjpoincare.params import Value
 from mjpoincare.seam import STATE_SPEC, Batch, Chunk, RolloutReport
 
 
@@ -64,6 +65,7 @@ def rollout_batch(
     precision: str = "float64",
     batch: int = 0,
     stop: Callable[[], bool] | None = None,
+    engine_options: Mapping[str, Value] | None = None,
 ) -> RolloutReport:
     """Step every initial state in ``state0`` (B, nstate) for ``nstep`` steps, in native chunks.
 
@@ -74,10 +76,12 @@ def rollout_batch(
     before ``consume`` sees them, so no sample is taken from a reset state. ``batch``: the trajectories MJX and
     Warp step (:func:`open_batch`). ``stop`` (optional) is asked after each chunk has been consumed; when it answers
     True the rollout ends there (adaptive stopping, :mod:`mjpoincare.analysis.adaptive_stopping`).
+    ``engine_options``: the engine's own options (:func:`mjpoincare.backends.open_batch`).
     """
     start = perturbed_starts(state0, model.nq, model.nv, start_perturbation)
     with captured_mujoco_log() as log:
-        with open_batch(model, start, threads=threads, backend=backend, precision=precision, batch=batch) as rollout:
+        with open_batch(model, start, threads=threads, backend=backend, precision=precision, batch=batch,
+                        engine_options=engine_options) as rollout:
             done = 0
             while done < nstep:
                 n = min(chunk_steps, nstep - done)
@@ -104,6 +108,7 @@ def event_rollout(
     precision: str = "float64",
     batch: int = 0,
     stop: Callable[[], bool] | None = None,
+    engine_options: Mapping[str, Value] | None = None,
 ) -> RolloutReport:
     """Batched rollout with a controller that acts at events, without Python between steps.
 
@@ -124,14 +129,14 @@ def event_rollout(
     acts on the step from recorded row k to k + 1). A time-varying feedforward (e.g. a reference trajectory in
     the phase since the last event, which the controller tracks) thus needs no Python between steps; rows
     after an event are discarded and the next chunk's control starts from the restart row.
-    ``start_perturbation``, ``batch``, ``stop``: as in :func:`rollout_batch`.
+    ``start_perturbation``, ``batch``, ``stop``, ``engine_options``: as in :func:`rollout_batch`.
     """
     batch_size = state0.shape[0]
     nq, nv = model.nq, model.nv
     kept = np.zeros(batch_size, int)
     with captured_mujoco_log() as log:
         with open_batch(model, perturbed_starts(state0, nq, nv, start_perturbation), threads=threads,
-                        backend=backend, precision=precision, batch=batch) as rollout:
+                        backend=backend, precision=precision, batch=batch, engine_options=engine_options) as rollout:
             if setup is not None:
                 setup(rollout)
             while (kept < nstep).any():

@@ -28,7 +28,7 @@ def resolve_inputs(name: str, assignments: Mapping[str, Value], preset: str | No
     settings = resolve(sim_settings.SETTINGS, {**sim_settings.DEFAULTS, **overrides}, assignments)
     backends.check_backend(settings)
     scenario.check_params(params)
-    seam_check.require(scenario.mechanisms, str(settings["backend"]), str(settings["precision"]))
+    seam_check.require(scenario.mechanisms_for(params), str(settings["backend"]), str(settings["precision"]))
     return scenario, preset_name, params, settings
 
 

@@ -20,9 +20,14 @@ from mjpoincare.settings import BACKEND_PRECISIONS
 #: Settings each backend cannot honour: (setting, value) -> the missing feature.
 UNSUPPORTED: dict[str, dict[tuple[str, Value], str]] = {
     "mjx": {("diagnostics", 1): "MJX has no kinetic-energy sensor (mjSENS_E_KINETIC)"},
+    "drake": {("diagnostics", 1): "the Drake backend records no MuJoCo sensors"},
 }
+#: The seam mechanisms (keys of :data:`mjpoincare.seam_check.MECHANISMS`) each backend does not implement: their
+#: self-tests refuse, before any simulation, every run of a scenario that uses one.
+LACKS: dict[str, tuple[str, ...]] = {"drake": ("contact", "equality", "actuator", "fractional_step")}
 #: The packages each backend needs, and the extra that installs them.
-REQUIRES = {"mjx": (("jax", "mujoco.mjx"), "mjpoincare[mjx]"), "warp": (("warp", "mujoco_warp"), "mjpoincare[warp]")}
+REQUIRES = {"mjx": (("jax", "mujoco.mjx"), "mjpoincare[mjx]"), "warp": (("warp", "mujoco_warp"), "mjpoincare[warp]"),
+            "drake": (("pydrake",), "mjpoincare[peers]")}
 
 
 def check_installed(backend: str) -> None:
@@ -66,7 +71,8 @@ def check_backend(settings: dict[str, Value]) -> None:
 
 
 def open_batch(model: mujoco.MjModel, state0: np.ndarray, *, threads: int, backend: str = "mujoco",
-               precision: str = "float64", batch: int = 0) -> Batch:
+               precision: str = "float64", batch: int = 0, engine_options: Mapping[str, Value] | None = None
+               ) -> Batch:
     """The :class:`~mjpoincare.seam.Batch` of ``backend`` over ``model`` and the starts ``state0`` (B, nstate), as a
     context manager.
 
@@ -79,6 +85,7 @@ def open_batch(model: mujoco.MjModel, state0: np.ndarray, *, threads: int, backe
         precision: the array engines' float type (MuJoCo C is float64).
         batch: MJX and Warp step max(B, ``batch``) trajectories, the rest padding that is never seen, so that every
             rollout of a run has one shape and compiles once (MuJoCo C compiles nothing and ignores it).
+        engine_options: the engine's own keyword arguments (Drake: ``approximation``, ``hydroelastic``).
 
     Returns:
         The batch (enter it with ``with``).
@@ -87,7 +94,7 @@ def open_batch(model: mujoco.MjModel, state0: np.ndarray, *, threads: int, backe
         return MujocoBatch(model, state0, threads)
     check_installed(backend)
     module = importlib.import_module(f"mjpoincare.backends.{backend}")
-    opened: Batch = module.open_batch(model, state0, precision=precision, size=batch)
+    opened: Batch = module.open_batch(model, state0, precision=precision, size=batch, **(engine_options or {}))
     return opened
 
 

@@ -304,6 +304,8 @@ class Scenario:
             and the bench's peer rows.
         tolerances: preset -> :class:`Tolerances` (or mode -> such a table): what ``evaluate`` judges each check
             against, and why.
+        mechanisms_at: ``(params) -> mechanisms`` when a run uses fewer than all of ``mechanisms`` (a mode of the
+            scenario that needs one the others do not): a backend that lacks it refuses only those runs.
         gate_cases: the runs the regression gate asserts (:class:`~mjpoincare.scenarios.gate_cases.GateCase`; the
             defaults at every preset at least), each check in its form: gated, watched or a declared miss.
     """
@@ -335,6 +337,11 @@ class Scenario:
     peers: tuple[Peer, ...] = ()
     tolerances: ToleranceTable | Mapping[str, ToleranceTable] = field(default_factory=dict)
     gate_cases: tuple[GateCase, ...] = ()
+    mechanisms_at: Callable[[Values], tuple[str, ...]] | None = None
+
+    def mechanisms_for(self, params: Values) -> tuple[str, ...]:
+        """The seam mechanisms a run at ``params`` uses: ``mechanisms_at(params)``, or all of ``mechanisms``."""
+        return self.mechanisms if self.mechanisms_at is None else self.mechanisms_at(params)
 
     @property
     def tolerance_tables(self) -> list[ToleranceTable]:

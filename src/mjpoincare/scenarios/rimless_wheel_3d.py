@@ -354,6 +354,7 @@ RIMLESS_WHEEL_3D = Scenario(
     stress_cases=STRESS_CASES,
     soak=soak,
     mechanisms=("rollout", "fractional_step"),
+    mechanisms_at=lambda p: ("rollout", "fractional_step") if runs.is_ideal(p) else ("rollout",),
     tolerances=TOLERANCES,
     gate_cases=GATE_CASES,
     coverage=COVERAGE,
