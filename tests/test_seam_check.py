@@ -52,7 +52,6 @@ def test_every_mechanism_works_on_the_other_backends(backend: str) -> None:
     failures = {key: seam_check.failure(key, backend, precision) for key in seam_check.MECHANISMS}
     lacked = set(LACKS.get(backend, ())) - {k for k, m in seam_check.MECHANISMS.items() if m.c_only}
     assert {k for k, f in failures.items() if f is not None} == lacked, failures
-    assert all(failures[k].startswith("NotImplementedError: backend=") for k in lacked), failures
 
 
 def test_a_contact_release_that_does_nothing_refuses_the_run(monkeypatch: pytest.MonkeyPatch,

@@ -22,8 +22,8 @@ UNSUPPORTED: dict[str, dict[tuple[str, Value], str]] = {
     "mjx": {("diagnostics", 1): "MJX has no kinetic-energy sensor (mjSENS_E_KINETIC)"},
     "drake": {("diagnostics", 1): "the Drake backend records no MuJoCo sensors"},
 }
-#: The seam mechanisms (keys of :data:`mjpoincare.seam_check.MECHANISMS`) each backend does not implement: their
-#: self-tests refuse, before any simulation, every run of a scenario that uses one.
+#: The seam mechanisms (keys of :data:`mjpoincare.seam_check.MECHANISMS`) whose self-tests fail on each backend, so
+#: that every run of a scenario that uses one is refused before any simulation (Drake: docs/engines.md says why).
 LACKS: dict[str, tuple[str, ...]] = {"drake": ("contact", "equality", "actuator", "fractional_step")}
 #: The packages each backend needs, and the extra that installs them.
 REQUIRES = {"mjx": (("jax", "mujoco.mjx"), "mjpoincare[mjx]"), "warp": (("warp", "mujoco_warp"), "mjpoincare[warp]"),

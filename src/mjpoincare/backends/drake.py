@@ -2,8 +2,9 @@
 ``MultibodyPlant`` (:mod:`mjpoincare.backends.drake_plant`), one simulator per trajectory (Drake has no batch), each
 chunk stepped natively with the plant's state logged at every step (``VectorLogSink``), no Python between steps.
 
-What it implements of the seam: chunks, state setting and per-trajectory friction (the geometries' proximity
-properties replaced in that trajectory's scene-graph context). Contact release, equality toggling, actuators and
+What it implements of the seam: chunks, state setting, per-trajectory friction (the geometries' proximity
+properties replaced in that trajectory's scene-graph context), contact release (that context's collision filters)
+(its own self-test then fails on the contact's softness, docs/engines.md). Equality toggling, actuators and
 fractional steps it does not: their calls raise
 :class:`NotImplementedError`, so the seam's self-test of a scenario's mechanism refuses the scenario before any of its
 simulation (:mod:`mjpoincare.seam_check`).
@@ -15,7 +16,7 @@ import time
 
 import mujoco
 import numpy as np
-from pydrake.geometry import ProximityProperties, RoleAssign
+from pydrake.geometry import CollisionFilterDeclaration, GeometrySet, ProximityProperties, RoleAssign
 from pydrake.multibody.plant import CoulombFriction
 from pydrake.systems.analysis import Simulator
 
@@ -45,9 +46,11 @@ class DrakeBatch(ArrayBatch):
         nstate = self._current.shape[1]
         states = np.empty((self._real, nstep, nstate))
         start = time.perf_counter()
+        skipped = 0
         for b, (context, simulator) in enumerate(zip(self._contexts, self._simulators, strict=True)):
             if self._diverged[b] or not np.isfinite(self._current[b]).all():  # flagged: stays NaN, never stepped
                 states[b] = np.nan
+                skipped += 1
                 continue
             self._apply_friction(b)
             plant_context = scene.plant.GetMyMutableContextFromRoot(context)
@@ -65,7 +68,9 @@ class DrakeBatch(ArrayBatch):
             full[: len(samples)] = samples
             times = t0 + model.opt.timestep * np.arange(1, nstep + 1)
             states[b] = to_mujoco(scene, model, times, full, nstate)
-        return self._finish_chunk(states, np.zeros((self._real, nstep, 0)), nstep, time.perf_counter() - start)
+        stepped = self._finish_chunk(states, np.zeros((self._real, nstep, 0)), nstep, time.perf_counter() - start)
+        self.report.steps -= skipped * nstep  # a flagged trajectory was not stepped
+        return stepped
 
     def _failure(self, message: str) -> None:
         """A failed discrete update, once per kind in the report's warnings (the trajectory is flagged diverged)."""
@@ -91,12 +96,26 @@ class DrakeBatch(ArrayBatch):
     def set_eq_active(self, index: int, eq: int, on: bool) -> None:
         raise NotImplementedError("backend=drake: equality toggling (a held joint is welded)")
 
-    def set_contact(self, index: int, geom: int, on: bool) -> None:
-        raise NotImplementedError("backend=drake: contact release (per-trajectory collision filters)")
-
     def set_actuator(self, index: int, actuator: int, *, bias: float | None = None, gear: float | None = None
                      ) -> None:
         raise NotImplementedError("backend=drake: actuators")
+
+    def set_contact(self, index: int, geom: int, on: bool) -> None:
+        """Trajectory ``index``'s geom ``geom`` collides with nothing (off) or with what MuJoCo's filter lets it
+        (on again), through that trajectory's own collision filters (``SceneGraph.collision_filter_manager(context)``);
+        switching twice either way changes nothing."""
+        if on == ((index, geom) not in self._released) or geom not in self._scene.geometries:
+            return
+        scene = self._scene
+        manager = scene.scene_graph.collision_filter_manager(
+            scene.scene_graph.GetMyMutableContextFromRoot(self._contexts[index]))
+        pair = (GeometrySet(scene.geometries[geom]), GeometrySet(scene.partners[geom]))
+        declaration = CollisionFilterDeclaration()
+        manager.Apply(declaration.AllowBetween(*pair) if on else declaration.ExcludeBetween(*pair))
+        if on:
+            del self._released[index, geom]
+        else:
+            self._released[index, geom] = 0.0
 
     def advance(self, index: int, state: np.ndarray, seconds: float) -> np.ndarray:
         raise NotImplementedError("backend=drake: fractional steps (a discrete plant's step is fixed)")

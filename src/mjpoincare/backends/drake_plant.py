@@ -16,7 +16,11 @@ What is translated (anything else is refused with one line naming it, before any
   contact gets the stiffness k = M omega^2 (M: the moving mass) and the dissipation of the same damping at the
   static penetration g/omega^2: SAP's linear Kelvin-Voigt relaxation time 2 zeta/omega, Hunt-Crossley's (TAMSI,
   Lagged, Similar) 2 zeta omega/g. Hydroelastic contact takes the modulus k / (the foot's area scale) on compliant
-  spheres against a rigid half space.
+  spheres against a rigid half space. (MuJoCo's impedance ``solimp`` has no counterpart: at MuJoCo's rest its
+  penetration is (1 - d)/d of the spring's, so a resting body sinks deeper on Drake where d is far below 1.)
+- equality constraints: a joint held at its reference, alone in its body, is welded there (:func:`held_joints`);
+- actuators: none; a model with a nonzero one is refused, a zero-force one (the seam's self-test model has one) is
+  left out.
 
 The state maps by joint: MuJoCo's ``qpos``/``qvel`` of each joint to Drake's q/v of the same joint (a free joint's
 quaternion and its body-frame angular velocity to Drake's (quaternion, position) and world-frame velocities).
@@ -103,6 +107,7 @@ class DrakeScene:
         nq, nv: Drake's position and velocity counts.
         geometries: MuJoCo geom index -> Drake geometry id (the colliding ones).
         friction: the friction coefficient every colliding geom has.
+        partners: MuJoCo geom index -> the Drake geometries it may collide with (MuJoCo's filter).
     """
 
     diagram: Diagram
@@ -114,6 +119,7 @@ class DrakeScene:
     nv: int
     geometries: dict[int, GeometryId]
     friction: float
+    partners: dict[int, list[GeometryId]]
 
 
 def _pose(pos: np.ndarray, quat: np.ndarray) -> RigidTransform:
@@ -147,14 +153,12 @@ def _shape(model: mujoco.MjModel, geom: int) -> Shape:
 
 
 def held_joints(model: mujoco.MjModel) -> dict[int, int]:
-    """Equality index -> joint for each active equality that holds one joint at its reference, alone in its body:
-    the translation welds that body at its reference pose (MuJoCo's soft hold made rigid). Any other active equality
-    is refused (one line): Drake's joint locking crashes 1.51 once a contact is active, and its switchable weld
-    constraints are SAP's only."""
+    """Equality index -> joint for each equality that holds one joint at its reference, alone in its body: the
+    translation welds that body at its reference pose where the hold is on from the start (MuJoCo's soft hold made
+    rigid; it cannot be switched: drake 1.51.1 crashes with a weld constraint on a one-degree-of-freedom body, and with
+    a locked joint once a contact is active, docs/engines.md). Any other equality is refused (one line)."""
     held = {}
     for eq in range(model.neq):
-        if not model.eq_active0[eq]:
-            continue
         joint = int(model.eq_obj1id[eq])
         alone = int(model.body_jntnum[model.jnt_bodyid[joint]]) == 1
         if not (int(model.eq_type[eq]) == int(mujoco.mjtEq.mjEQ_JOINT) and int(model.eq_obj2id[eq]) < 0
@@ -172,7 +176,7 @@ def _refuse_unsupported(model: mujoco.MjModel) -> None:
     moving = [i for i in range(model.nu) if np.any(model.actuator_gainprm[i]) or np.any(model.actuator_biasprm[i])]
     if moving:
         raise ParameterError(f"backend=drake has no counterpart of MuJoCo's actuators (actuator "
-                             f"{model.actuator(moving[0]).name!r})")
+                             f"{model.actuator(moving[0]).name!r}); a zero-force one is left out")
     for joint in range(model.njnt):
         if int(model.jnt_type[joint]) == int(mujoco.mjtJoint.mjJNT_BALL):
             raise ParameterError(f"backend=drake has no counterpart of ball joint {model.joint(joint).name!r}")
@@ -185,18 +189,22 @@ def _collides(model: mujoco.MjModel, geom: int) -> bool:
     return bool(model.geom_contype[geom] or model.geom_conaffinity[geom])
 
 
+def _pair_collides(model: mujoco.MjModel, a: int, b: int) -> bool:
+    """MuJoCo's filter: the type bits of one geom meet the affinity bits of the other, and the geoms are neither in
+    one body nor in a body and its parent (MuJoCo docs, "Collision detection")."""
+    body_a, body_b = int(model.geom_bodyid[a]), int(model.geom_bodyid[b])
+    bits = (model.geom_contype[a] & model.geom_conaffinity[b]) or (model.geom_contype[b] & model.geom_conaffinity[a])
+    related = body_a == body_b or model.body_parentid[body_a] == body_b or model.body_parentid[body_b] == body_a
+    return bool(bits) and not (related and body_a != 0 and body_b != 0)
+
+
 def _filters(model: mujoco.MjModel, geometries: dict[int, GeometryId]) -> CollisionFilterDeclaration:
-    """Exclude every pair MuJoCo's filter would not let collide (bits, same body, body and parent)."""
+    """Exclude every pair MuJoCo's filter would not let collide."""
     declaration = CollisionFilterDeclaration()
     ids = list(geometries)
     for i, a in enumerate(ids):
         for b in ids[i + 1:]:
-            body_a, body_b = int(model.geom_bodyid[a]), int(model.geom_bodyid[b])
-            bits = ((model.geom_contype[a] & model.geom_conaffinity[b])
-                    or (model.geom_contype[b] & model.geom_conaffinity[a]))
-            related = (body_a == body_b or model.body_parentid[body_a] == body_b
-                       or model.body_parentid[body_b] == body_a)
-            if not bits or (related and body_a != 0 and body_b != 0):
+            if not _pair_collides(model, a, b):
                 declaration.ExcludeBetween(GeometrySet(geometries[a]), GeometrySet(geometries[b]))
     return declaration
 
@@ -262,7 +270,8 @@ def build_scene(model: mujoco.MjModel, *, approximation: str = "sap", hydroelast
     plant.set_contact_model(ContactModel.kHydroelasticWithFallback if hydroelastic else ContactModel.kPoint)
     bodies: dict[int, RigidBody] = {0: plant.world_body()}
     chain: list[tuple[int, object]] = []
-    welded = {int(model.jnt_bodyid[joint]) for joint in held_joints(model).values()}
+    held = held_joints(model)
+    welded = {int(model.jnt_bodyid[j]) for eq, j in held.items() if model.eq_active0[eq]}
     for body in range(1, model.nbody):
         parent = bodies[int(model.body_parentid[body])]
         x_parent_body = _pose(model.body_pos[body], model.body_quat[body])
@@ -310,8 +319,10 @@ def build_scene(model: mujoco.MjModel, *, approximation: str = "sap", hydroelast
     joints = tuple(JointMap(kind=int(model.jnt_type[j]), qpos=int(model.jnt_qposadr[j]),
                             dof=int(model.jnt_dofadr[j]), q=int(added.position_start()),
                             v=int(added.velocity_start())) for j, added in chain)
+    partners = {g: [geometries[h] for h in geometries if h != g and _pair_collides(model, g, h)] for g in geometries}
     return DrakeScene(diagram=diagram, plant=plant, scene_graph=scene_graph, logger=logger, joints=joints,
-                      nq=plant.num_positions(), nv=plant.num_velocities(), geometries=geometries, friction=friction)
+                      nq=plant.num_positions(), nv=plant.num_velocities(), geometries=geometries, friction=friction,
+                      partners=partners)
 
 
 def _rotation(quat: np.ndarray) -> np.ndarray:
