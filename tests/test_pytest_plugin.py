@@ -63,7 +63,7 @@ def test_failing_check_reports_values_beside_project_tests(pytester: pytest.Pyte
 
 
 @pytest.mark.parametrize(("args", "message"), [
-    (["--mjpoincare", "rimless-wheel,no-such-wheel"], "unknown scenario 'no-such-wheel'; known: rimless-wheel"),
+    (["--mjpoincare", "rimless-wheel,no-such-wheel"], "unknown scenario 'no-such-wheel'; known: compass-biped"),
     (["--mjpoincare", "rimless-wheel", "--mjpoincare-set", "timestep=1"], "timestep must be in (0, 0.05] (got 1)"),
     (["--mjpoincare", "rimless-wheel", "--mjpoincare-set", "timestep"], "--mjpoincare-set expects NAME=VALUE"),
     (["--mjpoincare-set", "timestep=2e-4"], "--mjpoincare-set given without --mjpoincare"),
