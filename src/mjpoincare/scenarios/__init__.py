@@ -45,6 +45,11 @@ class Registry(MutableMapping[str, Scenario]):
             self._entries = dict(sorted(found.items()))
         return self._entries
 
+    def distribution(self, name: str) -> str | None:
+        """The name of the distribution that declares scenario ``name`` (``mjpoincare`` for the built-in ones)."""
+        dist = self.entries[name].dist
+        return None if dist is None else dist.name
+
     def __getitem__(self, name: str) -> Scenario:
         if name not in self._loaded:
             scenario = self.entries[name].load()
