@@ -31,10 +31,10 @@ def difference(kind: str, value: Any, reference: Any) -> float:
     return gap / float(np.max(np.abs(reference))) if kind == "relative" else gap
 
 
-def compare(peer: Peer, p: Values, checks: Sequence[Check]) -> dict[str, Any]:
+def compare(peer: Peer, params: Values, checks: Sequence[Check]) -> dict[str, Any]:
     """The ``peer`` object of the validation JSON: the peer's value of each check it has, its difference from the
     check's analytic value (the check's own error measure) and from the suite's theory for the peer's model."""
-    values, result = peer.values(p, peer.reference_accuracy)
+    values, result = peer.values(params, peer.reference_accuracy)
     out: dict[str, Any] = {}
     for check in checks:
         if check.name not in values:
@@ -47,7 +47,7 @@ def compare(peer: Peer, p: Values, checks: Sequence[Check]) -> dict[str, Any]:
                            "difference_peer_model": difference(check.kind, value, analytic_peer_model),
                            "kind": check.kind}
     return {"name": peer.name, "version": peer.version(), "scheme": peer.scheme, "accuracy": result.accuracy,
-            "wall_s": result.wall_s, "model": peer.model_note(p), "checks": out}
+            "wall_s": result.wall_s, "model": peer.model_note(params), "checks": out}
 
 
 def format_peer(block: dict[str, Any]) -> str:
@@ -61,12 +61,12 @@ def format_peer(block: dict[str, Any]) -> str:
     return f"{head}\n{text_table(columns, rows)}"
 
 
-def bench_rows(peer: Peer, p: Values) -> list[dict[str, float]]:
+def bench_rows(peer: Peer, params: Values) -> list[dict[str, float]]:
     """The peer's run at each of its bench accuracies: wall time of the whole search and its errors against the
     suite's theory for the peer's model, named as the solve_ivp rows'."""
     rows = []
     for accuracy in peer.bench_accuracies:
-        values, result = peer.values(p, accuracy)
+        values, result = peer.values(params, accuracy)
         rows.append({"accuracy": accuracy, "wall_s": result.wall_s,
                      **{metric: difference(KINDS[check], *values[check])
                         for metric, check in peer.bench_metrics.items()}})
@@ -84,16 +84,16 @@ def format_bench(peer: Peer, rows: list[dict[str, float]]) -> str:
     return "\n\n" + markdown_table(header, body)
 
 
-def bench_block(peers: Sequence[Peer], p: Values) -> tuple[str, dict[str, Any] | None]:
+def bench_block(peers: Sequence[Peer], params: Values) -> tuple[str, dict[str, Any] | None]:
     """What ``bench`` prints for a scenario's first peer (its rows, or one line saying why there are none; nothing
     for a scenario without peers) and the JSON block of its rows (None without rows)."""
     if not peers:
         return "", None
     peer = peers[0]
     try:
-        peer.check_params(p)
+        peer.check_params(params)
     except ParameterError as err:
         return f"\n\n{peer.name.capitalize()} row skipped: {err}", None
-    rows = bench_rows(peer, p)
+    rows = bench_rows(peer, params)
     return format_bench(peer, rows), {"name": peer.name, "version": peer.version(), "scheme": peer.scheme,
                                       "rows": rows}

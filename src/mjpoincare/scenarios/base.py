@@ -170,7 +170,7 @@ class CoveragePoint:
 class RegionMapCompute(Protocol):
     """A region map's computation (:attr:`RegionMap.compute`) on resolved inputs."""
 
-    def __call__(self, p: Values, s: Values, preset: str, x: np.ndarray, y: np.ndarray, *,
+    def __call__(self, params: Values, settings: Values, preset: str, x: np.ndarray, y: np.ndarray, *,
                  workers: int) -> dict[str, Any]:
         """The map over the grid ``x`` x ``y``.
 
@@ -218,7 +218,8 @@ class RegionMap:
 class SweepPlan(Protocol):
     """A scenario's sweep's work ahead of its simulation (:attr:`ParamSweep.plan`)."""
 
-    def __call__(self, p: Values, s: Values, values: Sequence[float], *, workers: int) -> list[tuple[Any, ...]]:
+    def __call__(self, params: Values, settings: Values, values: Sequence[float], *, workers: int) -> list[tuple[Any,
+                                                                                                                 ...]]:
         """The reference at each value, grouped into the jobs of :attr:`ParamSweep.compute`.
 
         Args:

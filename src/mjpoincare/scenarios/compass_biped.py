@@ -103,16 +103,17 @@ STOPPING = StoppingRule(min_samples=4)
 STEP_REGRESSION_DEGREE = 2  # per-step quantities regressed on the section state (an affine one is biased by the spread)
 
 
-def biped(p: Values) -> theory.CompassBiped:
+def biped(params: Values) -> theory.CompassBiped:
     """The analytic model for the scenario parameters."""
-    return theory.CompassBiped(m_h=float(p["m_h"]), m_l=float(p["m_l"]), a=float(p["a"]), b=float(p["b"]),
-                               slope=float(p["slope"]), gravity=float(p["gravity"]),
-                               tau_ankle=float(p["tau_ankle"]), tau_hip=float(p["tau_hip"]))
+    return theory.CompassBiped(m_h=float(params["m_h"]), m_l=float(params["m_l"]), a=float(params["a"]),
+                               b=float(params["b"]),
+                               slope=float(params["slope"]), gravity=float(params["gravity"]),
+                               tau_ankle=float(params["tau_ankle"]), tau_hip=float(params["tau_hip"]))
 
 
-def check_params(p: Values) -> None:
+def check_params(params: Values) -> None:
     """Refuse a slope with no stable passive gait, and friction below what the gait needs."""
-    bp = biped(p)
+    bp = biped(params)
     try:
         x_star = theory.fixed_point(bp)
         lam = theory.eigenvalues(bp, x_star)
@@ -125,24 +126,24 @@ def check_params(p: Values) -> None:
                              f"{np.max(np.abs(lam)):.3f} >= 1): the stable range ends at the first period doubling")
     if step.min_normal_force_ratio <= 0:
         raise ParameterError(f"slope={bp.slope:g}: the stance foot would lift off during the gait")
-    if float(p["mu"]) < step.required_friction:
+    if float(params["mu"]) < step.required_friction:
         raise ParameterError(f"mu must be >= {step.required_friction:.4f} (the friction the passive gait needs) "
-                             f"for these parameters (got {p['mu']})")
+                             f"for these parameters (got {params['mu']})")
 
 
-def build(p: Values, s: Values) -> mujoco.MjModel:
+def build(params: Values, settings: Values) -> mujoco.MjModel:
     """The MJCF biped rebuilt through MjSpec with ``p`` (physics) and ``s`` (simulator settings)."""
     spec = load_spec("compass_biped.xml")
-    sim_settings.apply_options(spec, s)
-    g, slope = float(p["gravity"]), float(p["slope"])
+    sim_settings.apply_options(spec, settings)
+    g, slope = float(params["gravity"]), float(params["slope"])
     spec.option.gravity = [g * math.sin(slope), 0.0, -g * math.cos(slope)]
-    a, b, r = float(p["a"]), float(p["b"]), float(s["foot_radius"])
+    a, b, r = float(params["a"]), float(params["b"]), float(settings["foot_radius"])
     length = a + b
-    spec.body("hip").mass = float(p["m_h"])
-    mu = float(p["mu"])
+    spec.body("hip").mass = float(params["m_h"])
+    mu = float(params["mu"])
     for i in (0, 1):
         leg = spec.body(f"leg{i}")
-        leg.mass = float(p["m_l"])
+        leg.mass = float(params["m_l"])
         leg.ipos = [0.0, 0.0, -b]
         spec.geom(f"shank{i}").fromto = [0, 0, 0, 0, 0, -(length - r)]
         spec.geom(f"mass{i}").pos = [0, 0, -b]
@@ -150,33 +151,33 @@ def build(p: Values, s: Values) -> mujoco.MjModel:
         foot.pos = [0, 0, -(length - r)]
         foot.size = [r, 0, 0]
         foot.friction = [mu, 0, 0]
-        foot.solref = sim_settings.solref(s)
-        foot.solimp = sim_settings.solimp(s)
+        foot.solref = sim_settings.solref(settings)
+        foot.solimp = sim_settings.solimp(settings)
     floor = spec.geom("slope")
     floor.friction = [mu, 0, 0]
-    floor.solref = sim_settings.solref(s)
-    floor.solimp = sim_settings.solimp(s)
-    return compile_spec(spec, s)
+    floor.solref = sim_settings.solref(settings)
+    floor.solimp = sim_settings.solimp(settings)
+    return compile_spec(spec, settings)
 
 
-def _simulate(p: Values, s: Values, settle: FitSettling | None = None
+def _simulate(params: Values, settings: Values, settle: FitSettling | None = None
                ) -> tuple[GaitController, RolloutReport, theory.CompassBiped, mujoco.MjModel]:
     """The scenario's walk: its model, and the STARTS section states around the fixed point walked STEPS steps."""
-    bp = biped(p)
-    model = build(p, s)
-    controller, report = walk(model, bp, initial_section_states(bp, model.opt.timestep), STEPS, s, settle)
+    bp = biped(params)
+    model = build(params, settings)
+    controller, report = walk(model, bp, initial_section_states(bp, model.opt.timestep), STEPS, settings, settle)
     return controller, report, bp, model
 
 
-def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
+def evaluate(params: Values, settings: Values, preset: str, seed: int) -> Evaluation:
     """Simulate the perturbed gaits until their fit settles, fit the legs-parallel return map and check it against
     the theory."""
     tol = at_preset(TOLERANCES, COMPASS_BIPED.name, preset)
     # the fixed point's tolerance is stated for the post-impact state, which the exact swing flow maps the fitted
     # legs-parallel one to at about the same size
     settle = return_map_settling(STOPPING, degree=FIT_DEGREE, seed=seed, fixed_point_tolerance=tol["fixed_point"],
-                                 eigenvalue_tolerance=tol["eigenvalues"]) if s["adaptive_stopping"] else None
-    controller, report, bp, model = _simulate(p, s, settle)
+                                 eigenvalue_tolerance=tol["eigenvalues"]) if settings["adaptive_stopping"] else None
+    controller, report, bp, model = _simulate(params, settings, settle)
     why = tol.why
     x_star = theory.fixed_point(bp)
     lam = theory.eigenvalues(bp, x_star)
@@ -212,7 +213,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
                                "distance between successive stance feet, regressed (quadratic) at the fitted fixed "
                                "point: an affine regression is biased by the starts' spread (3e-4 quadratic against "
                                "1.3e-3 affine over the first 6 steps, 5.6e-4 over 10, accurate preset)"))
-    accel, release_tol = release_tolerance(model, bp, x_star, float(s["foot_radius"]))
+    accel, release_tol = release_tolerance(model, bp, x_star, float(settings["foot_radius"]))
     depth = max(controller.release_depth, default=math.nan)
     out.append(checks.Check(name="trailing_foot_release", analytic=0.0, simulated=depth, error=depth,
                             tolerance=release_tol, kind="max-abs", unit="m",
@@ -229,7 +230,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     exact_depth = -theory.lowest_swing_height(bp, x_star)
     extras["reported"] = {"swing_foot_depth": swing_foot_report(controller.swing_low, exact_depth)}
     extras["swing_foot"] = swing_foot_detail(bp, controller.swing_low[0], controller.samples[0],
-                                             float(s["foot_radius"]), exact_depth)
+                                             float(settings["foot_radius"]), exact_depth)
     extras["fit"] = fit.to_dict()
     extras["adaptive_stopping"] = None if settle is None else settle.to_dict()
     extras["trailing_foot"] = {"analytic_liftoff_velocity": theory.step(bp, x_star).liftoff_velocity,
@@ -255,19 +256,20 @@ def _step_summary(bp: theory.CompassBiped, x_star: np.ndarray) -> dict[str, floa
 
 
 
-def probe(p: Values, s: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
+def probe(params: Values, settings: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
     """Model and initial states of the gait batch (contacts fixed: the raw-rate reference)."""
-    bp = biped(p)
-    model = build(p, s)
+    bp = biped(params)
+    model = build(params, settings)
     period = theory.step_period(bp, theory.fixed_point(bp))
-    starts = post_impact_states(model, bp, initial_section_states(bp, model.opt.timestep), float(s["foot_radius"]))
+    starts = post_impact_states(model, bp, initial_section_states(bp, model.opt.timestep),
+                                float(settings["foot_radius"]))
     return model, [(starts, math.ceil((STEPS + 0.5) * period / model.opt.timestep))]
 
 
-def reference_bench(p: Values, rtol: float) -> dict[str, float]:
+def reference_bench(params: Values, rtol: float) -> dict[str, float]:
     """The exact reference (solve_ivp at ``rtol``) over the default preset's starts and steps, through the same
     fit: its error is the floor the experiment design sets."""
-    bp = biped(p)
+    bp = biped(params)
     start = time.perf_counter()
     sequences = []
     for x in initial_section_states(bp, float(PRESETS["fast"]["timestep"])):  # the default preset's design
@@ -285,11 +287,11 @@ def reference_bench(p: Values, rtol: float) -> dict[str, float]:
             "eigenvalues_error": float(np.max(np.abs(match_eigenvalues(lam, fit.eigenvalues) - lam)))}
 
 
-def soak(p: Values, s: Values, impacts: int) -> Soak:
+def soak(params: Values, settings: Values, impacts: int) -> Soak:
     """``impacts`` steps from the analytic fixed point: the stance leg's rate at each legs-parallel crossing."""
-    bp = biped(p)
+    bp = biped(params)
     x_star = theory.fixed_point(bp)
-    controller, report = walk(build(p, s), bp, x_star[None, :], impacts, s)
+    controller, report = walk(build(params, settings), bp, x_star[None, :], impacts, settings)
     samples = np.array(controller.samples[0]).reshape(-1, 3)[:, 1]
     return Soak(samples, float(theory.legs_parallel_state(bp, x_star)[0][1]),
                 "stance-leg rate at legs-parallel (rad/s)", report)
@@ -312,11 +314,11 @@ STRESS_CASES = (
 )
 
 
-def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
+def clip(params: Values, settings: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
     """States of a clip from the analytic post-impact fixed point, with the gait's contact switching."""
-    bp = biped(p)
-    start = post_impact_states(model, bp, theory.fixed_point(bp)[None, :], float(s["foot_radius"]))
-    controller = GaitController(model, bp, 1, float(s["foot_radius"]))
+    bp = biped(params)
+    start = post_impact_states(model, bp, theory.fixed_point(bp)[None, :], float(settings["foot_radius"]))
+    controller = GaitController(model, bp, 1, float(settings["foot_radius"]))
     chunk = max(10, round(CHUNK_SECONDS / model.opt.timestep))
     return event_clip(model, start, nstep, controller, chunk, setup=controller.configure).states(nstep)
 

@@ -21,19 +21,19 @@ AGREEMENT_CASES: tuple[dict[str, str], ...] = (
 )
 
 
-def check_params(p: Values) -> None:
+def check_params(params: Values) -> None:
     """Refuse a missing pydrake or an ankle torque (Drake's CompassGait has none)."""
     drake.require()
-    if float(p["tau_ankle"]) != 0.0:
+    if float(params["tau_ankle"]) != 0.0:
         raise ParameterError(f"tau_ankle must be 0 with --peer drake: Drake's CompassGait has no ankle torque "
-                             f"(got {p['tau_ankle']})")
+                             f"(got {params['tau_ankle']})")
 
 
 def drake_peer(biped: Callable[[Values], theory.CompassBiped]) -> Peer:
     """Drake's compass gait as the scenario's peer; ``biped`` maps the scenario's parameters onto the biped."""
 
-    def values(p: Values, accuracy: float) -> PeerValues:
-        bp = biped(p)
+    def values(params: Values, accuracy: float) -> PeerValues:
+        bp = biped(params)
         cycle = drake.compass_gait(bp, accuracy=accuracy)
         x_star = theory.fixed_point(bp)
         lam = theory.eigenvalues(bp, x_star)

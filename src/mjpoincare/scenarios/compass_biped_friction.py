@@ -130,15 +130,15 @@ CHUNK_SECONDS = 0.05
 STOPPING = StoppingRule(min_samples=SETTLE + 2)
 
 
-def gait_name(p: Values) -> str:
+def gait_name(params: Values) -> str:
     """The theory's gait name (A, B, I, III)."""
-    return str(p["gait"]).upper()
+    return str(params["gait"]).upper()
 
 
-def friction(p: Values) -> float:
+def friction(params: Values) -> float:
     """mu, with 0 meaning the gait's paper value."""
-    mu = float(p["mu"])
-    return PAPER_MU[str(p["gait"])] if mu == 0.0 else mu
+    mu = float(params["mu"])
+    return PAPER_MU[str(params["gait"])] if mu == 0.0 else mu
 
 
 @lru_cache(maxsize=16)
@@ -159,19 +159,19 @@ def _gait(name: str, mu: float, kp: float, kd: float) -> theory.Gait:
     return theory.paper_gait(name, mu)
 
 
-def gait(p: Values) -> theory.Gait:
+def gait(params: Values) -> theory.Gait:
     """The analytic gait (002 Secs. 4-5) for the scenario parameters."""
-    return _gait(gait_name(p), friction(p), float(p["kp"]), float(p["kd"]))
+    return _gait(gait_name(params), friction(params), float(params["kp"]), float(params["kd"]))
 
 
-def check_params(p: Values) -> None:
+def check_params(params: Values) -> None:
     """Refuse parameters without the named gait of 002 (continuation fails, or a gait of another type). Unstable
     gaits (C, II; B and I past their stability loss) are accepted: they are fitted over a short horizon."""
-    name, mu = gait_name(p), friction(p)
-    if name != "III" and (float(p["kp"]), float(p["kd"])) != (15.0, 15.0):
-        raise ParameterError(f"kp, kd apply to gait=iii only (got gait={p['gait']})")
+    name, mu = gait_name(params), friction(params)
+    if name != "III" and (float(params["kp"]), float(params["kd"])) != (15.0, 15.0):
+        raise ParameterError(f"kp, kd apply to gait=iii only (got gait={params['gait']})")
     try:
-        g = gait(p)
+        g = gait(params)
     except (ValueError, RuntimeError) as err:
         raise ParameterError(f"mu={mu:g}: no Gait {name} of 002 ({str(err).splitlines()[0]})") from None
     expected = KIND[name]
@@ -180,68 +180,71 @@ def check_params(p: Values) -> None:
                              f"({theory.describe(g.record)}); mu_c of the A/B branch is 0.1749")
 
 
-def _torques(p: Values) -> tuple[float, float]:
+def _torques(params: Values) -> tuple[float, float]:
     """(tau_ankle, tau_hip) of the compass-biped model for Gaits I and II: stance hinge = Q1 = tau_ankle - tau_hip,
     swing hinge = -Q2 = tau_hip (002 eq 28 with E_eff; II: Q = (0.57, 0.12), tau_ankle 0.45, tau_hip -0.12)."""
-    act = gait(p).actuation
-    if gait_name(p) not in ("I", "II") or not isinstance(act, theory.ConstantTorque):
+    act = gait(params).actuation
+    if gait_name(params) not in ("I", "II") or not isinstance(act, theory.ConstantTorque):
         return 0.0, 0.0
     q1, q2 = act.generalised_force(np.zeros(4), np.zeros(4), 0.0)
     return q1 - q2, -q2
 
 
-def model_params(p: Values) -> dict[str, float]:
+def model_params(params: Values) -> dict[str, float]:
     """compass-biped parameters for 002's biped (l = 1.6, d = 0.8, m = 4, m_h = 2, g = 9.8)."""
-    bp = gait(p).biped
-    tau_ankle, tau_hip = _torques(p)
-    return {"m_h": bp.m_h, "m_l": bp.m, "a": bp.d, "b": bp.b, "slope": bp.slope, "mu": friction(p),
+    bp = gait(params).biped
+    tau_ankle, tau_hip = _torques(params)
+    return {"m_h": bp.m_h, "m_l": bp.m, "a": bp.d, "b": bp.b, "slope": bp.slope, "mu": friction(params),
             "gravity": bp.g, "tau_ankle": tau_ankle, "tau_hip": tau_hip}
 
 
-def build(p: Values, s: Values) -> mujoco.MjModel:
+def build(params: Values, settings: Values) -> mujoco.MjModel:
     """compass_biped.xml rebuilt with 002's parameters; Gait III's ankle actuators become PD servos on ctrl."""
-    model = cb.build(model_params(p), s)
-    if gait_name(p) == "III":
+    model = cb.build(model_params(params), settings)
+    if gait_name(params) == "III":
         for i in (0, 1):
             a = model.actuator(f"ankle{i}").id
             model.actuator_gainprm[a, 0] = 1.0
-            model.actuator_biasprm[a, :3] = (0.0, -float(p["kp"]), -float(p["kd"]))
+            model.actuator_biasprm[a, :3] = (0.0, -float(params["kp"]), -float(params["kd"]))
     return model
 
 
-def _run(p: Values, s: Values, model: mujoco.MjModel, starts: np.ndarray, steps: int,
+def _run(params: Values, settings: Values, model: mujoco.MjModel, starts: np.ndarray, steps: int,
          wrap: bool = False, settling: FitSettling | None = None
          ) -> tuple[FrictionGaitController, RolloutReport, KeptRows | None]:
-    g = gait(p)
-    pd = (float(p["kp"]), float(p["kd"])) if gait_name(p) == "III" else None
-    radius = float(s["foot_radius"])
-    controller = FrictionGaitController(model, g, len(starts), radius, _torques(p), pd, (ENABLE_AHEAD, ENABLE_CLEAR))
+    g = gait(params)
+    pd = (float(params["kp"]), float(params["kd"])) if gait_name(params) == "III" else None
+    radius = float(settings["foot_radius"])
+    controller = FrictionGaitController(model, g, len(starts), radius, _torques(params), pd, (ENABLE_AHEAD,
+                                                                                              ENABLE_CLEAR))
     chunk = max(10, round(CHUNK_SECONDS / model.opt.timestep))
     nstep = math.ceil((steps + 0.5) * g.record.period / model.opt.timestep)
     kept = KeptRows(controller) if wrap else None
     report = event_rollout(model, post_impact_states(model, g.biped, starts, radius),
-                           nstep, kept if kept is not None else controller, **rollout_options(s), chunk_steps=chunk,
+                           nstep, kept if kept is not None else controller, **rollout_options(settings),
+                           chunk_steps=chunk,
                            control=(lambda t0: controller.control(t0, chunk)) if pd is not None else None,
                            setup=controller.configure,
                            stop=None if settling is None else lambda: settling(controller.samples))
     return controller, report, kept
 
 
-def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
+def evaluate(params: Values, settings: Values, preset: str, seed: int) -> Evaluation:
     """Simulate perturbed gaits, fit the legs-parallel return map, and check it and the gait's friction, phases
     and cost against 002 (via :mod:`mjpoincare.analysis.theory.compass_biped_friction`)."""
-    g = gait(p)
-    name = gait_name(p)
-    model = build(p, s)
+    g = gait(params)
+    name = gait_name(params)
+    model = build(params, settings)
     tol = at_preset(TOLERANCES, COMPASS_BIPED_FRICTION.name, preset)
     why = tol.why
     steps, degree, settle = design(g)
-    settling = None if unstable(g) or not s["adaptive_stopping"] else return_map_settling(
+    settling = None if unstable(g) or not settings["adaptive_stopping"] else return_map_settling(
         STOPPING, degree=degree, seed=seed, fixed_point_tolerance=tol["fixed_point"],
         eigenvalue_tolerance=tol["eigenvalues"])
-    c, report, _ = _run(p, s, model, initial_section_states(g, model.opt.timestep), steps, settling=settling)
+    c, report, _ = _run(params, settings, model, initial_section_states(g, model.opt.timestep), steps,
+                        settling=settling)
     out: list[checks.Check] = []
-    extras: dict[str, object] = {"gait": name, "mu": friction(p), "analytic_pattern": theory.describe(g.record)}
+    extras: dict[str, object] = {"gait": name, "mu": friction(params), "analytic_pattern": theory.describe(g.record)}
     y_star_th, _ = theory.legs_parallel(g)
     lam = g.eigenvalues[:3]  # sorted by modulus, descending
     sequences = [np.array(v) for v in c.samples]
@@ -289,8 +292,8 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
                                    "the fitted fixed point"))
         extras["actuator_work"] = {"analytic": rec.actuator_work, "simulated": work_sim}
     stances = stance_rows(np.concatenate(c.rows0), [t for t, _ in c.strikes[0]], g.biped,
-                          float(s["foot_radius"]))[settle:]
-    out += stance_checks(g, name, stances, model.opt.timestep, float(s["solref_timeconst"]), tol, extras)
+                          float(settings["foot_radius"]))[settle:]
+    out += stance_checks(g, name, stances, model.opt.timestep, float(settings["solref_timeconst"]), tol, extras)
     extras["fit"] = fit.to_dict()
     if settling is not None:
         extras["adaptive_stopping"] = settling.to_dict()
@@ -305,18 +308,19 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     return Evaluation(out, report, extras)
 
 
-def probe(p: Values, s: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
+def probe(params: Values, settings: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
     """Model and initial states of the gait batch (contacts fixed: the raw-rate reference)."""
-    g = gait(p)
-    model = build(p, s)
-    starts = post_impact_states(model, g.biped, initial_section_states(g, model.opt.timestep), float(s["foot_radius"]))
+    g = gait(params)
+    model = build(params, settings)
+    starts = post_impact_states(model, g.biped, initial_section_states(g, model.opt.timestep),
+                                float(settings["foot_radius"]))
     return model, [(starts, math.ceil((design(g)[0] + 0.5) * g.record.period / model.opt.timestep))]
 
 
-def reference_bench(p: Values, rtol: float) -> dict[str, float]:
+def reference_bench(params: Values, rtol: float) -> dict[str, float]:
     """The exact map (stance integration at relative tolerance ``rtol``) over the fast preset's starts and steps,
     through the same fit; the legs-parallel samples are read on the reference trajectory of each post-impact state."""
-    g = gait(p)
+    g = gait(params)
     start = time.perf_counter()
     y_star, _ = theory.legs_parallel(g)
     sequences = []
@@ -334,11 +338,11 @@ def reference_bench(p: Values, rtol: float) -> dict[str, float]:
             "eigenvalues_error": float(np.max(np.abs(match_eigenvalues(lam, fit.eigenvalues) - lam)))}
 
 
-def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
+def clip(params: Values, settings: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
     """States of a clip from the analytic fixed point, with the gait's contact switching and actuation."""
-    g = gait(p)
+    g = gait(params)
     steps = math.ceil(nstep * model.opt.timestep / g.record.period)
-    _, _, kept = _run(p, s, model, g.z[None, :], steps, wrap=True)
+    _, _, kept = _run(params, settings, model, g.z[None, :], steps, wrap=True)
     assert kept is not None
     return kept.states(nstep)
 

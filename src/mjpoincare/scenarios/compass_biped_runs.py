@@ -58,16 +58,17 @@ def initial_section_states(bp: theory.CompassBiped, timestep: float) -> np.ndarr
     return out
 
 
-def walk(model: mujoco.MjModel, bp: theory.CompassBiped, starts: np.ndarray, steps: int, s: Values,
+def walk(model: mujoco.MjModel, bp: theory.CompassBiped, starts: np.ndarray, steps: int, settings: Values,
          settling: FitSettling | None = None) -> tuple[GaitController, RolloutReport]:
     """Walk from the post-impact states ``starts`` for ``steps`` heel strikes, switching contacts at the events;
     with ``settling``, stop once it says the legs-parallel samples so far are enough."""
-    controller = GaitController(model, bp, len(starts), float(s["foot_radius"]))
+    controller = GaitController(model, bp, len(starts), float(settings["foot_radius"]))
     period = theory.step_period(bp, theory.fixed_point(bp))
     nstep = math.ceil((steps + 0.5) * period / model.opt.timestep)
     stop = None if settling is None else lambda: settling(controller.samples)
-    report = event_rollout(model, post_impact_states(model, bp, starts, float(s["foot_radius"])), nstep, controller,
-                           **rollout_options(s), chunk_steps=max(10, round(CHUNK_SECONDS / model.opt.timestep)),
+    report = event_rollout(model, post_impact_states(model, bp, starts, float(settings["foot_radius"])), nstep,
+                           controller,
+                           **rollout_options(settings), chunk_steps=max(10, round(CHUNK_SECONDS / model.opt.timestep)),
                            setup=controller.configure, stop=stop)
     return controller, report
 

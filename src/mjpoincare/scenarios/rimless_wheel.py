@@ -101,20 +101,21 @@ FIT_BATCH = 6
 BASIN_SECONDS = 6.0  # at most; the slowest standing case of the default grid settles after 3.3 s
 
 
-def wheel(p: Values) -> theory.RimlessWheel:
+def wheel(params: Values) -> theory.RimlessWheel:
     """The analytic model of the simulated wheel: the scenario parameters, with the hub's radius of gyration
     raised to at least MIN_GYRATION x leg_length (the model and the theory use the same value)."""
-    length = float(p["leg_length"])
-    return theory.RimlessWheel(spokes=int(p["spokes"]), slope=float(p["slope"]), leg_length=length,
-                               gyration=max(float(p["gyration"]), MIN_GYRATION * length),
-                               gravity=float(p["gravity"]), mass=float(p["mass"]))
+    length = float(params["leg_length"])
+    return theory.RimlessWheel(spokes=int(params["spokes"]), slope=float(params["slope"]), leg_length=length,
+                               gyration=max(float(params["gyration"]), MIN_GYRATION * length),
+                               gravity=float(params["gravity"]), mass=float(params["mass"]))
 
 
-def check_params(p: Values) -> None:
+def check_params(params: Values) -> None:
     """Refuse parameters outside the theory's assumptions, naming the bound (003 eq 3.16, no-flight, 002 eq 22)."""
-    if float(p["gyration"]) > float(p["leg_length"]):
-        raise ParameterError(f"gyration must be in [0, leg_length={p['leg_length']:g}] m (got {p['gyration']})")
-    w = wheel(p)
+    if float(params["gyration"]) > float(params["leg_length"]):
+        raise ParameterError(f"gyration must be in [0, leg_length={params['leg_length']:g}] m "
+                             f"(got {params['gyration']})")
+    w = wheel(params)
     low = theory.existence_bound(w.spokes, w.gyration, w.leg_length)
     high = theory.no_flight_bound(w.spokes, w.gyration, w.leg_length)
     if high <= low:
@@ -126,43 +127,43 @@ def check_params(p: Values) -> None:
             f"slope must be in ({low:.4f}, {high:.4f}) rad for spokes={w.spokes}, gyration={w.gyration:g}: "
             f"above the existence bound (003 eq 3.16) and below the no-flight bound (got {w.slope:g})")
     need = theory.required_friction(w)
-    if float(p["mu"]) < need:
+    if float(params["mu"]) < need:
         raise ParameterError(
             f"mu must be >= {need:.4f} (the friction a sticking gait needs, 002 eq 22-25) for these spokes and "
-            f"slope (got {p['mu']}); stick-slip gaits are not part of this scenario")
+            f"slope (got {params['mu']}); stick-slip gaits are not part of this scenario")
 
 
-def build(p: Values, s: Values) -> mujoco.MjModel:
+def build(params: Values, settings: Values) -> mujoco.MjModel:
     """The MJCF wheel rebuilt through MjSpec with ``p`` (physics) and ``s`` (simulator settings)."""
     spec = load_spec("rimless_wheel_2d.xml")
-    sim_settings.apply_options(spec, s)
-    g, slope, l = float(p["gravity"]), float(p["slope"]), float(p["leg_length"])
+    sim_settings.apply_options(spec, settings)
+    g, slope, l = float(params["gravity"]), float(params["slope"]), float(params["leg_length"])
     spec.option.gravity = [g * math.sin(slope), 0.0, -g * math.cos(slope)]
     hub = spec.body("hub")
-    mass = float(p["mass"])
-    inertia = mass * wheel(p).gyration ** 2
+    mass = float(params["mass"])
+    inertia = mass * wheel(params).gyration ** 2
     hub.mass = mass
     hub.inertia = [inertia, inertia, inertia]
-    radius = float(s["foot_radius"])
+    radius = float(settings["foot_radius"])
     template_spoke, template_foot = spec.geom("spoke0"), spec.geom("foot0")
     spoke_size, spoke_rgba = list(template_spoke.size), list(template_spoke.rgba)
     foot_rgba = list(template_foot.rgba)
     for geom in [g for g in hub.geoms if g.name.startswith(("spoke", "foot"))]:
         spec.delete(geom)
-    mu = float(p["mu"])
-    for k in range(int(p["spokes"])):
-        angle = 2.0 * math.pi * k / int(p["spokes"])
+    mu = float(params["mu"])
+    for k in range(int(params["spokes"])):
+        angle = 2.0 * math.pi * k / int(params["spokes"])
         direction = np.array([-math.sin(angle), 0.0, -math.cos(angle)])
         hub.add_geom(name=f"spoke{k}", type=mujoco.mjtGeom.mjGEOM_CAPSULE, size=spoke_size, rgba=spoke_rgba,
                      fromto=[0, 0, 0, *((l - radius) * direction)], contype=0, conaffinity=0, mass=0)
         hub.add_geom(name=f"foot{k}", type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[radius, 0, 0], rgba=foot_rgba,
                      pos=(l - radius) * direction, contype=1, conaffinity=0, condim=3, friction=[mu, 0, 0],
-                     solref=sim_settings.solref(s), solimp=sim_settings.solimp(s), mass=0)
+                     solref=sim_settings.solref(settings), solimp=sim_settings.solimp(settings), mass=0)
     floor = spec.geom("slope")
     floor.friction = [mu, 0, 0]
-    floor.solref = sim_settings.solref(s)
-    floor.solimp = sim_settings.solimp(s)
-    return compile_spec(spec, s)
+    floor.solref = sim_settings.solref(settings)
+    floor.solimp = sim_settings.solimp(settings)
+    return compile_spec(spec, settings)
 
 
 def _fit_checks(w: theory.RimlessWheel, rec: Recorder, batch: int, tol: Tolerances,
@@ -223,17 +224,17 @@ def _basin_checks(w: theory.RimlessWheel, rec: Recorder, omega0: np.ndarray) -> 
     return [check], {"basins": table, "basin_bands": theory.basin_bands(w)}
 
 
-def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
+def evaluate(params: Values, settings: Values, preset: str, seed: int) -> Evaluation:
     """Run the fitting batch and the basin grid (two rollout batches) and check them against the theory."""
-    w = wheel(p)
-    model = build(p, s)
+    w = wheel(params)
+    model = build(params, settings)
     tol = at_preset(TOLERANCES, RIMLESS_WHEEL.name, preset)
     why = tol.why
     fit_speeds = theory.fit_initial_speeds(w, FIT_BATCH)
-    settle = None if not s["adaptive_stopping"] else return_map_settling(
+    settle = None if not settings["adaptive_stopping"] else return_map_settling(
         STOPPING, degree=FIT_DEGREE, seed=seed, fixed_point_tolerance=tol["omega_post_impact"],
         eigenvalue_tolerance=tol["eigenvalue"], relative=True)
-    fit_rec, fit_report = simulate(model, w, fit_speeds, fit_seconds(w), s, settling=settle)
+    fit_rec, fit_report = simulate(model, w, fit_speeds, fit_seconds(w), settings, settling=settle)
     try:
         fit_checks, extras = _fit_checks(w, fit_rec, len(fit_speeds), tol, why, seed)
     except ValueError as err:  # too few samples: a diverged or stalled run
@@ -241,7 +242,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
                                       tol["omega_post_impact"], "rad/s", f"no return map: {err}")]
         extras = {}
     basin_speeds = theory.basin_initial_speeds(w)
-    basin_rec, basin_report = simulate(model, w, basin_speeds, BASIN_SECONDS, s, until_decided=True)
+    basin_rec, basin_report = simulate(model, w, basin_speeds, BASIN_SECONDS, settings, until_decided=True)
     basin_checks, basin_extras = _basin_checks(w, basin_rec, basin_speeds)
     extras.update(basin_extras)
     extras["adaptive_stopping"] = None if settle is None else settle.to_dict()
@@ -256,11 +257,11 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     return Evaluation(fit_checks + basin_checks, fit_report.merge(basin_report), extras)
 
 
-def probe(p: Values, s: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
+def probe(params: Values, settings: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
     """The model and the (initial states, steps) of each rollout batch :func:`evaluate` runs."""
-    w = wheel(p)
-    model = build(p, s)
-    radius = float(s["foot_radius"])
+    w = wheel(params)
+    model = build(params, settings)
+    radius = float(settings["foot_radius"])
     batches = []
     for speeds, seconds in ((theory.fit_initial_speeds(w, FIT_BATCH), fit_seconds(w)),
                             (theory.basin_initial_speeds(w), BASIN_SECONDS)):
@@ -268,9 +269,9 @@ def probe(p: Values, s: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, 
     return model, batches
 
 
-def reference_bench(p: Values, rtol: float) -> dict[str, float]:
+def reference_bench(params: Values, rtol: float) -> dict[str, float]:
     """The exact hybrid reference (solve_ivp, tolerance ``rtol``) through the same fit: time and errors."""
-    w = wheel(p)
+    w = wheel(params)
     start = time.perf_counter()
     sequences = []
     for omega0 in theory.fit_initial_speeds(w, FIT_BATCH):
@@ -284,11 +285,12 @@ def reference_bench(p: Values, rtol: float) -> dict[str, float]:
             "eigenvalue_error": abs(complex(fit.eigenvalues[0]) - theory.rolling_multiplier(w))}
 
 
-def soak(p: Values, s: Values, impacts: int) -> Soak:
+def soak(params: Values, settings: Values, impacts: int) -> Soak:
     """``impacts`` steps from the rolling fixed point in one trajectory: the post-impact speed of each step."""
-    w = wheel(p)
+    w = wheel(params)
     star = theory.rolling_fixed_point(w)
-    rec, report = simulate(build(p, s), w, np.array([star]), impacts * theory.step_period(w, star) + 0.5, s)
+    rec, report = simulate(build(params, settings), w, np.array([star]), impacts * theory.step_period(w, star) + 0.5,
+                           settings)
     post = np.asarray(theory.post_impact_speed(w, w.slope, rec.mid.sequences(1)[0][:, 0]), float)
     return Soak(post, star, "post-impact speed omega+ (rad/s)", report)
 
@@ -308,10 +310,11 @@ STRESS_CASES = (
 )
 
 
-def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
+def clip(params: Values, settings: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
     """States of a clip that starts just after an impact, 20 % above the rolling fixed point's speed."""
-    w = wheel(p)
-    state0 = post_impact_states(model, w, np.array([1.2 * theory.rolling_fixed_point(w)]), float(s["foot_radius"]))
+    w = wheel(params)
+    state0 = post_impact_states(model, w, np.array([1.2 * theory.rolling_fixed_point(w)]),
+                                float(settings["foot_radius"]))
     return plain_clip(model, state0, nstep)
 
 

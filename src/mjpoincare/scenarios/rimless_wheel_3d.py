@@ -122,7 +122,7 @@ TOLERANCES: dict[str, dict[str, Tolerances]] = {
 # --- parameters -------------------------------------------------------------------------------------------------
 
 
-def check_params(p: Values) -> None:
+def check_params(params: Values) -> None:
     """Refuse parameters outside the theory's assumptions, naming the parameter and the bound.
 
     001 Sec. 2-5 (:func:`mjpoincare.analysis.theory.rimless_wheel_3d.validate`): spokes >= 3, J > 0, |heading| < pi/2,
@@ -130,7 +130,7 @@ def check_params(p: Values) -> None:
     stay positive (no flight; not in the paper), and in contact mode ``mu`` must cover the friction
     the gait needs: the impact impulse ratio on the banked cycle and the stance max |F_t|/N of the exact reference.
     """
-    w = runs.wheel(p)
+    w = runs.wheel(params)
     try:
         theory.validate(w)
     except ValueError as err:  # "name: bound (got value)"
@@ -140,33 +140,33 @@ def check_params(p: Values) -> None:
         raise ParameterError(
             f"slope={w.slope:g}: the stance foot would lift off on the rolling cycle (min N/(m g) = "
             f"{record.min_normal_force:.3f}) for spokes={w.spokes}, J={w.J:g}, heading={w.heading:g}")
-    if str(p["impact"]) == "contact":
+    if str(params["impact"]) == "contact":
         need = max(theory.impact_friction_ratio(w), record.max_friction_ratio)
-        if float(p["mu"]) < need:
+        if float(params["mu"]) < need:
             raise ParameterError(
                 f"mu must be >= {need:.4f} for these spokes, slope, J and heading (impact |Pt|/Pn "
                 f"{theory.impact_friction_ratio(w):.4f}, stance max |Ft|/N {record.max_friction_ratio:.4f}) "
-                f"(got {p['mu']})")
+                f"(got {params['mu']})")
 
 
 # --- model ------------------------------------------------------------------------------------------------------
 
 
-def build(p: Values, s: Values) -> mujoco.MjModel:
+def build(params: Values, settings: Values) -> mujoco.MjModel:
     """The MJCF wheel rebuilt through MjSpec: ``spokes`` spokes, inertia, slope, friction and contact settings.
 
     ``impact=contact``: a free joint, feet colliding with the plane. ``impact=ideal``: the wheel hangs from a mocap
     body ``pivot`` (the stance foot) by a ball joint at the stance spoke's tip, contact disabled.
     """
     spec = load_spec("rimless_wheel_3d.xml")
-    sim_settings.apply_options(spec, s)
-    g, slope, l = float(p["gravity"]), float(p["slope"]), float(p["leg_length"])
+    sim_settings.apply_options(spec, settings)
+    g, slope, l = float(params["gravity"]), float(params["slope"]), float(params["leg_length"])
     spec.option.gravity = [g * math.sin(slope), 0.0, -g * math.cos(slope)]
     hub_geom, spoke_geom, foot_geom = spec.geom("hub"), spec.geom("spoke0"), spec.geom("foot0")
     hub_size, hub_rgba = list(hub_geom.size), list(hub_geom.rgba)
     spoke_size, spoke_rgba, foot_rgba = list(spoke_geom.size), list(spoke_geom.rgba), list(foot_geom.rgba)
     spec.delete(spec.body("wheel"))
-    ideal = str(p["impact"]) == "ideal"
+    ideal = str(params["impact"]) == "ideal"
     if ideal:
         spec.option.disableflags |= mujoco.mjtDisableBit.mjDSBL_CONTACT
         pivot = spec.worldbody.add_body(name="pivot", mocap=True)
@@ -175,7 +175,7 @@ def build(p: Values, s: Values) -> mujoco.MjModel:
     else:
         body = spec.worldbody.add_body(name="wheel", pos=[0.0, 0.0, l])
         body.add_freejoint(name="free")
-    J = float(p["J"])
+    J = float(params["J"])
     body.mass = MASS
     body.ipos = [0.0, 0.0, 0.0]
     body.inertia = [0.5 * J * MASS * l * l, J * MASS * l * l, 0.5 * J * MASS * l * l]
@@ -184,8 +184,8 @@ def build(p: Values, s: Values) -> mujoco.MjModel:
     body.add_geom(name="hub", type=mujoco.mjtGeom.mjGEOM_CYLINDER, size=[hub_size[0] * scale, hub_size[1] * scale, 0],
                   quat=[math.sqrt(0.5), math.sqrt(0.5), 0.0, 0.0], rgba=hub_rgba, contype=0, conaffinity=0,
                   group=1)  # cylinder axis along the axle (body y)
-    radius, mu = float(s["foot_radius"]), float(p["mu"])
-    n = int(p["spokes"])
+    radius, mu = float(settings["foot_radius"]), float(params["mu"])
+    n = int(params["spokes"])
     for k in range(n):
         angle = 2.0 * math.pi * k / n
         tip = (l - radius) * np.array([math.sin(angle), 0.0, -math.cos(angle)])
@@ -193,27 +193,27 @@ def build(p: Values, s: Values) -> mujoco.MjModel:
                       fromto=[0, 0, 0, *tip], rgba=spoke_rgba, contype=0, conaffinity=0, group=1)
         body.add_geom(name=f"foot{k}", type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[radius, 0, 0], pos=tip,
                       rgba=foot_rgba, contype=0 if ideal else 1, conaffinity=0, condim=3, friction=[mu, 0, 0],
-                      margin=0.0, gap=0.0, solref=sim_settings.solref(s), solimp=sim_settings.solimp(s))
+                      margin=0.0, gap=0.0, solref=sim_settings.solref(settings), solimp=sim_settings.solimp(settings))
     floor = spec.geom("slope")
     floor.friction = [mu, 0, 0]
-    floor.solref = sim_settings.solref(s)
-    floor.solimp = sim_settings.solimp(s)
-    return compile_spec(spec, s)
+    floor.solref = sim_settings.solref(settings)
+    floor.solimp = sim_settings.solimp(settings)
+    return compile_spec(spec, settings)
 
 
-def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
+def evaluate(params: Values, settings: Values, preset: str, seed: int) -> Evaluation:
     """Fit the 5-D mid-stance map from a batch of perturbed cycles; run planar cycles at several headings."""
-    w = runs.wheel(p)
-    mode = str(p["impact"])
+    w = runs.wheel(params)
+    mode = str(params["impact"])
     tol = at_preset(TOLERANCES[mode], RIMLESS_WHEEL_3D.name, preset)
     why = tol.why
-    unit = runs.rate_unit(p)
-    model = build(p, s)
+    unit = runs.rate_unit(params)
+    model = build(params, settings)
     ref = hybrid.midstance_eigenvalues(w)
-    fit_batch, planar_batch = runs.batches(p, w)
-    fit_run = runs.simulate_starts(p, s, model, *fit_batch)
-    planar_run = runs.simulate_starts(p, s, model, *planar_batch)
-    headings = runs.planar_headings(p)
+    fit_batch, planar_batch = runs.batches(params, w)
+    fit_run = runs.simulate_starts(params, settings, model, *fit_batch)
+    planar_run = runs.simulate_starts(params, settings, model, *planar_batch)
+    headings = runs.planar_headings(params)
     report = fit_run.report.merge(planar_run.report)
     extras: dict[str, object] = {}
     sequences = [runs.nondim(seq, unit) for seq in fit_run.sequences]
@@ -236,13 +236,13 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
             "note": "fitted cycle's drift along the neutral heading family; reported, not judged"}}
         extras["return_map"] = return_map_plot(w, sequences, unit, ref).to_dict()
         try:
-            floor: dict[str, object] = dict(runs.reference_bench(p, hybrid.RTOL))
+            floor: dict[str, object] = dict(runs.reference_bench(params, hybrid.RTOL))
         except RuntimeError as err:  # the exact reference itself left the cycle from these starts: say so
             floor = {"failed": str(err)}
         extras["reference_fit"] = {**floor, "note": (
             "the exact hybrid map (DOP853 1e-12) from the same starts through the same fit: the experiment design's "
             "own error floor, to subtract from the simulated errors")}
-    planar, planar_extras = planar_checks(p, headings, planar_run, tol)
+    planar, planar_extras = planar_checks(params, headings, planar_run, tol)
     out.extend(planar)
     extras.update(planar_extras)
     extras["impact_mode"] = mode
@@ -258,21 +258,23 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
 # --- bench, render ----------------------------------------------------------------------------------------------
 
 
-def probe(p: Values, s: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
+def probe(params: Values, settings: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
     """The model and the (initial states, steps) of each rollout batch :func:`evaluate` runs (ideal mode: without
     the impact controller, a cost reference only)."""
-    model = build(p, s)
-    return model, [(runs.section_start_states(model, p, s, x0), runs.steps_for(p, model.opt.timestep, impacts))
-                   for x0, impacts in runs.batches(p, runs.wheel(p))]
+    model = build(params, settings)
+    return model, [(runs.section_start_states(model, params, settings, x0), runs.steps_for(params, model.opt.timestep,
+                                                                                           impacts))
+                   for x0, impacts in runs.batches(params, runs.wheel(params))]
 
 
-def soak(p: Values, s: Values, impacts: int) -> Soak:
+def soak(params: Values, settings: Values, impacts: int) -> Soak:
     """``impacts`` steps from the planar cycle in one trajectory: each mid-stance pitch rate over the analytic one
     at that sample's own heading (eq 14 + the energy integral), since the neutral heading drifts under any bias."""
-    w = runs.wheel(p)
-    run = runs.simulate_starts(p, s, build(p, s), hybrid.midstance_fixed_point(w)[None, :], impacts)
+    w = runs.wheel(params)
+    run = runs.simulate_starts(params, settings, build(params, settings), hybrid.midstance_fixed_point(w)[None, :],
+                               impacts)
     seq = run.sequences[0]
-    ratio = np.array([x[4] / (theory.midstance_pitch_rate(runs.wheel_at(w, float(x[0]))) * runs.rate_unit(p))
+    ratio = np.array([x[4] / (theory.midstance_pitch_rate(runs.wheel_at(w, float(x[0]))) * runs.rate_unit(params))
                       if abs(x[0]) < math.pi / 2 and runs.cycle_exists(runs.wheel_at(w, float(x[0]))) else math.nan
                       for x in seq])
     return Soak(ratio, 1.0, "mid-stance pitch rate / eq 14 at the sample's heading", run.report)
@@ -297,16 +299,17 @@ STRESS_CASES = (
 )
 
 
-def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray | tuple[np.ndarray, np.ndarray]:
+def clip(params: Values, settings: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray | tuple[np.ndarray,
+                                                                                                    np.ndarray]:
     """A clip from the planar cycle with a lean-rate kick (phi_dot + 0.1 sqrt(g/l)): the wobble decays while the
     wheel rolls. Ideal mode: with the impact controller, and the pivot's position per row for the mocap body."""
-    w = runs.wheel(p)
+    w = runs.wheel(params)
     x0 = hybrid.midstance_fixed_point(w) + np.array([0.0, 0.0, 0.0, 0.1, 0.0])
-    state0 = runs.section_start_states(model, p, s, x0[None, :])
-    if not runs.is_ideal(p):
+    state0 = runs.section_start_states(model, params, settings, x0[None, :])
+    if not runs.is_ideal(params):
         return plain_clip(model, state0, nstep)
-    controller = IdealImpactController(runs.wheel(p), float(p["leg_length"]), 1)
-    kept = event_clip(model, state0, nstep, controller, runs.event_chunk(p, model.opt.timestep),
+    controller = IdealImpactController(runs.wheel(params), float(params["leg_length"]), 1)
+    kept = event_clip(model, state0, nstep, controller, runs.event_chunk(params, model.opt.timestep),
                       tag=lambda: controller.pivot[0].copy())
     return kept.states(nstep), kept.tagged(nstep)[:, None, :]
 

@@ -49,11 +49,11 @@ def fit_checks(w: theory.RimlessWheel3D, fitted: MapFit | None, ref: hybrid.Eige
     return out
 
 
-def planar_checks(p: Values, headings: list[float], run: runs.Run, tol: Tolerances
+def planar_checks(params: Values, headings: list[float], run: runs.Run, tol: Tolerances
                    ) -> tuple[list[checks.Check], dict[str, object]]:
     """Planar cycles started on the analytic fixed point at each heading, read at their own heading
     (:func:`planar_tails`)."""
-    t = planar_tails(runs.wheel(p), headings, run.sequences, runs.PLANAR_TAIL, runs.rate_unit(p))
+    t = planar_tails(runs.wheel(params), headings, run.sequences, runs.PLANAR_TAIL, runs.rate_unit(params))
     where = (f"headings {', '.join(f'{h:.4g}' for h in headings)}, last {runs.PLANAR_TAIL} of "
              f"{runs.PLANAR_IMPACTS} samples")
     out = [
@@ -66,7 +66,7 @@ def planar_checks(p: Values, headings: list[float], run: runs.Run, tol: Toleranc
                      why=f"planar cycle at several headings: bank against eq 12 at the sample's own heading ({where})"
                      + ("; impact=ideal: the controller applies the reference's own impact law (001 eqs 4-6, Sec. "
                         "3.2.2), so this agreement tests MuJoCo's integration of the stance only, not its impacts"
-                        if runs.is_ideal(p) else "")),
+                        if runs.is_ideal(params) else "")),
     ]
     return out, {"planar_headings": headings, "heading_drift_per_100_impacts_planar": t.drift_per_100,
                  "heading_drift_planar_note": f"(psi_last - psi_first) per 100 impacts over the {runs.PLANAR_IMPACTS}-"

@@ -35,20 +35,20 @@ CHUNK_SECONDS = 0.5  # native steps between looks (contact mode)
 EVENT_CHUNK_FRACTION = 0.25  # ideal mode: chunk = this fraction of a step period (steps after an event are wasted)
 
 
-def wheel(p: Values, heading: float | None = None) -> theory.RimlessWheel3D:
+def wheel(params: Values, heading: float | None = None) -> theory.RimlessWheel3D:
     """The nondimensional analytic wheel (001 Sec. 2) for the parameters (at ``heading`` if given)."""
-    return theory.RimlessWheel3D(spokes=int(p["spokes"]), slope=float(p["slope"]), J=float(p["J"]),
-                                 heading=float(p["heading"]) if heading is None else heading)
+    return theory.RimlessWheel3D(spokes=int(params["spokes"]), slope=float(params["slope"]), J=float(params["J"]),
+                                 heading=float(params["heading"]) if heading is None else heading)
 
 
-def rate_unit(p: Values) -> float:
+def rate_unit(params: Values) -> float:
     """sqrt(g/l): the paper's rates (m = l = g = 1) times this are rad/s."""
-    return math.sqrt(float(p["gravity"]) / float(p["leg_length"]))
+    return math.sqrt(float(params["gravity"]) / float(params["leg_length"]))
 
 
-def is_ideal(p: Values) -> bool:
+def is_ideal(params: Values) -> bool:
     """``impact=ideal``: the stance foot a ball joint, the impacts exact (:mod:`.rimless_wheel_3d_ideal`)."""
-    return str(p["impact"]) == "ideal"
+    return str(params["impact"]) == "ideal"
 
 
 def nondim(x: np.ndarray, unit: float) -> np.ndarray:
@@ -58,21 +58,21 @@ def nondim(x: np.ndarray, unit: float) -> np.ndarray:
     return out
 
 
-def section_start_states(model: mujoco.MjModel, p: Values, s: Values, x: np.ndarray) -> np.ndarray:
+def section_start_states(model: mujoco.MjModel, params: Values, settings: Values, x: np.ndarray) -> np.ndarray:
     """MuJoCo states at mid-stance (theta = 0 on spoke 0) for nondimensional section states x (B, 5).
 
     Contact mode: the stance foot sphere touches the plane at the origin and the body moves as a rotation about
     that contact point (no slip). Ideal mode: the ball joint's quaternion and body angular velocity.
     """
-    l, unit = float(p["leg_length"]), rate_unit(p)
-    radius = float(s["foot_radius"])
+    l, unit = float(params["leg_length"]), rate_unit(params)
+    radius = float(settings["foot_radius"])
     x = np.atleast_2d(x)
     qpos, qvel = [], []
     for psi, phi, *rates in x:
         R = hybrid.pose(psi, phi, 0.0)
         omega = hybrid.angular_velocity(psi, phi, rates) * unit
         quat = matrix_to_quat(R)
-        if is_ideal(p):
+        if is_ideal(params):
             qpos.append(quat)
             qvel.append(R.T @ omega)
         else:
@@ -88,12 +88,12 @@ def section_start_states(model: mujoco.MjModel, p: Values, s: Values, x: np.ndar
 class ContactRecorder:
     """Consumes rollout chunks: mid-stance samples and the largest clearance of the lowest foot (hops)."""
 
-    def __init__(self, model: mujoco.MjModel, p: Values, s: Values, batch: int) -> None:
+    def __init__(self, model: mujoco.MjModel, params: Values, settings: Values, batch: int) -> None:
         free = JointIndex.of(model, "free")  # hub position (3), orientation quaternion (4); velocity (3), omega (3)
         self.hub_z, self.quat = free.qpos + 2, slice(free.qpos + 3, free.qpos + 7)
         self.omega = slice(free.dof + 3, free.dof + 6)
-        self.beta = math.pi / int(p["spokes"])
-        self.length, self.radius = float(p["leg_length"]), float(s["foot_radius"])
+        self.beta = math.pi / int(params["spokes"])
+        self.length, self.radius = float(params["leg_length"]), float(settings["foot_radius"])
         self.mid = Crossings.empty(5)
         self.max_clearance = np.zeros(batch)
 
@@ -118,49 +118,49 @@ class Run:
     guard_error: float = math.nan
 
 
-def step_seconds(p: Values) -> float:
+def step_seconds(params: Values) -> float:
     """Step period of the planar cycle, s (001 eq 15 quadrature)."""
-    return theory.step_period(wheel(p)) / rate_unit(p)
+    return theory.step_period(wheel(params)) / rate_unit(params)
 
 
-def steps_for(p: Values, dt: float, impacts: int) -> int:
+def steps_for(params: Values, dt: float, impacts: int) -> int:
     """Native steps that cover ``impacts`` + 1.2 step periods."""
-    return math.ceil((impacts + 1.2) * step_seconds(p) / dt)
+    return math.ceil((impacts + 1.2) * step_seconds(params) / dt)
 
 
-def event_chunk(p: Values, dt: float) -> int:
+def event_chunk(params: Values, dt: float) -> int:
     """Steps per chunk of the ideal mode's event rollout."""
-    return max(10, round(EVENT_CHUNK_FRACTION * step_seconds(p) / dt))
+    return max(10, round(EVENT_CHUNK_FRACTION * step_seconds(params) / dt))
 
 
-def batches(p: Values, w: theory.RimlessWheel3D) -> tuple[tuple[np.ndarray, int], tuple[np.ndarray, int]]:
+def batches(params: Values, w: theory.RimlessWheel3D) -> tuple[tuple[np.ndarray, int], tuple[np.ndarray, int]]:
     """(nondimensional starts, impacts) of the fit batch and of the planar batch (one cycle per planar heading)."""
-    planar = np.array([hybrid.midstance_fixed_point(wheel_at(w, h)) for h in planar_headings(p)])
-    return (fit_starts(w, PERTURBATION[str(p["impact"])]), FIT_IMPACTS), (planar, PLANAR_IMPACTS)
+    planar = np.array([hybrid.midstance_fixed_point(wheel_at(w, h)) for h in planar_headings(params)])
+    return (fit_starts(w, PERTURBATION[str(params["impact"])]), FIT_IMPACTS), (planar, PLANAR_IMPACTS)
 
 
-def simulate_starts(p: Values, s: Values, model: mujoco.MjModel, x0: np.ndarray, impacts: int) -> Run:
+def simulate_starts(params: Values, settings: Values, model: mujoco.MjModel, x0: np.ndarray, impacts: int) -> Run:
     """Simulate the starts x0 (nondimensional mid-stance states) for ``impacts`` + 1 step periods."""
-    state0 = section_start_states(model, p, s, x0)
+    state0 = section_start_states(model, params, settings, x0)
     dt = model.opt.timestep
-    nstep = steps_for(p, dt, impacts)
-    options = rollout_options(s)
-    if is_ideal(p):
-        controller = IdealImpactController(wheel(p), float(p["leg_length"]), len(x0))
+    nstep = steps_for(params, dt, impacts)
+    options = rollout_options(settings)
+    if is_ideal(params):
+        controller = IdealImpactController(wheel(params), float(params["leg_length"]), len(x0))
         report = event_rollout(model, state0, nstep, controller, **options,
-                               chunk_steps=event_chunk(p, dt))
-        return Run(first_samples(controller.mid, len(x0), impacts, p), report, guard_error=controller.guard_error)
-    recorder = ContactRecorder(model, p, s, len(x0))
+                               chunk_steps=event_chunk(params, dt))
+        return Run(first_samples(controller.mid, len(x0), impacts, params), report, guard_error=controller.guard_error)
+    recorder = ContactRecorder(model, params, settings, len(x0))
     report = rollout_batch(model, state0, nstep, recorder, **options,
                            chunk_steps=max(1, round(CHUNK_SECONDS / dt)))
-    return Run(first_samples(recorder.mid, len(x0), impacts, p), report,
+    return Run(first_samples(recorder.mid, len(x0), impacts, params), report,
                 max_clearance=float(np.nanmax(recorder.max_clearance)))
 
 
-def first_samples(mid: Crossings, batch: int, impacts: int, p: Values) -> list[np.ndarray]:
+def first_samples(mid: Crossings, batch: int, impacts: int, params: Values) -> list[np.ndarray]:
     """Per trajectory, the first ``impacts`` mid-stance samples after the start (which is itself on the section:
     a crossing in its first half step period is the start, not a sample), as the exact reference takes them."""
-    late = mid.time > 0.5 * step_seconds(p)
+    late = mid.time > 0.5 * step_seconds(params)
     kept = Crossings(mid.trajectory[late], mid.time[late], mid.values[late])
     return [seq[:impacts] for seq in kept.sequences(batch)]
 
@@ -179,9 +179,9 @@ def fit_starts(w: theory.RimlessWheel3D, size: float, starts: int = FIT_STARTS) 
     return np.vstack([x_star, x_star + size * directions, x_star - size * directions])
 
 
-def planar_headings(p: Values) -> list[float]:
+def planar_headings(params: Values) -> list[float]:
     """Headings of the planar-cycle check: PLANAR_HEADINGS and ``heading``, where a rolling cycle exists."""
-    return [h for h in sorted({float(p["heading"]), *PLANAR_HEADINGS}) if cycle_exists(wheel(p, h))]
+    return [h for h in sorted({float(params["heading"]), *PLANAR_HEADINGS}) if cycle_exists(wheel(params, h))]
 
 
 def cycle_exists(w: theory.RimlessWheel3D) -> bool:
@@ -211,13 +211,13 @@ def reference_sequences(w: theory.RimlessWheel3D, size: float, rtol: float) -> l
     return sequences
 
 
-def reference_bench(p: Values, rtol: float) -> dict[str, float]:
+def reference_bench(params: Values, rtol: float) -> dict[str, float]:
     """The exact hybrid reference (solve_ivp DOP853 at relative and absolute tolerance ``rtol``) from the same starts
     through the same fit: its error is the floor the experiment design (perturbation size, quadratic fit) sets."""
-    w = wheel(p)
+    w = wheel(params)
     ref = hybrid.midstance_eigenvalues(w)
     start = time.perf_counter()
-    sequences = reference_sequences(w, PERTURBATION[str(p["impact"])], rtol)
+    sequences = reference_sequences(w, PERTURBATION[str(params["impact"])], rtol)
     fitted = fit_map(sequences, w.heading, hybrid.family_tangent(hybrid.midstance_fixed_point, w))
     wall = time.perf_counter() - start
     x_ref, point = hybrid.midstance_fixed_point(w), fitted.cycle.fixed_point

@@ -22,23 +22,24 @@ AGREEMENT_CASES: tuple[dict[str, str], ...] = (
 )
 
 
-def point_mass_wheel(p: Values) -> theory.RimlessWheel:
+def point_mass_wheel(params: Values) -> theory.RimlessWheel:
     """The suite's analytic wheel of Drake's model: the scenario's parameters with kappa = 0 (no gyration floor)."""
-    return theory.RimlessWheel(spokes=int(p["spokes"]), slope=float(p["slope"]), leg_length=float(p["leg_length"]),
-                               gyration=0.0, gravity=float(p["gravity"]), mass=float(p["mass"]))
+    return theory.RimlessWheel(spokes=int(params["spokes"]), slope=float(params["slope"]),
+                               leg_length=float(params["leg_length"]),
+                               gyration=0.0, gravity=float(params["gravity"]), mass=float(params["mass"]))
 
 
-def check_params(p: Values) -> None:
+def check_params(params: Values) -> None:
     """Refuse a missing pydrake or a hub with inertia (Drake's RimlessWheel has a point-mass hub)."""
     drake.require()
-    if float(p["gyration"]) != 0.0:
+    if float(params["gyration"]) != 0.0:
         raise ParameterError(f"gyration must be 0 with --peer drake: Drake's RimlessWheel has a point-mass hub "
-                             f"(got {p['gyration']})")
+                             f"(got {params['gyration']})")
 
 
-def values(p: Values, accuracy: float) -> PeerValues:
+def values(params: Values, accuracy: float) -> PeerValues:
     """Drake's omega+, multiplier, impact coefficient and step period, each beside the theory at kappa = 0."""
-    w = point_mass_wheel(p)
+    w = point_mass_wheel(params)
     gait = drake.rimless_wheel(w, accuracy=accuracy)
     star = theory.rolling_fixed_point(w)
     return {"omega_post_impact": (gait.omega_post_impact, star),
@@ -51,9 +52,9 @@ def drake_peer(wheel: Callable[[Values], theory.RimlessWheel]) -> Peer:
     """Drake's rimless wheel as the scenario's peer; ``wheel`` maps the scenario's parameters onto the checks' own
     analytic wheel (the model note names its floored kappa)."""
 
-    def model_note(p: Values) -> str:
+    def model_note(params: Values) -> str:
         return (f"Drake's RimlessWheel has a point-mass hub (kappa = 0); the checks' analytic values use the "
-                f"scenario's floor kappa = {wheel(p).kappa:.3g}")
+                f"scenario's floor kappa = {wheel(params).kappa:.3g}")
 
     return drake.peer(check_params=check_params, values=values, model_note=model_note,
                       bench_accuracies=BENCH_ACCURACIES,

@@ -130,11 +130,11 @@ TOLERANCES: dict[str, Tolerances] = {
 # --- inputs -------------------------------------------------------------------------------------------------------
 
 
-def check_params(p: Values) -> None:
+def check_params(params: Values) -> None:
     """Refuse what the theory excludes (002 Sec. 3, eqs 18/21; Appendix A): the theory's own validation, kappa > 0
     (slip needs hub inertia: eq 42 gives f_n = 0 at kappa = 0; MuJoCo's pitch needs inertia too) and a mu with a
     stable gait (below the D branch the wheel rolls back)."""
-    w = friction_wheel(p)
+    w = friction_wheel(params)
     try:
         theory.validate(w)
     except ValueError as err:
@@ -151,15 +151,15 @@ def check_params(p: Values) -> None:
 # --- the checks ---------------------------------------------------------------------------------------------------
 
 
-def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
+def evaluate(params: Values, settings: Values, preset: str, seed: int) -> Evaluation:
     """Simulate the reference gait's post-impact state, its perturbations and a slipping start in one batch;
     compare settled type, mid-stance rate, multiplier, slip onset, impact kind and (D) slip growth per step."""
-    w = friction_wheel(p)
+    w = friction_wheel(params)
     gait = reference_gait(w)
     tol = at_preset(TOLERANCES, RIMLESS_WHEEL_FRICTION.name, preset)
     starts, fit_mask = fit_starts(gait, w)
     nsteps = D_SIM_STEPS if gait.kind.startswith("D") else SIM_STEPS
-    run = run_batch(p, s, preset, starts, nsteps)
+    run = run_batch(params, settings, preset, starts, nsteps)
     rows, steps, cls, report = run.rows, run.steps, run.cls, run.report
     refs = [reference.reference_run(w, tuple(z), nsteps) for z in starts]
     out: list[checks.Check] = []
@@ -205,7 +205,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
         f"stick/slip phases of the settled steps ({names}) vs the gait's (002 eq 35): a row slips when its friction "
         "is on the cone (force ratio of the hub's recorded acceleration over 1 ms); error = fraction that differ"))
     if gait.kind != "A":  # the gait slips (002 Sec. 3.3): its sliding rows against MuJoCo's contact law
-        sliding = sliding_contact(run.rec, run.model, p, s, rows, cls)
+        sliding = sliding_contact(run.rec, run.model, params, settings, rows, cls)
         out.append(checks.absolute("sliding_contact_law", 0.0, sliding.residual, tol["sliding_contact_law"], "",
                                    f"{tol.reasons['sliding_contact_law']} ({sliding.rows} sliding rows)"))
         extras["sliding_contact"] = asdict(sliding)
@@ -239,43 +239,44 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
 # --- probe, reference bench, render clip, soak ----------------------------------------------------------------------
 
 
-def probe(p: Values, s: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
+def probe(params: Values, settings: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
     """The model and the (initial states, steps) of the batch :func:`evaluate` runs."""
-    w = friction_wheel(p)
+    w = friction_wheel(params)
     gait = reference_gait(w)
     starts, _ = fit_starts(gait, w)
-    model = build(p, s)
-    nstep = math.ceil(SIM_STEPS * period_seconds(p, np.array([w.mu])) / model.opt.timestep)
-    return model, [(start_states(model, p, s, starts), nstep)]
+    model = build(params, settings)
+    nstep = math.ceil(SIM_STEPS * period_seconds(params, np.array([w.mu])) / model.opt.timestep)
+    return model, [(start_states(model, params, settings, starts), nstep)]
 
 
-def reference_bench(p: Values, rtol: float) -> dict[str, float]:
+def reference_bench(params: Values, rtol: float) -> dict[str, float]:
     """The exact reference (theory.step, the generic Appendix-A integrator at tolerance ``rtol``) through the same
     mid-stance fit: wall time and the eigenvalue / mid-stance errors against the fast-method gait."""
-    w = friction_wheel(p)
+    w = friction_wheel(params)
     gait = reference_gait(w)
     starts, mask = fit_starts(gait, w)
     return reference.generic_bench(w, gait, starts[mask], FIT_PAIRS + 1, rtol)
 
 
-def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
+def clip(params: Values, settings: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
     """States of a clip from the reference gait's post-impact state perturbed by +10 % in theta_dot."""
-    gait = reference_gait(friction_wheel(p))
+    gait = reference_gait(friction_wheel(params))
     th, xd = gait_start(gait)
-    state0 = start_states(model, p, s, np.array([[1.1 * th, xd]]))
+    state0 = start_states(model, params, settings, np.array([[1.1 * th, xd]]))
     return plain_clip(model, state0, nstep)
 
 
-def soak(p: Values, s: Values, impacts: int) -> Soak:
+def soak(params: Values, settings: Values, impacts: int) -> Soak:
     """``impacts`` steps on the reference gait in one trajectory: the mid-stance theta_dot of each step."""
-    w = friction_wheel(p)
+    w = friction_wheel(params)
     gait = reference_gait(w)
-    model = build(p, s)
-    seconds = impacts * period_seconds(p, np.array([w.mu])) + 0.5
-    rec, report = simulate(model, np.array([w.mu]), start_states(model, p, s, np.array([gait_start(gait)])), seconds,
-                           s)
-    cls = classifier(w.mu, s, "fast", 1)
-    rows = row_signals(rec, model, p, s, rate_unit(p), cls)
+    model = build(params, settings)
+    seconds = impacts * period_seconds(params, np.array([w.mu])) + 0.5
+    rec, report = simulate(model, np.array([w.mu]), start_states(model, params, settings,
+                                                                 np.array([gait_start(gait)])), seconds,
+                           settings)
+    cls = classifier(w.mu, settings, "fast", 1)
+    rows = row_signals(rec, model, params, settings, rate_unit(params), cls)
     phi = math.pi / w.spokes
     mid = level_crossings(rec.time, rows.theta, rows.rate[:, :, None], max_jump=phi)
     return Soak(mid.values[:, 0], gait.midstance_rate, "mid-stance theta_dot (nondimensional)", report)

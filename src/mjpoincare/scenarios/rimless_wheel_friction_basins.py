@@ -55,7 +55,7 @@ def _basin_reference_job(p: dict[str, Any], mu: float, theta_dot0: list[float], 
     return out
 
 
-def simulate_starts(p: Values, s: Values, preset: str, starts: np.ndarray, nsteps: int, mu: float
+def simulate_starts(params: Values, settings: Values, preset: str, starts: np.ndarray, nsteps: int, mu: float
                     ) -> tuple[list[str], list[int], list[np.ndarray], RolloutReport]:
     """Simulate ``starts`` in rollouts of BASIN_CHUNK trajectories, or of the ``batch`` setting's (sorted by
     theta_dot0, so that only the slowest chunk waits for a slow first step); per start: the label (failure, else the
@@ -65,12 +65,12 @@ def simulate_starts(p: Values, s: Values, preset: str, starts: np.ndarray, nstep
     conv: list[int] = [-1] * len(starts)
     mids: list[np.ndarray] = [np.zeros(0)] * len(starts)
     total = RolloutReport()
-    per_rollout = int(s["batch"]) or BASIN_CHUNK
+    per_rollout = int(settings["batch"]) or BASIN_CHUNK
     for k in range(0, len(starts), per_rollout):
         idx = order[k : k + per_rollout]
         part = starts[idx]
-        extra = _first_step_seconds({**p, "mu": mu}, part)
-        run = run_batch({**p, "mu": mu}, s, preset, part, nsteps, extra=extra)
+        extra = _first_step_seconds({**params, "mu": mu}, part)
+        run = run_batch({**params, "mu": mu}, settings, preset, part, nsteps, extra=extra)
         steps, report = run.steps, run.report
         total = report if not total.steps else total.merge(report)
         for b, i in enumerate(idx):
@@ -82,19 +82,19 @@ def simulate_starts(p: Values, s: Values, preset: str, starts: np.ndarray, nstep
     return labels, conv, mids, total
 
 
-def _first_step_seconds(p: Values, starts: np.ndarray) -> float:
+def _first_step_seconds(params: Values, starts: np.ndarray) -> float:
     """Extra time for a slow first step (a start near the backward edge crawls over the top), from the reference's
     first step of the slowest start that does not roll back, at most 1 s."""
-    w = friction_wheel(p)
-    period = period_seconds(p, np.array([w.mu]))
+    w = friction_wheel(params)
+    period = period_seconds(params, np.array([w.mu]))
     for th, xd in starts[np.argsort(starts[:, 0])]:
         rec = theory.step(w, (float(th), float(xd)))
         if rec.failure != "backward":
-            return float(np.clip(rec.duration / rate_unit(p) - period, 0.0, 1.0))
+            return float(np.clip(rec.duration / rate_unit(params) - period, 0.0, 1.0))
     return 0.0
 
 
-def basin_map(p: Values, s: Values, preset: str, theta_dot0: np.ndarray, x_dot0: np.ndarray, *,
+def basin_map(params: Values, settings: Values, preset: str, theta_dot0: np.ndarray, x_dot0: np.ndarray, *,
               workers: int) -> dict[str, Any]:
     """Regions of attraction (002 Sec. 3.4, eq 26, Fig. 3.8) from simulation, against the reference.
 
@@ -119,24 +119,24 @@ def basin_map(p: Values, s: Values, preset: str, theta_dot0: np.ndarray, x_dot0:
         ``diverged`` trajectories and MuJoCo ``warnings``.
     """
     workers = max(workers, 2)
-    mu = float(p["mu"])
+    mu = float(params["mu"])
     start = time.perf_counter()
     grid = np.array([(th, xd) for xd in x_dot0 for th in theta_dot0])
-    labels, _, _, report = simulate_starts(p, s, preset, grid, BASIN_STEPS, mu)
+    labels, _, _, report = simulate_starts(params, settings, preset, grid, BASIN_STEPS, mu)
     sim_map = np.array(labels, dtype=object).reshape(len(x_dot0), len(theta_dot0)).astype(str)
     map_wall = time.perf_counter() - start
     line = np.column_stack([theta_dot0, np.zeros_like(theta_dot0)])
     lines: dict[str, Any] = {}
     for name, m in (("slip", mu), ("no_slip", MU_NO_SLIP)):
-        lab, conv, _, rep = simulate_starts(p, s, preset, line, CONVERGE_STEPS, m)
+        lab, conv, _, rep = simulate_starts(params, settings, preset, line, CONVERGE_STEPS, m)
         report = report.merge(rep)
         lines[name] = {"mu": m, "simulated": lab, "simulated_steps": conv}
     sim_wall = time.perf_counter() - start
     ref_th = theta_dot0[::REFERENCE_STRIDE]
     ref_xd = x_dot0[::REFERENCE_STRIDE]
-    jobs: list[tuple[Any, ...]] = [(dict(p), mu, list(map(float, ref_th)), float(xd), BASIN_STEPS, True)
+    jobs: list[tuple[Any, ...]] = [(dict(params), mu, list(map(float, ref_th)), float(xd), BASIN_STEPS, True)
                                    for xd in ref_xd]
-    jobs += [(dict(p), m, [float(th)], 0.0, CONVERGE_STEPS, False) for m in (mu, MU_NO_SLIP) for th in theta_dot0]
+    jobs += [(dict(params), m, [float(th)], 0.0, CONVERGE_STEPS, False) for m in (mu, MU_NO_SLIP) for th in theta_dot0]
     results = list(run_jobs(_basin_reference_job, jobs, workers=workers))
     ref_rows = [r for part in results for r in part if "eventual" in r]
     line_rows = {(round(r["theta_dot0"], 12), r["mu"]): r for part in results for r in part if "eventual" not in r}
@@ -154,7 +154,7 @@ def basin_map(p: Values, s: Values, preset: str, theta_dot0: np.ndarray, x_dot0:
     sub = sim_map[::REFERENCE_STRIDE, ::REFERENCE_STRIDE]
     inside_sim = ~np.isin(sub, FAILURES)
     inside_ref = ~np.isin(ref_eventual.astype(str), FAILURES)
-    result = {"params": dict(p), "preset": preset, "mu": mu, "theta_dot0": theta_dot0, "x_dot0": x_dot0,
+    result = {"params": dict(params), "preset": preset, "mu": mu, "theta_dot0": theta_dot0, "x_dot0": x_dot0,
               "simulated": sim_map,
               "reference_theta_dot0": ref_th, "reference_x_dot0": ref_xd,
               "reference_after_steps": ref_label.astype(str),
@@ -162,7 +162,7 @@ def basin_map(p: Values, s: Values, preset: str, theta_dot0: np.ndarray, x_dot0:
               "type_disagreement": float(np.mean(sub != ref_label.astype(str))),
               "region_disagreement": float(np.mean(inside_sim != inside_ref)),
               "region_disagreement_by_x_dot0": np.mean(inside_sim != inside_ref, axis=1),
-              "windows": _windows(p, theta_dot0, lines), "steps": float(report.steps),
+              "windows": _windows(params, theta_dot0, lines), "steps": float(report.steps),
               "rollout_wall_s": report.wall_s, "map_wall_s": map_wall, "simulation_wall_s": sim_wall,
               "reference_wall_s": ref_wall, "wall_s": time.perf_counter() - start,
               "diverged": int(report.diverged.sum()), "warnings": report.warnings}
@@ -170,13 +170,13 @@ def basin_map(p: Values, s: Values, preset: str, theta_dot0: np.ndarray, x_dot0:
     return result
 
 
-def _windows(p: Values, theta_dot0: np.ndarray, lines: dict[str, Any]) -> dict[str, Any]:
+def _windows(params: Values, theta_dot0: np.ndarray, lines: dict[str, Any]) -> dict[str, Any]:
     """Attraction windows in theta_dot0 (x_dot0 = 0): reference (:func:`theory.attraction_window`, eq 26 for
     mu = inf) and simulated (the outermost converging starts of each line)."""
-    rigid = friction_wheel({**p, "mu": math.inf})
+    rigid = friction_wheel({**params, "mu": math.inf})
     out: dict[str, Any] = {"eq26_unbounded": list(theory.attraction_window_rigid(rigid))}
     for name, line in lines.items():
-        w = friction_wheel({**p, "mu": line["mu"]})
+        w = friction_wheel({**params, "mu": line["mu"]})
         inside = np.array([lab not in FAILURES for lab in line["simulated"]])
         centre = int(np.argmin(np.abs(theta_dot0 - gait_start(reference_gait(w))[0])))
         sim = [math.nan, math.nan]

@@ -43,35 +43,37 @@ V_THRESHOLD: dict[str, float] = {"fast": 5e-3, "accurate": 2e-3, "coarse": 1e-2}
 IMPACT_WINDOW_TC = 5.0  # the impact window is at least this many contact time constants
 
 
-def friction_wheel(p: Values) -> theory.FrictionWheel:
+def friction_wheel(params: Values) -> theory.FrictionWheel:
     """The nondimensional reference wheel (002 eq 11)."""
-    return theory.FrictionWheel(int(p["spokes"]), float(p["kappa"]), float(p["slope"]), float(p["mu"]))
+    return theory.FrictionWheel(int(params["spokes"]), float(params["kappa"]), float(params["slope"]),
+                                float(params["mu"]))
 
 
-def rate_unit(p: Values) -> float:
+def rate_unit(params: Values) -> float:
     """omega_c = sqrt(g/(l(1+kappa))), 1/s: theta_dot_SI = theta_dot omega_c, x_dot_SI = x_dot l omega_c."""
-    return theory.omega_c(float(p["leg_length"]), float(p["gravity"]), float(p["kappa"]))
+    return theory.omega_c(float(params["leg_length"]), float(params["gravity"]), float(params["kappa"]))
 
 
-def rigid_params(p: Values) -> dict[str, float | int]:
+def rigid_params(params: Values) -> dict[str, float | int]:
     """Parameters of :mod:`mjpoincare.scenarios.rimless_wheel` for the same wheel (hub mass 1 kg, gyration
     sqrt(kappa) l, the same mu on feet and floor)."""
-    l = float(p["leg_length"])
-    return {"spokes": int(p["spokes"]), "slope": float(p["slope"]), "leg_length": l, "mass": 1.0,
-            "gyration": math.sqrt(float(p["kappa"])) * l, "mu": float(p["mu"]), "gravity": float(p["gravity"])}
+    l = float(params["leg_length"])
+    return {"spokes": int(params["spokes"]), "slope": float(params["slope"]), "leg_length": l, "mass": 1.0,
+            "gyration": math.sqrt(float(params["kappa"])) * l, "mu": float(params["mu"]),
+            "gravity": float(params["gravity"])}
 
 
-def build(p: Values, s: Values) -> mujoco.MjModel:
+def build(params: Values, settings: Values) -> mujoco.MjModel:
     """The rimless wheel of ``rimless-wheel`` (same MJCF and MjSpec rebuild) with gyration sqrt(kappa) l and mu."""
-    return rw.build(rigid_params(p), s)
+    return rw.build(rigid_params(params), settings)
 
 
-def start_states(model: mujoco.MjModel, p: Values, s: Values, starts: np.ndarray) -> np.ndarray:
+def start_states(model: mujoco.MjModel, params: Values, settings: Values, starts: np.ndarray) -> np.ndarray:
     """Full-physics states just after an impact for nondimensional post-impact states ``starts`` (B, 2) =
     (theta_dot0, x_dot0) of 002 (x_dot0: slip speed of the new stance tip)."""
-    unit, l = rate_unit(p), float(p["leg_length"])
-    w = rw.wheel(rigid_params(p))
-    return rw.post_impact_states(model, w, starts[:, 0] * unit, float(s["foot_radius"]), starts[:, 1] * l * unit)
+    unit, l = rate_unit(params), float(params["leg_length"])
+    w = rw.wheel(rigid_params(params))
+    return rw.post_impact_states(model, w, starts[:, 0] * unit, float(settings["foot_radius"]), starts[:, 1] * l * unit)
 
 
 def reference_gait(w: theory.FrictionWheel) -> theory.Gait:
@@ -107,7 +109,7 @@ def fit_starts(gait: theory.Gait, w: theory.FrictionWheel) -> tuple[np.ndarray, 
     return starts, np.arange(len(starts)) < len(fit)
 
 
-def simulate(model: mujoco.MjModel, mu: np.ndarray, state0: np.ndarray, seconds: float, s: Values
+def simulate(model: mujoco.MjModel, mu: np.ndarray, state0: np.ndarray, seconds: float, settings: Values
              ) -> tuple[Chunk, RolloutReport]:
     """Roll every initial state out for ``seconds`` (one :func:`mujoco.rollout` batch, trajectory b with friction
     ``mu[b]`` on its feet and floor, native chunks of 0.5 s) and keep every recorded row: ``time`` (B, T), ``qpos``
@@ -125,28 +127,32 @@ def simulate(model: mujoco.MjModel, mu: np.ndarray, state0: np.ndarray, seconds:
         for b, value in enumerate(mu):
             batch.set_friction(b, float(value))
 
-    report = event_rollout(model, state0, nstep, keep, chunk_steps=chunk, setup=frictions, **rollout_options(s))
+    report = event_rollout(model, state0, nstep, keep, chunk_steps=chunk, setup=frictions, **rollout_options(settings))
     time_ = np.concatenate([c.time for c in parts], axis=1)[:, : nstep + 1]
     qpos = np.concatenate([c.qpos for c in parts], axis=1)[:, : nstep + 1]
     qvel = np.concatenate([c.qvel for c in parts], axis=1)[:, : nstep + 1]
     return Chunk(time_, qpos, qvel), report
 
 
-def row_signals(rec: Chunk, model: mujoco.MjModel, p: Values, s: Values, unit: float, cls: Classifier) -> Rows:
+def row_signals(rec: Chunk, model: mujoco.MjModel, params: Values, settings: Values, unit: float,
+                cls: Classifier) -> Rows:
     """002's variables and the contact force of every recorded row of ``rec`` (joints ``x``, ``z``, ``pitch`` of
     ``model``, whose gravity is the slope frame's), nondimensional with ``unit`` = omega_c (1/s)."""
     x, z, pitch = (JointIndex.of(model, name) for name in ("x", "z", "pitch"))
     return wheel_rows(time=rec.time, pitch=rec.qpos[:, :, pitch.qpos], pitch_rate=rec.qvel[:, :, pitch.dof],
-                      hub_x_dot=rec.qvel[:, :, x.dof], hub_z=rec.qpos[:, :, z.qpos], hub_z_dot=rec.qvel[:, :, z.dof],
-                      gravity=np.asarray(model.opt.gravity), spokes=int(p["spokes"]),
-                      leg_length=float(p["leg_length"]), foot_radius=float(s["foot_radius"]), rate_unit=unit,
-                      timestep=float(s["timestep"]), cls=cls)
+                      hub_x_dot=rec.qvel[:, :, x.dof], hub_z=rec.qpos[:, :, z.qpos],
+                      hub_z_dot=rec.qvel[:, :, z.dof],
+                      gravity=np.asarray(model.opt.gravity), spokes=int(params["spokes"]),
+                      leg_length=float(params["leg_length"]), foot_radius=float(settings["foot_radius"]),
+                      rate_unit=unit,
+                      timestep=float(settings["timestep"]), cls=cls)
 
 
-def classifier(mu: np.ndarray | float, s: Values, preset: str, batch: int) -> Classifier:
+def classifier(mu: np.ndarray | float, settings: Values, preset: str, batch: int) -> Classifier:
     """Thresholds for ``preset``: ``V_THRESHOLD``; the impact window of the soft contact (:func:`impact_window`), at
     least IMPACT_WINDOW_TC contact time constants. The others are the classifier's."""
-    window = impact_window(float(s["timestep"]), float(s["solref_timeconst"]), float(s["solref_dampratio"]),
+    window = impact_window(float(settings["timestep"]), float(settings["solref_timeconst"]),
+                           float(settings["solref_dampratio"]),
                            IMPACT_WINDOW_TC)
     return Classifier(mu=np.broadcast_to(np.asarray(mu, float), (batch,)).copy(),
                       v_thr=V_THRESHOLD.get(preset, V_THRESHOLD["fast"]), impact_window=window)
@@ -165,23 +171,24 @@ class FrictionRun:
     report: RolloutReport
 
 
-def run_batch(p: Values, s: Values, preset: str, starts: np.ndarray, steps: int,
+def run_batch(params: Values, settings: Values, preset: str, starts: np.ndarray, steps: int,
               mus: np.ndarray | None = None, extra: float = 0.0) -> FrictionRun:
     """Simulate ``starts`` for ``steps`` gait periods plus ``extra`` seconds (one rollout; ``mus`` gives each
     trajectory its own friction) and measure them."""
-    model = build(p, s)
-    mu_all = np.full(len(starts), float(p["mu"])) if mus is None else np.asarray(mus, float)
-    period = period_seconds(p, mu_all)
-    rec, report = simulate(model, mu_all, start_states(model, p, s, starts), steps * period + extra, s)
-    cls = classifier(mu_all, s, preset, len(starts))
-    rows = row_signals(rec, model, p, s, rate_unit(p), cls)
+    model = build(params, settings)
+    mu_all = np.full(len(starts), float(params["mu"])) if mus is None else np.asarray(mus, float)
+    period = period_seconds(params, mu_all)
+    rec, report = simulate(model, mu_all, start_states(model, params, settings, starts), steps * period + extra,
+                           settings)
+    cls = classifier(mu_all, settings, preset, len(starts))
+    rows = row_signals(rec, model, params, settings, rate_unit(params), cls)
     table = step_table(rows, cls, steps + 2, backward_rate=BACKWARD_RATE, flight_clearance=FLIGHT_CLEARANCE)
     return FrictionRun(rec=rec, model=model, rows=rows, steps=table, cls=cls, report=report)
 
 
-def period_seconds(p: Values, mus: np.ndarray) -> float:
+def period_seconds(params: Values, mus: np.ndarray) -> float:
     """Longest gait period over the friction values (s), at least the sticking gait's, for sizing the runs."""
-    return theory.longest_period(friction_wheel(p), np.unique(mus)) / rate_unit(p)
+    return theory.longest_period(friction_wheel(params), np.unique(mus)) / rate_unit(params)
 
 
 #: Sliding rows needed for the contact-law check (fewer: no sliding to check, e.g. Type A).
@@ -228,7 +235,7 @@ def _percentiles(x: np.ndarray) -> tuple[float, float, float]:
     return float(low), float(mid), float(high)
 
 
-def sliding_contact(rec: Chunk, model: mujoco.MjModel, p: Values, s: Values, rows: Rows, cls: Classifier
+def sliding_contact(rec: Chunk, model: mujoco.MjModel, params: Values, settings: Values, rows: Rows, cls: Classifier
                     ) -> SlidingContact:
     """:class:`SlidingContact` of the recorded rows ``rec`` of ``model`` (their signals ``rows``, thresholds ``cls``:
     each trajectory's friction, and the foot speed above which a lift-off counts as a slide's); MuJoCo's diagonal
@@ -236,13 +243,14 @@ def sliding_contact(rec: Chunk, model: mujoco.MjModel, p: Values, s: Values, row
     mu, cls_v_thr = cls.mu, cls.v_thr
     x, z, pitch = (JointIndex.of(model, name) for name in ("x", "z", "pitch"))
     con = stance_contact(pitch=rec.qpos[:, :, pitch.qpos], pitch_rate=rec.qvel[:, :, pitch.dof],
-                         hub_x_dot=rec.qvel[:, :, x.dof], hub_z=rec.qpos[:, :, z.qpos], hub_z_dot=rec.qvel[:, :, z.dof],
-                         gravity=np.asarray(model.opt.gravity), spokes=int(p["spokes"]),
-                         leg_length=float(p["leg_length"]), foot_radius=float(s["foot_radius"]),
-                         timestep=float(s["timestep"]), mass=float(model.body_subtreemass[0]))
-    law = SoftContact(timestep=float(s["timestep"]), timeconst=float(s["solref_timeconst"]),
-                      dampratio=float(s["solref_dampratio"]), solimp=sim_settings.solimp(s),
-                      impratio=float(s["impratio"]), mu=np.asarray(mu, float)[:, None],
+                         hub_x_dot=rec.qvel[:, :, x.dof], hub_z=rec.qpos[:, :, z.qpos],
+                      hub_z_dot=rec.qvel[:, :, z.dof],
+                         gravity=np.asarray(model.opt.gravity), spokes=int(params["spokes"]),
+                         leg_length=float(params["leg_length"]), foot_radius=float(settings["foot_radius"]),
+                         timestep=float(settings["timestep"]), mass=float(model.body_subtreemass[0]))
+    law = SoftContact(timestep=float(settings["timestep"]), timeconst=float(settings["solref_timeconst"]),
+                      dampratio=float(settings["solref_dampratio"]), solimp=sim_settings.solimp(settings),
+                      impratio=float(settings["impratio"]), mu=np.asarray(mu, float)[:, None],
                       diag_inverse_inertia=_normal_diag_inverse_inertia(model, rec))
     # sliding: touching outside an impact window, in the cone's middle zone and moving faster than v_thr (at the
     # cone's apex, a_t + b v_t ~ 0, the zone a row is in cannot be told from the recorded rows)

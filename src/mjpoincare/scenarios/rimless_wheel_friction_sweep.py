@@ -33,18 +33,18 @@ SWEEP_STEPS = 20
 SWEEP_BATCH = 12  # mu values per rollout (memory: every row of the batch is kept); the batch setting overrides it
 
 
-def mu_per_rollout(s: Values) -> int:
+def mu_per_rollout(settings: Values) -> int:
     """Mu values per rollout: as many as fill the ``batch`` setting's trajectories (SWEEP_OFFSETS starts each; at
     least one), else SWEEP_BATCH."""
-    batch = int(s["batch"])
+    batch = int(settings["batch"])
     return max(1, batch // len(SWEEP_OFFSETS)) if batch else SWEEP_BATCH
 
 
-def sweep_reference(p: Values, mu: float) -> dict[str, Any]:
+def sweep_reference(params: Values, mu: float) -> dict[str, Any]:
     """The reference at one mu: the stable gait (type, post-impact start, multiplier, mid-stance rate) and the type
     :func:`theory.settle` reaches from the simulation's middle start (the gait's start, or eq 16's sticking fixed point
     where no gait exists)."""
-    w = friction_wheel({**p, "mu": mu})
+    w = friction_wheel({**params, "mu": mu})
     gaits = theory.attractors(w)
     if gaits:
         gait = gaits[0]
@@ -62,14 +62,15 @@ def _sweep_reference_job(p: dict[str, Any], mus: list[float]) -> list[dict[str, 
     return [sweep_reference(p, mu) for mu in mus]
 
 
-def sweep_batch(p: Values, s: Values, preset: str, refs: list[dict[str, Any]], seed: int = 0) -> list[dict[str, Any]]:
+def sweep_batch(params: Values, settings: Values, preset: str, refs: list[dict[str, Any]],
+                seed: int = 0) -> list[dict[str, Any]]:
     """Simulate every mu of ``refs`` in ONE rollout (a model per trajectory, SWEEP_OFFSETS starts per mu) and
     classify: settled type, the type of the last step before a failure, the fitted multiplier of the gait."""
     n = len(SWEEP_OFFSETS)
     starts = np.array([[r["start"][0] * (1 + d), r["start"][1]] for r in refs for d in SWEEP_OFFSETS])
     mus = np.repeat([r["mu"] for r in refs], n)
     steps_n = D_SIM_STEPS if all(r["gait"].startswith("D") for r in refs) else SWEEP_STEPS
-    run = run_batch(p, s, preset, starts, steps_n, mus=mus)
+    run = run_batch(params, settings, preset, starts, steps_n, mus=mus)
     rows, steps, report = run.rows, run.steps, run.report
     out = []
     for i, ref in enumerate(refs):
@@ -86,7 +87,7 @@ def sweep_batch(p: Values, s: Values, preset: str, refs: list[dict[str, Any]], s
                 lam = math.nan
         ratio = math.nan
         if sim == "A":  # the force ratio the A gait needs along its stance: MuJoCo's mu_c (002 eq 23)
-            phi = math.pi / int(p["spokes"])
+            phi = math.pi / int(params["spokes"])
             pooled = settled_rows(rows, steps, range(i * n, (i + 1) * n), "A", SETTLED_STEPS)
             ratio = critical_ratio(*ratio_profile(rows.theta, rows.force_t, rows.force_n, pooled, phi), phi)
         out.append({**ref, "simulated": sim, "simulated_before_failure": before, "critical_ratio": ratio,
@@ -117,10 +118,10 @@ def type_edges(mus: Sequence[float], types: Sequence[str]) -> dict[str, float]:
     return edges
 
 
-def sweep_summary(p: Values, rows: list[dict[str, Any]]) -> dict[str, Any]:
+def sweep_summary(params: Values, rows: list[dict[str, Any]]) -> dict[str, Any]:
     """Agreement, the located type edges against the reference's (:func:`theory.gait_boundaries` of the wheel ``p``),
     eigenvalue errors per type, over the sweep's ``rows`` (increasing mu)."""
-    w = friction_wheel(p)
+    w = friction_wheel(params)
     boundaries = theory.gait_boundaries(w.kappa, w.spokes, w.slope)
     mus = [r["mu"] for r in rows]
     reference = {"A/B (mu_c)": boundaries.ab, "B/C": boundaries.bc, "C/D+": boundaries.d_sign,
@@ -159,7 +160,7 @@ def sweep_summary(p: Values, rows: list[dict[str, Any]]) -> dict[str, Any]:
             "max_eigenvalue_error_per_type": eig}
 
 
-def plan(p: Values, s: Values, mus: Sequence[float], *, workers: int) -> list[tuple[list[dict[str, Any]]]]:
+def plan(params: Values, settings: Values, mus: Sequence[float], *, workers: int) -> list[tuple[list[dict[str, Any]]]]:
     """The reference at each mu (:func:`sweep_reference`), grouped into the rollouts of :func:`sweep_batch`.
 
     Args:
@@ -174,9 +175,9 @@ def plan(p: Values, s: Values, mus: Sequence[float], *, workers: int) -> list[tu
     workers = max(workers, 2)
     parts = max(1, min(workers, len(mus)))
     chunks = [list(mus[i::parts]) for i in range(parts)]
-    refs = sorted((r for part in run_jobs(_sweep_reference_job, [(dict(p), c) for c in chunks], workers=workers)
+    refs = sorted((r for part in run_jobs(_sweep_reference_job, [(dict(params), c) for c in chunks], workers=workers)
                    for r in part), key=lambda r: r["mu"])
-    per_rollout = mu_per_rollout(s)
+    per_rollout = mu_per_rollout(settings)
     return [(refs[k : k + per_rollout],) for k in range(0, len(refs), per_rollout)]
 
 

@@ -110,12 +110,12 @@ def fit_seconds(w: theory.RimlessWheel) -> float:
 
 
 def simulate(model: mujoco.MjModel, w: theory.RimlessWheel, omega0: np.ndarray, seconds: float,
-              s: Values, *, until_decided: bool = False, settling: FitSettling | None = None
+              settings: Values, *, until_decided: bool = False, settling: FitSettling | None = None
               ) -> tuple[Recorder, RolloutReport]:
     """Roll the starts ``omega0`` for ``seconds``; with ``until_decided``, end at the first tail window in which
     every start's outcome is settled (:meth:`Recorder.settled`); with ``settling``, once it says the post-impact
     samples so far are enough."""
-    radius = float(s["foot_radius"])
+    radius = float(settings["foot_radius"])
     recorder = Recorder(model, w, len(omega0), radius)
     stop = None
     if settling is not None:
@@ -125,7 +125,7 @@ def simulate(model: mujoco.MjModel, w: theory.RimlessWheel, omega0: np.ndarray, 
         def stop() -> bool:
             return bool(recorder.settled().all())
     report = rollout_batch(model, post_impact_states(model, w, omega0, radius), whole_chunks(model, seconds),
-                           recorder, **rollout_options(s), chunk_steps=chunk_steps(model), stop=stop)
+                           recorder, **rollout_options(settings), chunk_steps=chunk_steps(model), stop=stop)
     return recorder, report
 
 

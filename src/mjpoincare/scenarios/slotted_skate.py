@@ -81,45 +81,46 @@ IMPACTS = 14  # enough for P1's backward starts to reach their reversal (B.6: 11
 SCALES = (0.5, 1.0, 1.5)  # the batch: Omega0 x these, in the given direction and mirrored
 
 
-def skate(p: Values) -> theory.SlottedSkate:
+def skate(params: Values) -> theory.SlottedSkate:
     """The nondimensional analytic model (lengths / rho)."""
-    return theory.SlottedSkate(L0=float(p["l0"]) / float(p["rho"]), Delta=float(p["delta"]) / float(p["rho"]))
+    return theory.SlottedSkate(L0=float(params["l0"]) / float(params["rho"]),
+                               Delta=float(params["delta"]) / float(params["rho"]))
 
 
-def check_params(p: Values) -> None:
+def check_params(params: Values) -> None:
     """Refuse a skate at rest or sliding nowhere: the peg protocol needs slot motion (V0 != 0)."""
-    if float(p["V0"]) == 0.0:
+    if float(params["V0"]) == 0.0:
         raise ParameterError("V0 must be non-zero (an initial state with no slot motion never reaches a slot end)")
-    theory.validate(skate(p))
+    theory.validate(skate(params))
 
 
-def start_states(model: mujoco.MjModel, p: Values, V0: np.ndarray, Omega0: np.ndarray) -> np.ndarray:
+def start_states(model: mujoco.MjModel, params: Values, V0: np.ndarray, Omega0: np.ndarray) -> np.ndarray:
     """Initial states: the peg at the slot end where it enters (front for V0 > 0), no lateral motion."""
-    l0, delta = float(p["l0"]), float(p["delta"])
+    l0, delta = float(params["l0"]), float(params["delta"])
     s0 = np.where(V0 > 0, l0, l0 + delta)
-    qpos = np.stack([np.full_like(V0, float(p["heading0"])), s0, np.zeros_like(V0)], axis=1)
+    qpos = np.stack([np.full_like(V0, float(params["heading0"])), s0, np.zeros_like(V0)], axis=1)
     qvel = np.stack([Omega0, V0, np.zeros_like(V0)], axis=1)
     return initial_states(model, qpos, qvel)
 
 
-def initial_conditions(p: Values) -> tuple[np.ndarray, np.ndarray]:
+def initial_conditions(params: Values) -> tuple[np.ndarray, np.ndarray]:
     """The batch: Omega0 scaled by SCALES, in the given direction and mirrored (V0 -> -V0)."""
-    v0, om0 = float(p["V0"]), float(p["Omega0"])
+    v0, om0 = float(params["V0"]), float(params["Omega0"])
     V = np.array([v0] * len(SCALES) + [-v0] * len(SCALES))
     Om = np.array([om0 * k for k in SCALES] * 2)
     return V, Om
 
 
-def _nondim(p: Values) -> tuple[float, float, float]:
+def _nondim(params: Values) -> tuple[float, float, float]:
     """Scales (energy, momentum, time) of the paper's units: m v0^2, m rho v0, rho / v0 (v0 = |V0|)."""
-    m, rho, v0 = float(p["mass"]), float(p["rho"]), abs(float(p["V0"]))
+    m, rho, v0 = float(params["mass"]), float(params["rho"]), abs(float(params["V0"]))
     return m * v0 * v0, m * rho * v0, rho / v0
 
 
-def _duration(p: Values, V: np.ndarray, Om: np.ndarray) -> float:
+def _duration(params: Values, V: np.ndarray, Om: np.ndarray) -> float:
     """Time (s) of IMPACTS + 1 stances of the slowest trajectory, by the analytic map, plus 10 %."""
-    sk = skate(p)
-    rho, v0 = float(p["rho"]), abs(float(p["V0"]))
+    sk = skate(params)
+    rho, v0 = float(params["rho"]), abs(float(params["V0"]))
     worst = 0.0
     for v, om in zip(V, Om, strict=True):
         steps = theory.iterate(sk, v / v0, om * rho / v0, 0.0, IMPACTS + 1)
@@ -127,24 +128,25 @@ def _duration(p: Values, V: np.ndarray, Om: np.ndarray) -> float:
     return 1.1 * worst * rho / v0
 
 
-def _simulate(p: Values, s: Values) -> tuple[PegController, object]:
-    model = build(p, s)
-    V, Om = initial_conditions(p)
-    controller = PegController(model, p, np.where(V > 0, float(p["l0"]), float(p["l0"]) + float(p["delta"])))
-    nstep = math.ceil(_duration(p, V, Om) / model.opt.timestep)
-    report = event_rollout(model, start_states(model, p, V, Om), nstep, controller, **rollout_options(s),
+def _simulate(params: Values, settings: Values) -> tuple[PegController, object]:
+    model = build(params, settings)
+    V, Om = initial_conditions(params)
+    controller = PegController(model, params, np.where(V > 0, float(params["l0"]),
+                                                       float(params["l0"]) + float(params["delta"])))
+    nstep = math.ceil(_duration(params, V, Om) / model.opt.timestep)
+    report = event_rollout(model, start_states(model, params, V, Om), nstep, controller, **rollout_options(settings),
                            chunk_steps=max(10, min(2000, nstep // 20)))
     return controller, report
 
 
-def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
+def evaluate(params: Values, settings: Values, preset: str, seed: int) -> Evaluation:
     """Peg-switched MuJoCo runs against the exact return map, impact by impact, and sigma_4 for both directions."""
-    controller, report = _simulate(p, s)
-    sk = skate(p)
+    controller, report = _simulate(params, settings)
+    sk = skate(params)
     tol = at_preset(TOLERANCES, SLOTTED_SKATE.name, preset)
     why = tol.why
-    e_unit, h_unit, t_unit = _nondim(p)
-    lo, _rho = float(p["l0"]), float(p["rho"])
+    e_unit, h_unit, t_unit = _nondim(params)
+    lo, _rho = float(params["l0"]), float(params["rho"])
     worst = {"energy": 0.0, "heading": 0.0, "duration": 0.0}
     reversal_mismatch, reversals, ratios = 0, 0, {True: [], False: []}
     pairs: dict[bool, list[tuple[float, float]]] = {True: [], False: []}
@@ -201,7 +203,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
                                 error=float(wrong), tolerance=0.0, kind="count", unit="",
                                 why="impacts before the first reversing stance (B.6-B.7), per start whose reversal "
                                 "falls inside the simulated stances"))
-    out.extend(_final_state_checks(p, s, sk, tol["final_speed"]))
+    out.extend(_final_state_checks(params, settings, sk, tol["final_speed"]))
     if "fit_forward" in extras:  # the generic sweep reads "fit" and analytic "eigenvalues": the forward map
         extras["fit"] = extras["fit_forward"]
         lam = float(extras["fit_forward"]["eigenvalues"][0][0])  # type: ignore[index]
@@ -241,10 +243,11 @@ FINAL_DECAY = 1e-6  # the final state is read once |H| has decayed to this fract
 FINAL_IMPACTS_MAX = 400
 
 
-def _final_state_checks(p: Values, s: Values, sk: theory.SlottedSkate, tolerance: float) -> list[checks.Check]:
+def _final_state_checks(params: Values, settings: Values, sk: theory.SlottedSkate,
+                        tolerance: float) -> list[checks.Check]:
     """The user's start run until its rotation has died out: final slot speed (B.10/B.12) and reversal count."""
-    rho, v0 = float(p["rho"]), abs(float(p["V0"]))
-    V, Om = float(p["V0"]) / v0, float(p["Omega0"]) * rho / v0
+    rho, v0 = float(params["rho"]), abs(float(params["V0"]))
+    V, Om = float(params["V0"]) / v0, float(params["Omega0"]) * rho / v0
     q = theory.initial_state(sk, V, Om, 0.0)
     h0, n, duration, reversals = abs(q.H_plus), 0, 0.0, 0
     while abs(q.H_plus) > FINAL_DECAY * h0 and n < FINAL_IMPACTS_MAX:
@@ -253,18 +256,18 @@ def _final_state_checks(p: Values, s: Values, sk: theory.SlottedSkate, tolerance
     if h0 == 0.0 or abs(q.H_plus) > FINAL_DECAY * h0:
         return []  # no rotation to decay, or it does not decay (unstable, spinning): no final state to check
     final = theory.final_state(sk, V, Om)
-    model = build(p, s)
-    start = start_states(model, p, np.array([float(p["V0"])]), np.array([float(p["Omega0"])]))
-    entry = float(p["l0"]) if float(p["V0"]) > 0 else float(p["l0"]) + float(p["delta"])
-    controller = PegController(model, p, np.array([entry]))
+    model = build(params, settings)
+    start = start_states(model, params, np.array([float(params["V0"])]), np.array([float(params["Omega0"])]))
+    entry = float(params["l0"]) if float(params["V0"]) > 0 else float(params["l0"]) + float(params["delta"])
+    controller = PegController(model, params, np.array([entry]))
     nstep = math.ceil((1.1 * duration + 2.0 * q.duration) * rho / v0 / model.opt.timestep)
     event_rollout(model, start, nstep, controller, threads=1, chunk_steps=max(10, min(2000, nstep // 50)))
     samples = controller.samples[0]
-    e_unit = float(p["mass"]) * v0 * v0
+    e_unit = float(params["mass"]) * v0 * v0
     if len(samples) < n + 1:
         return [checks.relative("final_speed", final.V_f, math.nan, tolerance, "v0", "the run ended early")]
     d_last, e_last = samples[n][0], samples[n][1] / e_unit
-    v_last = math.copysign(math.sqrt(2.0 * e_last), 1.0 if d_last == float(p["l0"]) else -1.0)
+    v_last = math.copysign(math.sqrt(2.0 * e_last), 1.0 if d_last == float(params["l0"]) else -1.0)
     seen = sum(int(b[0] != a[0]) for a, b in itertools.pairwise(samples[: n + 1]))
     return [
         checks.absolute("final_speed", final.V_f, v_last, tolerance, "v0",
@@ -276,20 +279,20 @@ def _final_state_checks(p: Values, s: Values, sk: theory.SlottedSkate, tolerance
     ]
 
 
-def probe(p: Values, s: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
+def probe(params: Values, settings: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
     """Model and initial states of the batch (one stance's worth without pegs switched)."""
-    model = build(p, s)
-    V, Om = initial_conditions(p)
-    return model, [(start_states(model, p, V, Om), math.ceil(_duration(p, V, Om) / model.opt.timestep))]
+    model = build(params, settings)
+    V, Om = initial_conditions(params)
+    return model, [(start_states(model, params, V, Om), math.ceil(_duration(params, V, Om) / model.opt.timestep))]
 
 
-def reference_bench(p: Values, rtol: float) -> dict[str, float]:
+def reference_bench(params: Values, rtol: float) -> dict[str, float]:
     """The exact stance integration (solve_ivp at ``rtol``) over the same batch: time and sigma_4 error."""
     import time
 
-    sk = skate(p)
-    V, Om = initial_conditions(p)
-    rho, v0 = float(p["rho"]), abs(float(p["V0"]))
+    sk = skate(params)
+    V, Om = initial_conditions(params)
+    rho, v0 = float(params["rho"]), abs(float(params["V0"]))
     start = time.perf_counter()
     worst = 0.0
     for v, om in zip(V, Om, strict=True):
@@ -300,12 +303,14 @@ def reference_bench(p: Values, rtol: float) -> dict[str, float]:
     return {"rtol": rtol, "wall_s": time.perf_counter() - start, "sigma4_forward_error": worst}
 
 
-def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> tuple[np.ndarray, np.ndarray]:
+def clip(params: Values, settings: Values, model: mujoco.MjModel, nstep: int
+         ) -> tuple[np.ndarray, np.ndarray]:
     """States of a clip of the first trajectory (peg-chart coordinates) and the peg's position for each row,
     to be put in ``mocap_pos`` so that the rendered skate moves across the plane."""
-    V, Om = initial_conditions(p)
-    controller = PegController(model, p, np.array([float(p["l0"]) if V[0] > 0 else float(p["l0"]) + float(p["delta"])]))
-    kept = event_clip(model, start_states(model, p, V[:1], Om[:1]), nstep, controller, 200,
+    V, Om = initial_conditions(params)
+    first_peg = float(params["l0"]) if V[0] > 0 else float(params["l0"]) + float(params["delta"])
+    controller = PegController(model, params, np.array([first_peg]))
+    kept = event_clip(model, start_states(model, params, V[:1], Om[:1]), nstep, controller, 200,
                       tag=lambda: np.array([*controller.peg[0], 0.0]))
     return kept.states(nstep), kept.tagged(nstep)[:, None, :]
 

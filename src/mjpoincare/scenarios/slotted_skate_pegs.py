@@ -21,23 +21,23 @@ from mjpoincare.scenarios.base import JointIndex, Values
 from mjpoincare.seam import Batch, Chunk
 
 
-def build(p: Values, s: Values) -> mujoco.MjModel:
+def build(params: Values, settings: Values) -> mujoco.MjModel:
     """The MJCF skate with mass, inertia, slot geometry and the peg constraint's solver settings."""
     spec = load_spec("slotted_skate.xml")
-    sim_settings.apply_options(spec, s)
+    sim_settings.apply_options(spec, settings)
     body = spec.body("skate")
-    mass, rho = float(p["mass"]), float(p["rho"])
+    mass, rho = float(params["mass"]), float(params["rho"])
     body.mass = mass
     body.inertia = [mass * rho**2] * 3
-    l0, delta = float(p["l0"]), float(p["delta"])
+    l0, delta = float(params["l0"]), float(params["delta"])
     spec.geom("slot").size = [0.5 * delta, 0.02 * rho, 0.021 * rho]
     spec.geom("slot").pos = [-(l0 + 0.5 * delta), 0, 0.05 * rho]
     spec.geom("body").size = [0.5 * abs(l0 + delta) + 0.3 * rho, 0.25 * rho, 0.02 * rho]
     spec.geom("body").pos = [-0.5 * (l0 + delta), 0, 0.05 * rho]
     slot = spec.equality("slot")
-    slot.solref = sim_settings.solref(s)
-    slot.solimp = sim_settings.solimp(s)
-    return compile_spec(spec, s)
+    slot.solref = sim_settings.solref(settings)
+    slot.solimp = sim_settings.solimp(settings)
+    return compile_spec(spec, settings)
 
 
 class PegController:
@@ -47,16 +47,16 @@ class PegController:
     E and H about that peg read at the stance's end (stance invariants, so the impact's duration does not
     matter), the heading and time when the peg went in."""
 
-    def __init__(self, model: mujoco.MjModel, p: Values, entry: np.ndarray,
+    def __init__(self, model: mujoco.MjModel, params: Values, entry: np.ndarray,
                  slot: tuple[np.ndarray, np.ndarray] | None = None) -> None:
         self.slide = JointIndex.of(model, "s").qpos  # the chart coordinate s along the slot
         # the slot's ends in the chart coordinate s, per trajectory (a region map gives each its own l0, delta)
-        lo, hi = slot if slot is not None else (float(p["l0"]), float(p["l0"]) + float(p["delta"]))
+        lo, hi = slot if slot is not None else (float(params["l0"]), float(params["l0"]) + float(params["delta"]))
         self.lo = np.broadcast_to(np.asarray(lo, float), (len(entry),))
         self.hi = np.broadcast_to(np.asarray(hi, float), (len(entry),))
-        self.mass, self.rho = float(p["mass"]), float(p["rho"])
+        self.mass, self.rho = float(params["mass"]), float(params["rho"])
         self.entry = np.array(entry, float)  # slot end (s value) where each trajectory's current peg went in
-        self.start_heading = np.full(len(entry), float(p["heading0"]))  # heading when the current peg went in
+        self.start_heading = np.full(len(entry), float(params["heading0"]))  # heading when the current peg went in
         self.start_time = np.zeros(len(entry))
         self.peg = np.zeros((len(entry), 2))  # the current peg's position in the plane (the chart's origin)
         self.samples: list[list[tuple[float, ...]]] = [[] for _ in entry]

@@ -22,7 +22,7 @@ from mjpoincare.simulate import event_rollout, initial_states
 AXES = (Param("x", 0.0, "l0/delta", float), Param("y", 1.0, "1/delta^2", float, 0.0, low_open=True))
 
 
-def region_map(p: Values, s: Values, x: np.ndarray, y: np.ndarray, impacts: int = 3,
+def region_map(params: Values, settings: Values, x: np.ndarray, y: np.ndarray, impacts: int = 3,
                omega0: float = 0.01) -> dict[str, np.ndarray]:
     """Stability of straight motion over a grid of (L0/Delta, 1/Delta^2) (the paper's Fig. 2 axes), simulated.
 
@@ -38,15 +38,15 @@ def region_map(p: Values, s: Values, x: np.ndarray, y: np.ndarray, impacts: int 
     cells = l0.size
     V = np.concatenate([np.ones(cells), -np.ones(cells)])
     l0_all, delta_all = np.tile(l0, 2), np.tile(delta, 2)
-    base = {**p, "rho": 1.0, "mass": 1.0, "V0": 1.0, "heading0": 0.0}
-    model = build(base, s)
+    base = {**params, "rho": 1.0, "mass": 1.0, "V0": 1.0, "heading0": 0.0}
+    model = build(base, settings)
     entry = np.where(V > 0, l0_all, l0_all + delta_all)
     controller = PegController(model, base, entry, (l0_all, l0_all + delta_all))
     start = initial_states(model, np.stack([np.zeros_like(V), entry, np.zeros_like(V)], 1),
                            np.stack([np.full_like(V, omega0), V, np.zeros_like(V)], 1))
     seconds = 1.2 * (impacts + 1) * float(delta_all.max())
     nstep = math.ceil(seconds / model.opt.timestep)
-    report = event_rollout(model, start, nstep, controller, **rollout_options(s),
+    report = event_rollout(model, start, nstep, controller, **rollout_options(settings),
                            chunk_steps=max(10, min(500, nstep // 10)))
     measured = np.full(2 * cells, np.nan)
     for b, samples in enumerate(controller.samples):
@@ -62,7 +62,8 @@ def region_map(p: Values, s: Values, x: np.ndarray, y: np.ndarray, impacts: int 
             "wall_s": report.wall_s, "diverged": int(report.diverged.sum())}
 
 
-def compute(p: Values, s: Values, preset: str, x: np.ndarray, y: np.ndarray, *, workers: int) -> dict[str, Any]:
+def compute(params: Values, settings: Values, preset: str, x: np.ndarray, y: np.ndarray, *, workers: int) -> dict[str,
+                                                                                                                  Any]:
     """The stability classes of straight motion on the grid, simulated (:func:`region_map`) and analytic (3.11-3.12).
 
     Args:
@@ -79,7 +80,7 @@ def compute(p: Values, s: Values, preset: str, x: np.ndarray, y: np.ndarray, *, 
         index 0 forward and 1 backward; ``mismatches`` (judged cells whose classes differ), and the rollout's
         ``steps``, ``rollout_wall_s`` and ``diverged`` trajectories.
     """
-    result = region_map(p, s, x, y)
+    result = region_map(params, settings, x, y)
     simulated, analytic = region_classes(result["measured"]), region_classes(result["analytic"])
     edge = boundary_cells(analytic, result["analytic"])
     return {"x": x, "y": y, "simulated": simulated, "analytic": analytic, "boundary": edge,
