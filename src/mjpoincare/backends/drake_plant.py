@@ -198,13 +198,13 @@ def _pair_collides(model: mujoco.MjModel, a: int, b: int) -> bool:
     return bool(bits) and not (related and body_a != 0 and body_b != 0)
 
 
-def _filters(model: mujoco.MjModel, geometries: dict[int, GeometryId]) -> CollisionFilterDeclaration:
-    """Exclude every pair MuJoCo's filter would not let collide."""
+def _filters(geometries: dict[int, GeometryId], partners: dict[int, list[GeometryId]]) -> CollisionFilterDeclaration:
+    """Exclude every pair of ``geometries`` that is not among each other's ``partners`` (MuJoCo's filter)."""
     declaration = CollisionFilterDeclaration()
     ids = list(geometries)
     for i, a in enumerate(ids):
         for b in ids[i + 1:]:
-            if not _pair_collides(model, a, b):
+            if geometries[b] not in partners[a]:
                 declaration.ExcludeBetween(GeometrySet(geometries[a]), GeometrySet(geometries[b]))
     return declaration
 
@@ -313,13 +313,13 @@ def build_scene(model: mujoco.MjModel, *, approximation: str = "sap", hydroelast
             model.geom(geom).name or f"geom{geom}", props)
     plant.mutable_gravity_field().set_gravity_vector(np.asarray(model.opt.gravity, float))
     plant.Finalize()
-    scene_graph.collision_filter_manager().Apply(_filters(model, geometries))
+    partners = {g: [geometries[h] for h in geometries if h != g and _pair_collides(model, g, h)] for g in geometries}
+    scene_graph.collision_filter_manager().Apply(_filters(geometries, partners))
     logger = LogVectorOutput(plant.get_state_output_port(), builder, publish_period=float(model.opt.timestep))
     diagram = builder.Build()
     joints = tuple(JointMap(kind=int(model.jnt_type[j]), qpos=int(model.jnt_qposadr[j]),
                             dof=int(model.jnt_dofadr[j]), q=int(added.position_start()),
                             v=int(added.velocity_start())) for j, added in chain)
-    partners = {g: [geometries[h] for h in geometries if h != g and _pair_collides(model, g, h)] for g in geometries}
     return DrakeScene(diagram=diagram, plant=plant, scene_graph=scene_graph, logger=logger, joints=joints,
                       nq=plant.num_positions(), nv=plant.num_velocities(), geometries=geometries, friction=friction,
                       partners=partners)

@@ -73,10 +73,14 @@ def section(records: Sequence[dict[str, Any]], engines: Sequence[str]) -> str:
     return "\n".join([head, "", markdown_table(header, rows), *(["", *refusals] if refusals else [])])
 
 
+def _record(records: Sequence[dict[str, Any]], case: str, preset: str, engine: str) -> dict[str, Any]:
+    """The record of the run (case, preset, engine); empty when it is missing."""
+    return next((r for r in records if (r["case"], r["preset"], r["engine"]) == (case, preset, engine)), {})
+
+
 def _check(records: Sequence[dict[str, Any]], case: str, preset: str, engine: str, name: str) -> Any:
     """The check ``name`` of the run (case, preset, engine), or None."""
-    record = next((r for r in records if (r["case"], r["preset"], r["engine"]) == (case, preset, engine)), {})
-    return next((c for c in record.get("checks", []) if c["name"] == name), None)
+    return next((c for c in _record(records, case, preset, engine).get("checks", []) if c["name"] == name), None)
 
 
 def mechanisms(records: Sequence[dict[str, Any]]) -> list[str]:
@@ -87,8 +91,7 @@ def mechanisms(records: Sequence[dict[str, Any]]) -> list[str]:
     mj = _check(records, "rimless-wheel", "fast", "mujoco", "impact_coefficient")
     hub = _check(records, "rimless-wheel[gyration=0.3]", "fast", "drake-sap", "impact_coefficient")
     accurate = _check(records, "rimless-wheel", "accurate", "drake-sap", "impact_coefficient")
-    heavy = next((r["checks"] for r in records if (r["case"], r["preset"], r["engine"])
-                  == ("rimless-wheel[gyration=0.3]", "fast", "drake-sap") and "checks" in r), [])
+    heavy = _record(records, "rimless-wheel[gyration=0.3]", "fast", "drake-sap").get("checks", [])
     passed = sum(c["passed"] for c in heavy)
     if sap and mj and hub:
         lines.append(
@@ -104,17 +107,15 @@ def mechanisms(records: Sequence[dict[str, Any]]) -> list[str]:
                f"{accurate['error']:.2g} (tolerance {accurate['tolerance']:g}): the slip shrinks with the step."
                if accurate else ""))
     failed = [r for r in records if r["engine"] == "drake-tamsi" and r.get("diverged_trajectories")]
-    heavy_tamsi = next((r for r in records if "checks" in r and (r["case"], r["preset"], r["engine"])
-                        == ("rimless-wheel[gyration=0.3]", "fast", "drake-tamsi")), None)
+    heavy_tamsi = _record(records, "rimless-wheel[gyration=0.3]", "fast", "drake-tamsi")
     for record in failed:
         lines.append(
             f"- **TAMSI, {record['case']} ({record['preset']}).** {len(record['diverged_trajectories'])} "
             f"trajectories diverged: {table_cell('; '.join(dict.fromkeys(record['warnings'])))}; each is reported as "
             "diverged, never silently."
             + (f" With the heavier hub {len(heavy_tamsi['diverged_trajectories'])} diverge: the near-point-mass hub "
-               "again." if heavy_tamsi is not None else ""))
-    lifts = {e: next((r.get("reported", {}).get("sliding_lift_ratio") for r in records
-                      if (r["case"], r["preset"], r["engine"]) == ("rimless-wheel-friction", "fast", e)), None)
+               "again." if "checks" in heavy_tamsi else ""))
+    lifts = {e: _record(records, "rimless-wheel-friction", "fast", e).get("reported", {}).get("sliding_lift_ratio")
              for e in ("mujoco", "drake-sap", "drake-similar", "drake-tamsi")}
     if all(isinstance(v, dict) for v in lifts.values()):
         def lift(engine: str) -> str:
@@ -130,9 +131,8 @@ def mechanisms(records: Sequence[dict[str, Any]]) -> list[str]:
             "Hunt-Crossley contact is not such a program. The check `sliding_contact_law` holds MuJoCo's own "
             "predicted ratio, which no Drake approximation shares.")
     for engine in ("drake-sap", "drake-tamsi", "drake-similar", "drake-lagged"):
-        record = next((r for r in records if "checks" in r
-                       and (r["case"], r["preset"], r["engine"]) == ("rimless-wheel-3d", "fast", engine)), None)
-        if record is None:
+        record = _record(records, "rimless-wheel-3d", "fast", engine)
+        if "checks" not in record:
             continue
         missed = [c for c in record["checks"] if not c["passed"]]
         if missed:
