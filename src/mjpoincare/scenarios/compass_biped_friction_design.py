@@ -11,6 +11,7 @@ import numpy as np
 
 from mjpoincare.analysis.start_designs import sphere_offsets
 from mjpoincare.analysis.theory import compass_biped_friction as theory
+from mjpoincare.scenarios.compass_biped_runs import standing_qpos
 from mjpoincare.simulate import initial_states
 
 STEPS = 8  # heel strikes per trajectory, at most (a stable gait's batch stops earlier once its fit settles: STOPPING)
@@ -31,11 +32,11 @@ def post_impact_states(model: mujoco.MjModel, bp: theory.FrictionBiped, z: np.nd
                        ) -> np.ndarray:
     """MuJoCo states for 002 section states z = (theta*, theta1_dot+, theta2_dot+, x_dot+) (002 Sec. 4.2): leg 0
     stands with its foot at the origin (sliding at x_dot+ after a slipping impact); leg 1, the swing leg, has its
-    foot on the ground behind it (theta1 = theta2 = -theta*; swing hinge = -theta2, rate -theta2_dot)."""
+    foot on the ground behind it (theta1 = theta2 = -theta*; swing hinge = -theta2, rate -theta2_dot); placed as
+    compass-biped's (:func:`mjpoincare.scenarios.compass_biped_runs.standing_qpos`)."""
     th, w1, w2, xd = z[:, 0], z[:, 1], z[:, 2], z[:, 3]
     q_st, q_sw = -th, th  # theta1 = theta2 = -theta*; swing hinge = -theta2
-    lever = bp.l - foot_radius
-    qpos = np.stack([lever * np.sin(q_st), lever * np.cos(q_st) + foot_radius, q_st, q_sw], axis=1)
+    qpos = standing_qpos(bp.l, foot_radius, q_st, q_sw)
     qvel = np.stack([xd + bp.l * w1 * np.cos(q_st), -bp.l * w1 * np.sin(q_st), w1, -w2], axis=1)
     return initial_states(model, qpos, qvel)
 
