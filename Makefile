@@ -8,8 +8,9 @@
 #   make lock         regenerate requirements/lock.txt from pyproject.toml
 #   make test-latest  the tests against the newest versions pyproject.toml allows (finds dependency drift)
 #   make margins      the regression gate's margin table: every check's form (gated, watched, declared miss), error,
-#                     spread under seed, threads, starts x(1+1e-12) and x(1+1e-9) and the oldest numpy/scipy allowed,
-#                     and resolution (renders/margins*.json)
+#                     spread over the environments this machine emulates (every OpenBLAS kernel the CPU runs, numpy at
+#                     its baseline, each in its own process), under seed, threads, starts x(1+1e-12) and x(1+1e-9) and
+#                     the oldest numpy/scipy allowed, and resolution, into docs/results/gate/ (JSON and page)
 #   make results         every scenario's default validation at each preset into docs/results/json/, then its pages
 #   make results-render  re-render docs/results/*.md from the committed JSON (no simulation)
 #   make backends     the backends' findings: every scenario on MuJoCo C, MJX (x64, float32) and MuJoCo Warp, one process
@@ -90,7 +91,8 @@ margins: $(STAMP)
 	$(OLDEST)/bin/python -m pip install --quiet --upgrade pip
 	$(OLDEST)/bin/python -m pip install --quiet "numpy==1.26.4" "scipy==1.11.4" -e .
 	$(OLDEST)/bin/mjpoincare margins --base-only --json renders/margins-oldest.json || true
-	$(BIN)/mjpoincare margins --compare renders/margins-oldest.json --json renders/margins.json
+	$(BIN)/mjpoincare margins --compare renders/margins-oldest.json --json docs/results/gate/margins.json; \
+		status=$$?; $(BIN)/python -m mjpoincare.reports.gate_page && exit $$status
 
 results: $(STAMP)
 	$(BIN)/python -m mjpoincare.reports.results_pages

@@ -44,7 +44,7 @@ LAYER_OF: dict[str, str] = {
     "mjpoincare.validation": "commands", "mjpoincare.peer_compare": "commands", "mjpoincare.sweep": "commands",
     "mjpoincare.converge": "commands", "mjpoincare.extrapolate": "commands", "mjpoincare.bench": "commands",
     "mjpoincare.stress": "commands", "mjpoincare.tune": "commands", "mjpoincare.tune_pages": "commands",
-    "mjpoincare.releases": "commands", "mjpoincare.gate": "commands",
+    "mjpoincare.releases": "commands", "mjpoincare.gate": "commands", "mjpoincare.gate_environments": "commands",
     "mjpoincare.report": "commands", "mjpoincare.render": "commands", "mjpoincare.reports": "commands",
     "mjpoincare.bench_scaling": "commands",
     "mjpoincare.cli": "face", "mjpoincare.api": "face", "mjpoincare.pytest_plugin": "face", "mjpoincare.envs": "face",

@@ -196,29 +196,49 @@ def _cmd_stress(args: argparse.Namespace) -> int:
 def _cmd_margins(args: argparse.Namespace) -> int:
     import json
 
-    from mjpoincare import gate
+    from mjpoincare import gate, gate_environments
     from mjpoincare.result import check_output_path, write_json
 
     check_output_path(args.json, "--json")
     cases = [c for c in gate.cases() if not args.case or any(k in c.label for k in args.case)]
     if not cases:
         raise ParameterError(f"--case matches no gate case; cases: {', '.join(c.label for c in gate.cases())}")
-    compare = {}
+    if args.workers < 1:
+        raise ParameterError(f"--workers must be >= 1 (got {args.workers})")
+    offered = [e for e in gate_environments.ensemble() if e is not gate_environments.DEFAULT]
+    if args.base_only or args.environments == "none":
+        chosen = []
+    elif args.environments == "all":
+        chosen = offered
+    else:
+        wanted = args.environments.split(",")
+        chosen = [e for e in offered if e.label in wanted]
+        if len(chosen) != len(set(wanted)):
+            raise ParameterError(f"--environments must be all, none or labels of {', '.join(e.label for e in offered)}"
+                                 f" (got {args.environments})")
+    recorded: dict[str, gate_environments.Errors] = {}
     for path in args.compare:
         try:
             other = json.loads(Path(path).read_text())["rows"]
         except (OSError, ValueError, KeyError) as err:
             raise ParameterError(f"--compare {path} is not a margins JSON file ({err})") from None
-        compare.update({(r["case"], r["check"]): float("nan") if r["error"] is None else r["error"] for r in other})
-    rows = gate.margin_rows(cases, compare, perturb=not args.base_only)
+        recorded[f"--compare {Path(path).name}"] = {
+            (r["case"], r["check"]): float("nan") if r["error"] is None else r["error"] for r in other}
+    environments = {**gate_environments.run_ensemble(chosen, [c.label for c in cases], workers=args.workers),
+                    **recorded}
+    rows = gate.margin_rows(cases, perturb=not args.base_only, environments=environments)
     if args.json != "-":
         print(gate.margin_table(rows))
     if args.json:
         import mujoco
 
         from mjpoincare.analysis.checks import jsonable
+        from mjpoincare.stamp import environment
 
-        write_json(jsonable({"mujoco_version": mujoco.__version__, "margin": gate.MARGIN, "rows": rows}), args.json)
+        write_json(jsonable({"mujoco_version": mujoco.__version__, "margin": gate.MARGIN, "stamp": environment(),
+                             "environments": ["this run", *(label for label, _, _ in gate.PERTURBATIONS
+                                                            if not args.base_only), *environments],
+                             "rows": rows}), args.json)
     return EXIT_PASS if all(r["holds"] for r in rows) else EXIT_FAIL
 
 
@@ -372,16 +392,21 @@ def build_parser() -> argparse.ArgumentParser:
     stress.add_argument("--workers", type=int, default=1, help="cases run at once (processes)")
     stress.set_defaults(func=_cmd_stress)
 
-    margins = sub.add_parser("margins", help="the regression gate's checks under perturbations that must not matter "
-                             "(seed, threads, starts x(1+1e-12)): error, spread, tolerance, margin, and an expected "
-                             "miss's declared error beside its measured one")
+    margins = sub.add_parser("margins", help="the regression gate's checks over the environments this machine can "
+                             "emulate (BLAS kernels, numpy's dispatch) and under perturbations that must not matter "
+                             "(seed, threads, starts x(1+1e-12)): error, spread with the environment at each extreme, "
+                             "tolerance, margin, and an expected miss's declared error beside its measured one")
     margins.add_argument("--case", action="append", default=[], metavar="TEXT", help="only cases whose label "
                          "contains TEXT (repeatable), e.g. rimless-wheel[fast")
     margins.add_argument("--json", metavar="PATH|-", help="write the margin table as JSON (- for stdout)")
     margins.add_argument("--compare", action="append", default=[], metavar="JSON", help="a margins JSON from another "
                          "environment (e.g. the oldest numpy/scipy): its errors count into the spread")
-    margins.add_argument("--base-only", action="store_true", help="only each case's own run, no perturbations (to "
-                         "record another environment's errors for --compare)")
+    margins.add_argument("--base-only", action="store_true", help="only each case's own run, no perturbations and no "
+                         "other environments (to record this environment's errors for --compare)")
+    margins.add_argument("--environments", default="all", metavar="all|none|LABEL,...", help="the environments this "
+                         "machine can emulate, each in a process of its own (every OpenBLAS kernel the CPU runs, numpy "
+                         "at its baseline): all (default), none, or labels such as OPENBLAS_CORETYPE=Prescott")
+    margins.add_argument("--workers", type=int, default=2, help="environment processes at once")
     margins.set_defaults(func=_cmd_margins)
 
     tune = sub.add_parser("tune", help="search the simulator settings for the cheapest that pass at every coverage "

@@ -29,6 +29,7 @@ from functools import cache
 
 from mjpoincare import scenarios
 from mjpoincare.analysis.tables import text_table
+from mjpoincare.gate_environments import Errors
 from mjpoincare.params import Value
 from mjpoincare.result import Result
 from mjpoincare.scenarios.gate_cases import GateCase, span
@@ -69,25 +70,33 @@ def case(label: str) -> GateCase:
 
 
 def margin_rows(cases: Iterable[GateCase], compare: Mapping[tuple[str, str], float] | None = None, *,
-                perturb: bool = True) -> list[dict[str, object]]:
+                perturb: bool = True, environments: Mapping[str, Errors] | None = None) -> list[dict[str, object]]:
     """For every check of every case: error, spread (largest change of the error under :data:`PERTURBATIONS` unless
-    not ``perturb``, and against ``compare``'s errors from another environment, keyed by (case label, check)),
-    tolerance, the ratio (error + spread) / tolerance, the check's form in the gate, whether it holds there (a gated
-    check within :data:`MARGIN`; a watched check passing; a declared miss missing under every perturbation, with its
-    error in its band), its resolution (a gated or watched check's spread, a miss's band width), and a declared
-    miss's error (``declared``: [low, high]) and xfail reason (``miss``)."""
+    not ``perturb``, in each of ``environments``, label -> (case label, check) -> error, from
+    :func:`mjpoincare.gate_environments.run_ensemble`, and against ``compare``'s errors from another environment),
+    the lowest and highest error with the environment or perturbation that gave it (``low``, ``high``: [error,
+    label]), the error in each environment (``environments``), tolerance, the ratio (error + spread) / tolerance, the
+    check's form in the gate, whether it holds there (a gated check within :data:`MARGIN`; a watched check passing
+    everywhere, its spread within its declared one; a declared miss missing everywhere, with every error in its band),
+    its resolution (a gated or watched check's spread, a miss's band width), and a declared miss's error
+    (``declared``: [low, high]) and xfail reason (``miss``)."""
     rows: list[dict[str, object]] = []
     for case in cases:
         base = run_case(case)
-        variants = [run_case(case, seed, **extra) for _, seed, extra in PERTURBATIONS] if perturb else []
+        variants = [(label, run_case(case, seed, **extra)) for label, seed, extra in PERTURBATIONS] if perturb else []
         misses = {m.check: m for m in case.misses}
         watched = {w.check: w for w in case.watched}
         for check in base.checks:
-            others = [next((c.error for c in v.checks if c.name == check.name), math.nan) for v in variants]
-            if compare and (case.label, check.name) in compare:
-                others.append(compare[(case.label, check.name)])
+            others = [(label, next((c.error for c in v.checks if c.name == check.name), math.nan))
+                      for label, v in variants]
+            key = (case.label, check.name)
+            others += [(label, errors[key]) for label, errors in (environments or {}).items() if key in errors]
+            if compare and key in compare:
+                others.append(("--compare", compare[key]))
             spread = max((abs(e - check.error) if math.isfinite(e) and math.isfinite(check.error) else math.inf
-                          for e in others), default=0.0)
+                          for _, e in others), default=0.0)
+            finite = [(e, label) for label, e in [("this run", check.error), *others] if math.isfinite(e)]
+            low, high = (min(finite), max(finite)) if finite else ((math.nan, ""), (math.nan, ""))
             ratio = ((check.error + spread) / check.tolerance if check.tolerance > 0
                      else (0.0 if check.error + spread == 0 else math.inf))
             miss = misses.get(check.name)
@@ -96,18 +105,32 @@ def margin_rows(cases: Iterable[GateCase], compare: Mapping[tuple[str, str], flo
             if status == "gated":
                 holds, resolution = ratio <= MARGIN, spread
             elif miss is not None:
-                low, high = miss.band
-                missing = not check.passed and not any(math.isfinite(e) and e <= check.tolerance for e in others)
-                holds = miss.matches(check.error) and (missing or not miss.resolved)
-                resolution = high - low
+                band_low, band_high = miss.band
+                missing = not check.passed and not any(math.isfinite(e) and e <= check.tolerance for _, e in others)
+                inside = all(miss.matches(e) for e, _ in finite) and len(finite) == 1 + len(others)
+                holds = inside and (missing or not miss.resolved)
+                resolution = band_high - band_low
                 status = status if miss.resolved else "declared miss, unresolved"
             else:
-                holds, resolution = check.passed and status == "watched", spread
+                w = watched.get(check.name)
+                holds = (status == "watched" and w is not None and check.passed
+                         and high[0] <= check.tolerance + w.spread and spread <= w.spread)
+                resolution = spread
             rows.append({"case": case.label, "check": check.name, "error": check.error, "spread": spread,
+                         "low": list(low), "high": list(high),
+                         "environments": {label: errors[key] for label, errors in (environments or {}).items()
+                                          if key in errors},
                          "tolerance": check.tolerance, "ratio": ratio, "status": status, "holds": holds,
                          "resolution": resolution, "declared": list(miss.bounds) if miss else None,
                          "miss": miss.reason(case.preset) if miss else ""})
     return rows
+
+
+def _extreme(at: object, error: object) -> str:
+    """The environment or perturbation of a row's lowest or highest error, with the error where it is not the run's
+    own."""
+    value, label = at  # type: ignore[misc]
+    return str(label) if value == error else f"{label} ({value:.4g})"
 
 
 def margin_table(rows: list[dict[str, object]]) -> str:
@@ -115,10 +138,49 @@ def margin_table(rows: list[dict[str, object]]) -> str:
     ``resolution``: the smallest change of the error the gate tells from jitter; ``NOT HELD``: a gated check without
     the margin, a watched check that fails, a declared miss that passes or has left its band, or a check the gate does
     not name)."""
-    head = ("case", "check", "error", "declared", "spread", "tolerance", "(err+spread)/tol", "resolution", "form", "")
+    head = ("case", "check", "error", "declared", "spread", "tolerance", "(err+spread)/tol", "resolution", "form",
+            "lowest at", "highest at", "")
     body = [(str(r["case"]), str(r["check"]), f"{r['error']:.3g}",
              span(*r["declared"]) if isinstance(r["declared"], list) else "", f"{r['spread']:.2g}",
              f"{r['tolerance']:.3g}", f"{r['ratio']:.2f}", f"{r['resolution']:.2g}", str(r["status"]),
-             "" if r["holds"] else "NOT HELD")
+             *(_extreme(r[side], r["error"]) for side in ("low", "high")), "" if r["holds"] else "NOT HELD")
             for r in rows]
     return text_table(head, body)
+
+
+#: The smallest spread a check is held to between environments: roundoff, relative to max(1, |error|).
+ROUNDOFF = 1e-12
+
+
+def outside_ensemble(row: Mapping[str, object] | None, error: float) -> str:
+    """Where ``error`` lies against a margins row's range of errors over the ensemble (its ``low`` and ``high``:
+    [error, environment]), and the environment that gave the error closest to it; ``row`` None: none measured."""
+    if row is None:
+        return f"error {error:.6g}; the ensemble has no measurement of this check (make margins)"
+    (low, low_at), (high, high_at) = row["low"], row["high"]  # type: ignore[misc]
+    if error < low:
+        where, closest = f"{low - error:.2g} below", low_at
+    elif error > high:
+        where, closest = f"{error - high:.2g} above", high_at
+    else:
+        where, closest = "inside", low_at if error - low <= high - error else high_at
+    return (f"error {error:.6g} lies {where} the ensemble's range {low:.6g} to {high:.6g} (closest: {closest}); "
+            "outside it, something other than the CPU's code paths moved the value (MuJoCo, numpy, the code): find "
+            "what before re-measuring with make margins")
+
+
+def environment_disagreements(there: Errors, here: Errors, spreads: Mapping[tuple[str, str], float],
+                              environment: str) -> list[str]:
+    """One line per check whose error in another ``environment`` (``there``) moves from this process's (``here``)
+    by more than its declared spread (``spreads``, at least :data:`ROUNDOFF`), or that one of the two lacks."""
+    out = []
+    for key in sorted(set(here) | set(there)):
+        a, b = here.get(key, math.nan), there.get(key, math.nan)
+        allowed = max(spreads.get(key, 0.0), ROUNDOFF * max(1.0, abs(a) if math.isfinite(a) else 1.0))
+        if not (math.isfinite(a) and math.isfinite(b)):
+            if not (math.isnan(a) and math.isnan(b) and key in here and key in there):
+                out.append(f"{key[0]}::{key[1]}: {a:.6g} here, {b:.6g} under {environment}")
+        elif abs(b - a) > allowed:
+            out.append(f"{key[0]}::{key[1]}: {a:.6g} here, {b:.6g} under {environment}: moved {abs(b - a):.2g}, "
+                       f"{abs(b - a) / allowed:.3g} x its declared spread {allowed:.2g}")
+    return out

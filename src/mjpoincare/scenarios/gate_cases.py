@@ -14,13 +14,16 @@ from mjpoincare.params import Value
 class Miss:
     """A check the case's run misses, asserted as a strict expected miss.
 
-    ``measured``: the error ``mjpoincare margins`` measures, one number, or (low, high) where the same run gives
-    different errors on different machines; ``spread``: the largest change of that error under :data:`PERTURBATIONS`,
-    measured with it; ``tolerance``: the check's tolerance at the case's preset (quoted in the reason;
+    ``measured``: the error ``mjpoincare margins`` measures, one number, or (low, high) where the ensemble of
+    environments gives a range; ``spread``: the largest change of that error over the ensemble (environments and
+    perturbations), measured with it; ``tolerance``: the check's tolerance at the case's preset (quoted in the reason;
     tests/test_gate.py compares it with the run's); ``mechanism``: why MuJoCo misses, in words (the numbers behind it
-    are in the scenario modules and the Findings of docs/scenarios/<scenario>.md); ``resolved``: False for a miss
-    whose band is wider than its tolerance (its spread is over half of it), which the gate cannot resolve: it is
-    asserted in its band only, never as a strict expected failure, and the margins table says so.
+    are in the scenario modules and the Findings of docs/scenarios/<scenario>.md).
+
+    A miss whose band (the measured error widened by the spread) would be wider than its tolerance is
+    ``resolved=False``: no machine's digits pin it, so it is asserted as a miss only, its error above its tolerance and
+    at most ``ceiling`` (the largest error the ensemble gives, with room for what it has not seen, stated with the
+    mechanism); never as a strict expected failure, and the margins table says so.
     """
 
     check: str
@@ -29,6 +32,11 @@ class Miss:
     tolerance: float
     mechanism: str
     resolved: bool = True
+    ceiling: float | None = None
+
+    def __post_init__(self) -> None:
+        if (self.ceiling is None) == (not self.resolved):
+            raise ValueError(f"{self.check}: an unresolved miss states a ceiling, a resolved one does not")
 
     @property
     def bounds(self) -> tuple[float, float]:
@@ -37,27 +45,33 @@ class Miss:
 
     @property
     def band(self) -> tuple[float, float]:
-        """The errors the miss accepts: the declared error widened by its spread on both sides."""
+        """The errors the miss accepts: the declared error widened by its spread on both sides; an unresolved miss's:
+        above its tolerance, at most its ceiling."""
+        if self.ceiling is not None:
+            return self.tolerance, self.ceiling
         low, high = self.bounds
         return low - self.spread, high + self.spread
 
     def reason(self, preset: str) -> str:
         """The xfail reason: the declared error and spread against the tolerance, and the mechanism."""
-        unresolved = "" if self.resolved else "unresolved, "
-        return (f"{unresolved}measured {span(*self.bounds)} ± {self.spread:.2g} vs {self.tolerance:g} ({preset}): "
+        if self.ceiling is not None:
+            return (f"unresolved, above {self.tolerance:g} and at most {self.ceiling:g} ({preset}; measured "
+                    f"{span(*self.bounds)} ± {self.spread:.2g}): {self.mechanism}")
+        return (f"measured {span(*self.bounds)} ± {self.spread:.2g} vs {self.tolerance:g} ({preset}): "
                 f"{self.mechanism}")
 
     def matches(self, error: float) -> bool:
-        """Whether ``error`` lies within the miss's band."""
+        """Whether ``error`` lies within the miss's band (an unresolved miss's: above the tolerance, at most the
+        ceiling)."""
         low, high = self.band
-        return low <= error <= high
+        return low < error <= high if self.ceiling is not None else low <= error <= high
 
 
 @dataclass(frozen=True)
 class Watch:
     """A check that passes without the gate's margin: asserted to stay within its tolerance plus ``spread``, the
-    largest change of its error under :data:`PERTURBATIONS` that ``mjpoincare margins`` measured; ``why``: why it
-    sits there (what sets its error at this preset)."""
+    largest change of its error over the ensemble of environments and perturbations that ``mjpoincare margins``
+    measured; ``why``: why it sits there (what sets its error at this preset)."""
 
     check: str
     spread: float

@@ -1,0 +1,146 @@
+"""The gate across the environments one machine can emulate (:mod:`mjpoincare.gate_environments`): the BLAS kernels
+and numpy dispatch a CPU offers; the committed ensemble measurement (``make margins``: docs/results/gate/) and the
+gate's declarations agree with it; the gate's kernel-sensitive cases re-run under a second OpenBLAS kernel (Prescott,
+which every x86-64 CPU runs) in a process of their own move by no more than their measured spread; and a planted
+kernel dependence fails that comparison."""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import sys
+from functools import cache
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from mjpoincare import gate, gate_environments
+from mjpoincare.gate_environments import DEFAULT, Environment, margins_command, run_environment, runnable_kernels
+from mjpoincare.reports import gate_page
+from mjpoincare.scenarios.gate_cases import Miss
+
+ROOT = Path(__file__).parents[1]
+MARGINS = ROOT / gate_page.MARGINS
+PLANT = Path(__file__).parent / "plant_kernel_dependence.py"
+#: The second kernel CI runs the kernel-sensitive cases under: Prescott, unless this process already runs it (CI
+#: under OPENBLAS_CORETYPE=Prescott), then the CPU's own choice.
+SECOND = (DEFAULT if os.environ.get("OPENBLAS_CORETYPE") == "Prescott"
+          else Environment("OPENBLAS_CORETYPE=Prescott", {"OPENBLAS_CORETYPE": "Prescott"}))
+#: The case the planted dependence is planted in: the cheapest, the slotted skate at its fast preset.
+PLANTED_CASE = "slotted-skate[fast]"
+
+
+@cache
+def measured() -> dict[tuple[str, str], dict[str, Any]]:
+    """The committed ensemble measurement's rows, by (case, check)."""
+    return {(r["case"], r["check"]): r for r in json.loads(MARGINS.read_text())["rows"]}
+
+
+def kernel_sensitive_cases() -> list[str]:
+    """The gate cases with a check whose error the measured OpenBLAS kernels move beyond roundoff."""
+    return sorted({case for (case, _), row in measured().items()
+                   if gate_page.kernel_spread(row) > gate.ROUNDOFF * max(1.0, abs(row["error"]))})
+
+
+def _errors_here(labels: list[str]) -> gate_environments.Errors:
+    return {(c.label, check.name): check.error for c in gate.cases() if c.label in labels
+            for check in gate.run_case(c).checks}
+
+
+def _spreads() -> dict[tuple[str, str], float]:
+    return {key: float(row["spread"]) for key, row in measured().items()}
+
+
+def test_kernels_offered_by_cpu_features() -> None:
+    """A kernel is offered only where the CPU has its instructions; off x86-64 (no SSE3) none is."""
+    assert runnable_kernels({"SSE3": True, "SSE42": True, "AVX": True}) == ("Prescott", "Nehalem", "Sandybridge")
+    assert runnable_kernels({"SSE3": True, "SSE42": True, "AVX": True, "AVX2": True, "FMA3": True})[-2:] == (
+        "Haswell", "Zen")
+    assert "SkylakeX" not in runnable_kernels({"SSE3": True, "AVX2": True, "FMA3": True, "AVX512F": True})
+    assert runnable_kernels({}) == ()
+
+
+def test_the_ensemble_is_the_default_the_kernels_and_numpy_at_its_baseline() -> None:
+    labels = [e.label for e in gate_environments.ensemble()]
+    assert labels[0] == "default"
+    assert [x for x in labels if x.startswith("OPENBLAS_CORETYPE=")] == [
+        f"OPENBLAS_CORETYPE={k}" for k in runnable_kernels()]
+    assert ("numpy baseline" in labels) == bool(gate_environments.numpy_dispatched())
+
+
+def test_environment_disagreements_hold_each_check_to_its_spread() -> None:
+    """A move within the declared spread passes, beyond it fails with the factor; a check one side lacks fails; the
+    allowance never drops below roundoff."""
+    here = {("c", "a"): 1.0, ("c", "b"): 0.5, ("c", "n"): 0.0}
+    there = {("c", "a"): 1.0 + 1e-6, ("c", "b"): 0.5 + 1e-3, ("c", "n"): 1e-13}
+    spreads = {("c", "a"): 2e-6, ("c", "b"): 1e-4, ("c", "n"): 0.0}
+    lines = gate.environment_disagreements(there, here, spreads, "K")
+    assert len(lines) == 1 and lines[0].startswith("c::b: 0.5 here, 0.501 under K: moved 0.001, 10 x")
+    assert gate.environment_disagreements({}, {("c", "a"): 1.0}, spreads, "K") == ["c::a: 1 here, nan under K"]
+
+
+def test_outside_ensemble_names_the_distance_and_the_closest_environment() -> None:
+    row = {"low": [0.010, "OPENBLAS_CORETYPE=Prescott"], "high": [0.012, "starts x(1+1e-9)"]}
+    assert gate.outside_ensemble(row, 0.015).startswith(
+        "error 0.015 lies 0.003 above the ensemble's range 0.01 to 0.012 (closest: starts x(1+1e-9))")
+    assert "0.002 below" in gate.outside_ensemble(row, 0.008) and "Prescott" in gate.outside_ensemble(row, 0.008)
+    assert "(make margins)" in gate.outside_ensemble(None, 0.01)
+
+
+@pytest.mark.mujoco
+def test_the_committed_measurement_covers_every_gate_check_and_every_declaration() -> None:
+    """Every check of every gate case has a row in the committed measurement and held its form there; a watched
+    check's or a declared miss's spread is at least the ensemble's, and every environment's error lies in a miss's
+    band."""
+    rows = measured()
+    for c in gate.cases():
+        for check in gate.run_case(c).checks:
+            row = rows.get((c.label, check.name))
+            assert row is not None, f"{c.label}::{check.name} is not in {gate_page.MARGINS}: make margins"
+            assert row["holds"], f"{c.label}::{check.name} did not hold its form in {gate_page.MARGINS}"
+        for declared in (*c.watched, *c.misses):
+            row = rows[(c.label, declared.check)]
+            assert declared.spread >= row["spread"] or (isinstance(declared, Miss) and not declared.resolved), (
+                f"{c.label}::{declared.check}: declared spread {declared.spread:.2g} below the ensemble's "
+                f"{row['spread']:.2g}")
+        for miss in c.misses:
+            row = rows[(c.label, miss.check)]
+            for error in (row["error"], *row["environments"].values()):
+                assert miss.matches(error), f"{c.label}::{miss.check}: {error:.6g} outside {miss.band}"
+
+
+def test_the_gate_page_renders_from_the_committed_measurement() -> None:
+    payload = json.loads(MARGINS.read_text())
+    assert (ROOT / gate_page.PAGE).read_text() == gate_page.render(payload)
+    assert payload["stamp"]["git_sha"] and not payload["stamp"]["git_dirty"]
+
+
+@pytest.mark.mujoco
+@pytest.mark.skipif("Prescott" not in runnable_kernels(), reason="OpenBLAS's Prescott kernel is x86-64 only")
+def test_the_gate_holds_under_a_second_blas_kernel() -> None:
+    """The kernel-sensitive cases, run under the second kernel in a process of their own, move from this process's
+    runs by at most their measured spread."""
+    labels = kernel_sensitive_cases()
+    assert labels, "the committed measurement names no kernel-sensitive case: nothing would be re-run"
+    there = run_environment(SECOND, labels)
+    lines = gate.environment_disagreements(there, _errors_here(labels), _spreads(), SECOND.label)
+    assert not lines, "\n".join(lines)
+
+
+@pytest.mark.mujoco
+@pytest.mark.skipif("Prescott" not in runnable_kernels(), reason="OpenBLAS's Prescott kernel is x86-64 only")
+def test_a_planted_kernel_dependence_beyond_its_spread_fails_the_second_kernel_run() -> None:
+    """A check whose error moves by 1e-6 whenever a kernel is forced (far above the skate's heading spread) is named,
+    with its move; nothing else of the case is."""
+    forced = Environment("OPENBLAS_CORETYPE=Prescott", {"OPENBLAS_CORETYPE": "Prescott"})
+
+    def planted(labels: list[str]) -> list[str]:
+        return [sys.executable, str(PLANT), "heading", "1e-6", *margins_command(labels)[3:]]
+
+    there = run_environment(forced, [PLANTED_CASE], command=planted)
+    lines = gate.environment_disagreements(there, _errors_here([PLANTED_CASE]), _spreads(), forced.label)
+    assert len(lines) == 1 and lines[0].startswith(f"{PLANTED_CASE}::heading:") and "moved 1e-06" in lines[0], lines
+    assert math.isclose(there[(PLANTED_CASE, "heading")] - _errors_here([PLANTED_CASE])[(PLANTED_CASE, "heading")],
+                        1e-6, rel_tol=1e-6)
