@@ -1,8 +1,10 @@
 """Shared fixtures: every test runs in a temporary working directory (MUJOCO_LOG.TXT would show there); the backend
-tests run last, and the MJX scenario validation runs in a process of its own beside the rest of the suite."""
+tests run last, and the MJX scenario validation and the gate's second-kernel run run in processes of their own beside
+the rest of the suite."""
 
 from __future__ import annotations
 
+import json
 import os
 import shutil
 import subprocess
@@ -16,6 +18,8 @@ import pytest
 from packaging.requirements import Requirement
 from packaging.utils import canonicalize_name
 
+from mjpoincare.gate_environments import DEFAULT, Environment, runnable_kernels, start_environment
+
 # dm_control (the environments' tests) opens a GLFW context at import unless told otherwise; off-screen EGL works here
 os.environ.setdefault("MUJOCO_GL", "egl")
 
@@ -25,6 +29,33 @@ os.environ.setdefault("MUJOCO_GL", "egl")
 MJX_RUN = ("rimless-wheel", "mjx", "float64", "fast")
 MJX_TEST = "tests/test_backends.py::test_rimless_wheel_on_mjx_passes_its_fast_checks"
 mjx_run_key = pytest.StashKey[tuple[subprocess.Popen[bytes], Path]]()
+#: The gate's kernel-sensitive cases under a second OpenBLAS kernel, which
+#: ``tests/test_gate_environments.py::test_the_gate_holds_under_a_second_blas_kernel`` reads: started when that test
+#: is collected, so that it runs while the rest of the suite does.
+KERNEL_TEST = "tests/test_gate_environments.py::test_the_gate_holds_under_a_second_blas_kernel"
+kernel_run_key = pytest.StashKey[subprocess.Popen[str]]()
+#: The committed ensemble measurement (``make margins``).
+MARGINS = Path(__file__).parents[1] / "docs" / "results" / "gate" / "margins.json"
+
+
+def second_kernel() -> Environment:
+    """The second kernel the kernel-sensitive cases run under: Prescott (every x86-64 CPU runs it), unless this
+    process already runs it (CI under ``OPENBLAS_CORETYPE=Prescott``), then the CPU's own choice."""
+    if os.environ.get("OPENBLAS_CORETYPE") == "Prescott":
+        return DEFAULT
+    return Environment("OPENBLAS_CORETYPE=Prescott", {"OPENBLAS_CORETYPE": "Prescott"})
+
+
+def kernel_sensitive_cases() -> list[str]:
+    """The gate cases with a check whose error the measured OpenBLAS kernels move beyond roundoff (the committed
+    measurement's ``environments``); none without the measurement."""
+    from mjpoincare.gate import ROUNDOFF
+    from mjpoincare.reports.gate_page import kernel_spread
+
+    if not MARGINS.exists():
+        return []
+    rows = json.loads(MARGINS.read_text())["rows"]
+    return sorted({r["case"] for r in rows if kernel_spread(r) > ROUNDOFF * max(1.0, abs(r["error"]))})
 
 
 #: The distribution that makes each optional backend (``mjpoincare.backends.REQUIRES``) required in CI.
@@ -100,7 +131,12 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
     from mjpoincare.backends import check_installed
     from mjpoincare.params import ParameterError
 
-    if config.option.collectonly or not any(item.nodeid == MJX_TEST for item in items):
+    selected = {item.nodeid for item in items}
+    if config.option.collectonly:
+        return
+    if KERNEL_TEST in selected and "Prescott" in runnable_kernels() and kernel_sensitive_cases():
+        config.stash[kernel_run_key] = start_environment(second_kernel(), kernel_sensitive_cases())
+    if MJX_TEST not in selected:
         return
     try:
         check_installed("mjx")
@@ -116,7 +152,11 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
 
 
 def pytest_unconfigure(config: pytest.Config) -> None:
-    """Stop the MJX validation if its test did not wait for it, and remove its directory."""
+    """Stop the MJX validation and the second-kernel run if their tests did not wait for them, and remove the MJX
+    run's directory."""
+    if kernel_run_key in config.stash and config.stash[kernel_run_key].poll() is None:
+        config.stash[kernel_run_key].kill()
+        config.stash[kernel_run_key].communicate()
     if mjx_run_key in config.stash:
         process, out = config.stash[mjx_run_key]
         if process.poll() is None:

@@ -8,26 +8,29 @@ from __future__ import annotations
 
 import json
 import math
-import os
 import sys
 from functools import cache
 from pathlib import Path
 from typing import Any
 
 import pytest
+from conftest import kernel_run_key, kernel_sensitive_cases, second_kernel
 
 from mjpoincare import gate, gate_environments
-from mjpoincare.gate_environments import DEFAULT, Environment, margins_command, run_environment, runnable_kernels
+from mjpoincare.gate_environments import (
+    Environment,
+    margins_command,
+    read_environment,
+    run_environment,
+    runnable_kernels,
+    start_environment,
+)
 from mjpoincare.reports import gate_page
 from mjpoincare.scenarios.gate_cases import Miss
 
 ROOT = Path(__file__).parents[1]
 MARGINS = ROOT / gate_page.MARGINS
 PLANT = Path(__file__).parent / "plant_kernel_dependence.py"
-#: The second kernel CI runs the kernel-sensitive cases under: Prescott, unless this process already runs it (CI
-#: under OPENBLAS_CORETYPE=Prescott), then the CPU's own choice.
-SECOND = (DEFAULT if os.environ.get("OPENBLAS_CORETYPE") == "Prescott"
-          else Environment("OPENBLAS_CORETYPE=Prescott", {"OPENBLAS_CORETYPE": "Prescott"}))
 #: The case the planted dependence is planted in: the cheapest, the slotted skate at its fast preset.
 PLANTED_CASE = "slotted-skate[fast]"
 
@@ -36,12 +39,6 @@ PLANTED_CASE = "slotted-skate[fast]"
 def measured() -> dict[tuple[str, str], dict[str, Any]]:
     """The committed ensemble measurement's rows, by (case, check)."""
     return {(r["case"], r["check"]): r for r in json.loads(MARGINS.read_text())["rows"]}
-
-
-def kernel_sensitive_cases() -> list[str]:
-    """The gate cases with a check whose error the measured OpenBLAS kernels move beyond roundoff."""
-    return sorted({case for (case, _), row in measured().items()
-                   if gate_page.kernel_spread(row) > gate.ROUNDOFF * max(1.0, abs(row["error"]))})
 
 
 def _errors_here(labels: list[str]) -> gate_environments.Errors:
@@ -119,13 +116,16 @@ def test_the_gate_page_renders_from_the_committed_measurement() -> None:
 
 @pytest.mark.mujoco
 @pytest.mark.skipif("Prescott" not in runnable_kernels(), reason="OpenBLAS's Prescott kernel is x86-64 only")
-def test_the_gate_holds_under_a_second_blas_kernel() -> None:
-    """The kernel-sensitive cases, run under the second kernel in a process of their own, move from this process's
-    runs by at most their measured spread."""
+def test_the_gate_holds_under_a_second_blas_kernel(request: pytest.FixtureRequest) -> None:
+    """The kernel-sensitive cases, run under the second kernel (``conftest.second_kernel``) in a process of their own
+    (started at collection, beside the rest of the suite), move from this process's runs by at most their measured
+    spread."""
     labels = kernel_sensitive_cases()
     assert labels, "the committed measurement names no kernel-sensitive case: nothing would be re-run"
-    there = run_environment(SECOND, labels)
-    lines = gate.environment_disagreements(there, _errors_here(labels), _spreads(), SECOND.label)
+    second = second_kernel()
+    process = request.config.stash.get(kernel_run_key, None) or start_environment(second, labels)
+    there = read_environment(process, second, labels)
+    lines = gate.environment_disagreements(there, _errors_here(labels), _spreads(), second.label)
     assert not lines, "\n".join(lines)
 
 

@@ -224,18 +224,24 @@ def _cmd_margins(args: argparse.Namespace) -> int:
             raise ParameterError(f"--compare {path} is not a margins JSON file ({err})") from None
         recorded[f"--compare {Path(path).name}"] = {
             (r["case"], r["check"]): float("nan") if r["error"] is None else r["error"] for r in other}
+    stamp = None
+    if args.json:
+        from mjpoincare.stamp import environment, git_state
+
+        stamp = environment()  # the commit the run starts from; marked dirty if the tree changes while it runs
     environments = {**gate_environments.run_ensemble(chosen, [c.label for c in cases], workers=args.workers),
                     **recorded}
     rows = gate.margin_rows(cases, perturb=not args.base_only, environments=environments)
     if args.json != "-":
         print(gate.margin_table(rows))
-    if args.json:
+    if stamp is not None:
         import mujoco
 
         from mjpoincare.analysis.checks import jsonable
-        from mjpoincare.stamp import environment
 
-        write_json(jsonable({"mujoco_version": mujoco.__version__, "margin": gate.MARGIN, "stamp": environment(),
+        if git_state() != (stamp["git_sha"], False):
+            stamp["git_dirty"] = True
+        write_json(jsonable({"mujoco_version": mujoco.__version__, "margin": gate.MARGIN, "stamp": stamp,
                              "environments": ["this run", *(label for label, _, _ in gate.PERTURBATIONS
                                                             if not args.base_only), *environments],
                              "rows": rows}), args.json)

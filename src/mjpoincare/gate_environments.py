@@ -95,24 +95,37 @@ def margins_command(labels: Sequence[str]) -> list[str]:
             *(arg for label in labels for arg in ("--case", label))]
 
 
-def run_environment(environment: Environment, labels: Sequence[str], *,
-                    command: Callable[[Sequence[str]], list[str]] = margins_command) -> Errors:
-    """The gate cases ``labels`` run in a new process with ``environment``'s variables: (case, check) -> error.
-
-    ``command`` builds the process's command line (the margins command by default). Raises RuntimeError with the
-    process's last lines when it fails to give a margins table (an exit of 1, some check not held, still gives one)."""
+def start_environment(environment: Environment, labels: Sequence[str], *,
+                      command: Callable[[Sequence[str]], list[str]] = margins_command) -> subprocess.Popen[str]:
+    """Start the gate cases ``labels`` in a new process with ``environment``'s variables (and none of
+    :data:`VARIABLES` the caller has set otherwise); ``command`` builds its command line (the margins command by
+    default). :func:`read_environment` waits for it."""
     env = {k: v for k, v in os.environ.items() if k not in VARIABLES}
     env.update(environment.variables)
-    done = subprocess.run(command(labels), env=env, capture_output=True, text=True, check=False)
+    return subprocess.Popen(command(labels), env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+
+
+def read_environment(process: subprocess.Popen[str], environment: Environment, labels: Sequence[str]) -> Errors:
+    """The errors a :func:`start_environment` process gives, once it ends: (case, check) -> error. Raises
+    RuntimeError with the process's last lines when it fails to give a margins table (an exit of 1, some check not
+    held, still gives one)."""
+    stdout, stderr = process.communicate()
     try:
-        rows = json.loads(done.stdout)["rows"]
+        rows = json.loads(stdout)["rows"]
     except (ValueError, KeyError):
-        tail = "\n".join((done.stderr or done.stdout).strip().splitlines()[-5:])
-        raise RuntimeError(f"{environment.label}: margins exited {done.returncode} without its table:\n{tail}"
+        tail = "\n".join((stderr or stdout).strip().splitlines()[-5:])
+        raise RuntimeError(f"{environment.label}: margins exited {process.returncode} without its table:\n{tail}"
                            ) from None
     wanted = set(labels)
     return {(r["case"], r["check"]): float("nan") if r["error"] is None else float(r["error"])
             for r in rows if r["case"] in wanted}
+
+
+def run_environment(environment: Environment, labels: Sequence[str], *,
+                    command: Callable[[Sequence[str]], list[str]] = margins_command) -> Errors:
+    """The gate cases ``labels`` run in a new process with ``environment``'s variables: (case, check) -> error
+    (:func:`start_environment`, then :func:`read_environment`)."""
+    return read_environment(start_environment(environment, labels, command=command), environment, labels)
 
 
 def run_ensemble(environments: Iterable[Environment], labels: Sequence[str], *, workers: int = 2
