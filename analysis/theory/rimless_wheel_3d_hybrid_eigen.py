@@ -86,11 +86,15 @@ def identify_eigenvalues(jac: Matrix, family_tangent: Vector) -> Eigen3D:
     i_head = int(np.argmax(align))
     rest = [i for i in range(vals.size) if i != i_head]
     real = [i for i in rest if abs(vals[i].imag) < _REAL_TOL]
+    if abs(vals[i_head].imag) >= _REAL_TOL:
+        # at a stability threshold the heading eigenvalue 1 is a double root, which the Jacobian's own error splits
+        # into a complex pair (1 +- 1.6e-5 i under one BLAS kernel, two real roots under another): its partner is real
+        real.append(min(rest, key=lambda i: abs(vals[i] - np.conj(vals[i_head]))))
     if not real:
         raise ValueError("no real eigenvalue left for lambda2")
     i_two = max(real, key=lambda i: abs(vecs[4, i]) / norms[i])
     rest = [i for i in rest if i != i_two]
-    complex_ = [i for i in rest if abs(vals[i].imag) >= _REAL_TOL]
+    complex_ = [i for i in rest if abs(vals[i].imag) >= _REAL_TOL and i not in real]
     if complex_:
         if len(complex_) != 2:
             raise ValueError(f"unexpected eigenvalue structure {vals}")
