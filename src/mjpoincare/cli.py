@@ -222,8 +222,7 @@ def _cmd_margins(args: argparse.Namespace) -> int:
             other = json.loads(Path(path).read_text())["rows"]
         except (OSError, ValueError, KeyError) as err:
             raise ParameterError(f"--compare {path} is not a margins JSON file ({err})") from None
-        recorded[f"--compare {Path(path).name}"] = {
-            (r["case"], r["check"]): float("nan") if r["error"] is None else r["error"] for r in other}
+        recorded[f"--compare {Path(path).name}"] = gate_environments.errors_of(other)
     stamp = None
     if args.json:
         from mjpoincare.stamp import environment, git_state

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import importlib
 import json
+import math
 import os
 import subprocess
 import sys
@@ -117,8 +118,12 @@ def read_environment(process: subprocess.Popen[str], environment: Environment, l
         raise RuntimeError(f"{environment.label}: margins exited {process.returncode} without its table:\n{tail}"
                            ) from None
     wanted = set(labels)
-    return {(r["case"], r["check"]): float("nan") if r["error"] is None else float(r["error"])
-            for r in rows if r["case"] in wanted}
+    return errors_of(r for r in rows if r["case"] in wanted)
+
+
+def errors_of(rows: Iterable[Mapping[str, Any]]) -> Errors:
+    """A margins JSON's rows as (case, check) -> error (NaN where the JSON has none)."""
+    return {(r["case"], r["check"]): math.nan if r["error"] is None else float(r["error"]) for r in rows}
 
 
 def run_environment(environment: Environment, labels: Sequence[str], *,
