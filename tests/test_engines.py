@@ -130,3 +130,22 @@ def test_the_page_renders_from_its_json() -> None:
     records = engine_findings_page.load(PAGE)
     assert records, "docs/results/engines/json/ holds no records: run make engines"
     assert (PAGE / "README.md").read_text() == engine_findings_page.render(records), "stale: run make engines-render"
+
+
+def _record(engine: str, case: str, analytic: list[float], passed: bool = True) -> dict[str, object]:
+    check = {"name": "planar_pitch_rate", "analytic": analytic, "simulated": analytic, "error": 0.1 if not passed
+             else 0.0, "error_kind": "max-abs", "tolerance": 0.005, "passed": passed}
+    return {"engine": engine, "case": case, "preset": "fast", "checks": [check], "settings": {"timestep": 1e-3},
+            "timing": {"wall_s": 1.0, "steps_per_s": 1.0}, "diverged_trajectories": [], "warnings": []}
+
+
+def test_the_exact_column_is_mujocos_and_an_engine_with_its_own_says_so() -> None:
+    """The exact value shown is MuJoCo C's run's, whatever the records' order; an engine whose run evaluated its
+    reference elsewhere quotes it in its cell; the 3D wheel's sentence counts the planar wheel's passes it names."""
+    records = [_record("drake-lagged", "rimless-wheel-3d", [2.4, 1.3], passed=False),
+               _record("mujoco", "rimless-wheel-3d", [2.4, 2.3])]
+    text = engine_findings_page.section(records, ["mujoco", "drake-lagged"])
+    assert "| [2.4, 2.3] | 0 | 0.1 FAIL (against its exact [2.4, 1.3]) |" in text, text
+    planar = [_record("drake-lagged", "rimless-wheel[gyration=0.3]", [1.0], passed=False)]
+    assert "0 of the planar wheel's 1 checks pass on drake-lagged" in "\n".join(
+        engine_findings_page.mechanisms(records + planar))
