@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
@@ -125,3 +126,31 @@ def test_a_foreign_warning_handler_is_kept_and_not_called_from_worker_threads() 
     report = rollout_batch(model, np.repeat(bad, 3, axis=0), 50, lambda _: None, threads=2, chunk_steps=25)
     assert report.diverged.all() and report.warnings
     assert mujoco.get_mju_user_warning() is foreign
+
+
+@pytest.mark.mujoco
+def test_a_check_that_disappears_fails_the_api_and_the_cli(monkeypatch: pytest.MonkeyPatch,
+                                                           capsys: pytest.CaptureFixture[str]) -> None:
+    """A scenario whose evaluate stops reporting a check it declares: the API's result fails on that check alone,
+    named and of kind ``missing``, and ``mjpoincare validate`` exits 1 with it failing in the table. The run is
+    rimless-wheel on a coarse step (every check passes: a tenth of the fast preset's time) without its eigenvalue."""
+    from dataclasses import replace
+
+    from mjpoincare.params import Values
+    from mjpoincare.scenarios import REGISTRY, Evaluation
+
+    real = REGISTRY["rimless-wheel"]
+
+    def evaluate(params: Values, settings: Values, preset: str, seed: int) -> Evaluation:
+        run = real.evaluate(params, settings, preset, seed)
+        return replace(run, checks=[c for c in run.checks if c.name != "eigenvalue"])
+
+    monkeypatch.setitem(REGISTRY, "rimless-wheel", replace(real, evaluate=evaluate))
+    result = mjpoincare.validate("rimless-wheel", timestep=8e-4, solref_timeconst=1.6e-3)
+    assert not result.passed
+    assert [(c.name, c.kind) for c in result.checks if not c.passed] == [("eigenvalue", "missing")], result.table()
+    assert "did not report it" in next(c.why for c in result.checks if c.name == "eigenvalue")
+    code = main(["validate", "rimless-wheel", "--set", "timestep=8e-4", "--set", "solref_timeconst=1.6e-3"])
+    out = capsys.readouterr().out
+    assert code == 1
+    assert re.search(r"^eigenvalue\s.*\bmis\s.*FAIL$", out, re.M), out

@@ -1,7 +1,9 @@
 """The registry's contract, as dm_control's suite test holds its domains to theirs: every scenario at every preset
-has defaults its own input check accepts, tolerances for that preset, a model that compiles, a probe whose batches
-fit the model, a render frame, and a validation result whose JSON round-trips. The validation results are the
-gate's cached runs (:func:`mjpoincare.gate.case`), so no validation runs twice in a session."""
+has defaults its own input check accepts, tolerances for that preset, a declaration of the checks a run reports, a
+model that compiles, a probe whose batches fit the model, a render frame, and a validation result whose JSON
+round-trips and whose checks are the declared ones. The validation results are the gate's cached runs
+(:func:`mjpoincare.gate.case`), so no validation runs twice in a session; the declarations of the gate's other runs
+are held to the checks the committed margins measurement (docs/results/gate/margins.json) saw them report."""
 
 from __future__ import annotations
 
@@ -19,10 +21,27 @@ from mjpoincare import gate
 from mjpoincare.result import write_json
 from mjpoincare.scenarios import REGISTRY
 from mjpoincare.scenarios.base import MissingTolerances, Tolerances, at_preset
+from mjpoincare.scenarios.gate_cases import GateCase
 from mjpoincare.seam import STATE_SPEC
-from mjpoincare.validation import resolve_inputs
+from mjpoincare.validation import resolve_inputs, resolve_values
 
 CASES = [pytest.param(name, preset, id=f"{name}[{preset}]") for name, s in REGISTRY.items() for preset in s.presets]
+MARGINS = Path(__file__).resolve().parent.parent / "docs" / "results" / "gate" / "margins.json"
+
+
+def _measured() -> dict[str, list[str]]:
+    """Gate case label -> the checks its run reported when the gate was last measured (``make margins``), in the
+    run's order."""
+    measured: dict[str, list[str]] = {}
+    for row in json.loads(MARGINS.read_text())["rows"]:
+        measured.setdefault(row["case"], []).append(row["check"])
+    return measured
+
+
+MEASURED = _measured()
+#: The built-in scenarios' gate cases: the runs the committed measurement covers (a plugin's are measured elsewhere).
+BUILT_IN_CASES = [pytest.param(case, id=case.label) for case in gate.cases()
+                  if REGISTRY.distribution(case.scenario) == "mjpoincare"]
 
 
 @pytest.mark.parametrize(("name", "preset"), CASES)
@@ -34,6 +53,29 @@ def test_defaults_pass_check_params_and_tolerances_exist(name: str, preset: str)
         assert isinstance(tolerances, Tolerances) and tolerances.bounds, tolerances
         assert all(np.isfinite(v) and v >= 0 for v in tolerances.bounds.values()), tolerances
         assert tolerances.why or tolerances.reasons, f"{name}[{preset}]: no reason given for its tolerances"
+
+
+@pytest.mark.parametrize(("name", "preset"), CASES)
+def test_the_defaults_declare_the_checks_a_run_reports(name: str, preset: str) -> None:
+    """``checks_for`` at the defaults: check names, each once, in the order of ``checks`` (every check the scenario
+    reports somewhere), without the ``stable`` the validation appends; every built-in scenario declares its checks."""
+    scenario, _, params, settings = resolve_values(name, {}, preset)
+    declared = scenario.checks_for(params, settings)
+    assert isinstance(declared, tuple) and all(isinstance(c, str) for c in declared), declared
+    assert len(set(declared)) == len(declared) and "stable" not in declared, declared
+    assert [c for c in scenario.checks if c in declared] == list(declared), (declared, scenario.checks)
+    assert declared or REGISTRY.distribution(name) != "mjpoincare", f"{name}: declares no checks"
+
+
+@pytest.mark.parametrize("case", BUILT_IN_CASES)
+def test_the_declared_checks_of_each_gate_run_are_the_checks_it_reported(case: GateCase) -> None:
+    """Each gate case's declaration (``checks_for`` at its parameters and preset, then ``stable``) is the list of
+    checks its run reported in the committed margins measurement, in the run's order: a check the run reports and
+    the scenario does not declare, or one it declares and the run does not report, is a bug of the declaration (no
+    simulation here: the declarations are analytic)."""
+    assert case.label in MEASURED, f"{case.label}: not in {MARGINS.name} (run make margins)"
+    scenario, _, params, settings = resolve_values(case.scenario, dict(case.values), case.preset)
+    assert [*scenario.checks_for(params, settings), "stable"] == MEASURED[case.label]
 
 
 def test_a_missing_preset_is_an_error_not_a_fallback() -> None:
@@ -74,6 +116,19 @@ def test_validation_json_round_trips(name: str, preset: str, tmp_path: Path) -> 
     write_json(payload, str(tmp_path / "result.json"))
     assert json.loads((tmp_path / "result.json").read_text()) == payload
     assert [c["name"] for c in payload["checks"]] == [c.name for c in result.checks]
+
+
+@pytest.mark.mujoco
+@pytest.mark.parametrize(("name", "preset"), CASES)
+def test_a_validation_reports_the_checks_its_scenario_declares(name: str, preset: str) -> None:
+    """The defaults' run reports its declared checks, in their order, then ``stable``: none of kind ``missing`` (the
+    validation's stand-in for a declared check the run lost) and none undeclared. A scenario that declares no checks
+    (``checks`` empty: a plugin written without them) is held to nothing."""
+    result = gate.run_case(gate.case(f"{name}[{preset}]"))
+    scenario, _, params, settings = resolve_values(name, {}, preset)
+    if scenario.checks:
+        assert [c.name for c in result.checks] == [*scenario.checks_for(params, settings), "stable"]
+        assert not [c.name for c in result.checks if c.kind == "missing"]
 
 
 def test_looking_up_a_scenario_imports_that_scenario_only() -> None:

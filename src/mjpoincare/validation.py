@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
+import math
 import time
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 
 import mujoco
 
@@ -16,11 +17,10 @@ from mjpoincare.peers.compare import compare
 from mjpoincare.result import Result
 
 
-def resolve_inputs(name: str, assignments: Mapping[str, Value], preset: str | None
+def resolve_values(name: str, assignments: Mapping[str, Value], preset: str | None
                    ) -> tuple[scenarios.Scenario, str, dict, dict]:
-    """Scenario, preset name, checked parameters and settings; bad input raises ParameterError, and a seam mechanism
-    the scenario uses that fails its self-test on the loaded MuJoCo and backend raises
-    :class:`~mjpoincare.seam_check.MechanismFailed` (both before any simulation of the scenario)."""
+    """Scenario, preset name, checked parameters and settings; bad input raises ParameterError (nothing is
+    simulated)."""
     scenario = scenarios.get(name)
     unknown(assignments, scenario.params, sim_settings.SETTINGS)
     preset_name, overrides = scenario.preset(preset)
@@ -28,6 +28,15 @@ def resolve_inputs(name: str, assignments: Mapping[str, Value], preset: str | No
     settings = resolve(sim_settings.SETTINGS, {**sim_settings.DEFAULTS, **overrides}, assignments)
     backends.check_backend(settings)
     scenario.check_params(params)
+    return scenario, preset_name, params, settings
+
+
+def resolve_inputs(name: str, assignments: Mapping[str, Value], preset: str | None
+                   ) -> tuple[scenarios.Scenario, str, dict, dict]:
+    """:func:`resolve_values`, then the seam self-test: a seam mechanism the scenario uses that fails its self-test on
+    the loaded MuJoCo and backend raises :class:`~mjpoincare.seam_check.MechanismFailed` (both before any simulation
+    of the scenario)."""
+    scenario, preset_name, params, settings = resolve_values(name, assignments, preset)
     seam_check.require(scenario.mechanisms_for(params), str(settings["backend"]), str(settings["precision"]))
     return scenario, preset_name, params, settings
 
@@ -50,10 +59,23 @@ def stability_check(diverged: int, warnings: int) -> Check:
                  why="diverged trajectories + MuJoCo warnings: any is a failure, never silent")
 
 
+def missing_checks(declared: Iterable[str], reported: Iterable[Check]) -> list[Check]:
+    """A failing check (kind ``missing``, error NaN) for each of the ``declared`` checks (the scenario's
+    :meth:`~mjpoincare.scenarios.base.Scenario.checks_for`) not among the ``reported`` ones, in the declared order."""
+    seen = {check.name for check in reported}
+    return [Check(name=name, analytic=math.nan, simulated=math.nan, error=math.nan, tolerance=0.0, kind="missing",
+                  unit="", why=f"the scenario declares {name} at these parameters and the run did not report it: a "
+                  "check that disappears from a run fails it")
+            for name in declared if name not in seen]
+
+
 def run_validation(name: str, assignments: Mapping[str, Value] | None = None, preset: str | None = None,
                    seed: int = 0, peer: str | None = None) -> Result:
     """Validate scenario ``name`` with ``--set``-style ``assignments`` under ``preset``; with ``peer``, add that
-    simulator's value of each check (:func:`mjpoincare.peers.compare.compare`) as ``extras["peer"]``."""
+    simulator's value of each check (:func:`mjpoincare.peers.compare.compare`) as ``extras["peer"]``.
+
+    The result's checks: the scenario's, in the order it reports them, then a failing one for each check it declares
+    at these inputs and did not report (:func:`missing_checks`), then ``stable``."""
     scenario, preset_name, params, settings = resolve_inputs(name, assignments or {}, preset)
     outside = peer_of(scenario, peer, params) if peer else None
     start = time.perf_counter()
@@ -61,7 +83,8 @@ def run_validation(name: str, assignments: Mapping[str, Value] | None = None, pr
     wall = time.perf_counter() - start
     report = evaluation.rollout
     diverged = [int(i) for i in report.diverged.nonzero()[0]]
-    checks = [*evaluation.checks, stability_check(len(diverged), len(report.warnings))]
+    checks = [*evaluation.checks, *missing_checks(scenario.checks_for(params, settings), evaluation.checks),
+              stability_check(len(diverged), len(report.warnings))]
     timing = {"wall_s": wall, "rollout_wall_s": report.wall_s, "steps": float(report.steps),
               "steps_per_s": report.steps / wall, "rollout_steps_per_s": report.steps_per_s,
               "compile_s": report.compile_s, "batch_steps": float(report.batch_steps)}

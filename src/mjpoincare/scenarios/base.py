@@ -309,6 +309,15 @@ class Scenario:
             scenario that needs one the others do not): a backend that lacks it refuses only those runs.
         gate_cases: the runs the regression gate asserts (:class:`~mjpoincare.scenarios.gate_cases.GateCase`; the
             defaults at every preset at least), each check in its form: gated, watched or a declared miss.
+        checks: every check ``evaluate`` reports at some inputs, by name and in its order (not ``stable``, which the
+            validation appends to every run). A run reports :meth:`checks_for` of them, and
+            :func:`mjpoincare.validation.run_validation` appends a failing check of kind ``missing`` for each of those
+            it does not report: a check that disappears fails. A check measured only where the samples allow (a fit
+            that needs 3 sample pairs) is declared all the same, so that a run whose samples do not allow it fails.
+            Empty: the scenario declares nothing, and nothing is appended.
+        checks_at: ``(params, settings) -> checks``, in ``checks``' order, where a run reports fewer than all of
+            ``checks``: the paper has the quantity at some parameters only (a gait, a friction regime), or the
+            settings decide it (an exact step's phases as classified on the timestep's grid); None: all of ``checks``.
     """
 
     name: str
@@ -339,10 +348,17 @@ class Scenario:
     tolerances: ToleranceTable | Mapping[str, ToleranceTable] = field(default_factory=dict)
     gate_cases: tuple[GateCase, ...] = ()
     mechanisms_at: Callable[[Values], tuple[str, ...]] | None = None
+    checks: tuple[str, ...] = ()
+    checks_at: Callable[[Values, Values], tuple[str, ...]] | None = None
 
     def mechanisms_for(self, params: Values) -> tuple[str, ...]:
         """The seam mechanisms a run at ``params`` uses: ``mechanisms_at(params)``, or all of ``mechanisms``."""
         return self.mechanisms if self.mechanisms_at is None else self.mechanisms_at(params)
+
+    def checks_for(self, params: Values, settings: Values) -> tuple[str, ...]:
+        """The checks a run at ``params`` and ``settings`` reports (checked inputs): ``checks_at(params,
+        settings)``, or ``checks``."""
+        return self.checks if self.checks_at is None else self.checks_at(params, settings)
 
     @property
     def tolerance_tables(self) -> list[ToleranceTable]:

@@ -323,6 +323,12 @@ def clip(params: Values, settings: Values, model: mujoco.MjModel, nstep: int) ->
     return event_clip(model, start, nstep, controller, chunk, setup=controller.configure).states(nstep)
 
 
+#: The checks :func:`evaluate` reports, at any parameters: the fitted map's fixed point and multipliers, the step and
+#: the trailing foot's release (003 eqs 4.15-4.20; a run with too few samples reports the fixed point alone, the
+#: others then fail as missing).
+CHECKS = ("fixed_point", "eigenvalues", "step_period", "step_length", "trailing_foot_release")
+
+
 #: Where a preset must hold (mjpoincare tune): the defaults, Goswami's walker (m_h/m = 2, 3 degrees: a larger step
 #: angle and faster impacts) and the gate's actuated gait. As for the rimless wheel, no point lies closer than the
 #: defaults to a limit where a checked quantity vanishes: towards slope 0 the step length goes to 0 while the soft
@@ -368,6 +374,7 @@ COMPASS_BIPED = Scenario(
     stress_cases=STRESS_CASES,
     soak=soak,
     mechanisms=("rollout", "contact", "actuator"),
+    checks=CHECKS,
     tolerances=TOLERANCES,
     gate_cases=GATE_CASES,
     peers=(drake_peer(biped),),

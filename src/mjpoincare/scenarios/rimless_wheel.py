@@ -318,12 +318,17 @@ def clip(params: Values, settings: Values, model: mujoco.MjModel, nstep: int) ->
     return plain_clip(model, state0, nstep)
 
 
+#: The checks :func:`evaluate` reports, at any parameters: the fitted map's four (003 eqs 3.11-3.13, 002 eqs 14-17;
+#: a run with too few samples reports the first alone, the others then fail as missing) and the regions of
+#: attraction (003 Table 1, eqs 3.17-3.18).
+CHECKS = ("omega_post_impact", "eigenvalue", "impact_coefficient", "step_period", "basins")
+
 #: Where a preset must hold (mjpoincare tune). No point lies closer to the existence bound than the defaults: there the
 #: wheel barely vaults the spoke, its speed over the top goes to 0 and the step period diverges, so the period's
 #: error grows without bound for any fixed setting (its sensitivity to omega+, d ln T / d ln omega+, is 2.7 at slope
 #: 0.08 and 10.9 at 0.07 for n = 8). The tolerances hold from the defaults up. Nothing is singular at the no-flight
 #: bound: the steep point sits 5 % of the n = 8 slope range below it, where the impacts are hardest without flight.
-_WHEEL = "omega_post_impact eigenvalue impact_coefficient step_period basins stable"
+_WHEEL = " ".join((*CHECKS, "stable"))
 _HOP_PERIOD = ("the step period is timed from impact to impact, and MuJoCo's soft impact lets the wheel leave the "
                "slope briefly, which lengthens it")
 #: The gate's runs of this scenario (:mod:`mjpoincare.gate`), as measured by ``mjpoincare margins`` (MuJoCo 4.0.0,
@@ -371,6 +376,7 @@ RIMLESS_WHEEL = Scenario(
     stress_cases=STRESS_CASES,
     soak=soak,
     mechanisms=("rollout",),
+    checks=CHECKS,
     tolerances=TOLERANCES,
     gate_cases=GATE_CASES,
     peers=(drake_peer(wheel),),

@@ -150,6 +150,20 @@ def check_params(params: Values) -> None:
 
 # --- the checks ---------------------------------------------------------------------------------------------------
 
+#: Every check :func:`evaluate` reports at some mu, in its order; :func:`checks_at`: those of the gait mu settles on.
+CHECKS = ("gait_type", "midstance_rate", "eigenvalue", "impact_kind", "phase_sequence", "sliding_contact_law",
+          "slip_onset", "dx_per_step", "critical_friction")
+
+
+def checks_at(params: Values, settings: Values) -> tuple[str, ...]:
+    """The checks :func:`evaluate` reports for the gait ``mu`` settles on (002 Sec. 3.3): every gait's type, mid-stance
+    map, impact kind and phases; the sliding rows' contact law where the gait slips (types B, C, D); Type B's slip
+    onset (002 eq 22), a D gait's slip growth per step (Fig. 3.6) and Type A's critical friction (002 eq 23)."""
+    kind = reference_gait(friction_wheel(params)).kind
+    own = {"sliding_contact_law": kind != "A", "slip_onset": kind == "B", "dx_per_step": kind.startswith("D"),
+           "critical_friction": kind == "A"}
+    return tuple(check for check in CHECKS if own.get(check, True))
+
 
 def evaluate(params: Values, settings: Values, preset: str, seed: int) -> Evaluation:
     """Simulate the reference gait's post-impact state, its perturbations and a slipping start in one batch;
@@ -355,6 +369,8 @@ RIMLESS_WHEEL_FRICTION = Scenario(
     region_map=REGION_MAP,
     param_sweeps={"mu": MU_SWEEP},
     mechanisms=("rollout", "friction", "contact_fields"),
+    checks=CHECKS,
+    checks_at=checks_at,
     tolerances=TOLERANCES,
     gate_cases=GATE_CASES,
     coverage=COVERAGE,

@@ -231,7 +231,7 @@ def _collisions_before_reversal(sk: theory.SlottedSkate, runs: list[list[tuple[f
             continue
         d0, e0, _, h0, _ = samples[0]
         n = theory.collisions_before_reversal(sk, 0.0 if d0 == lo else sk.Delta, e0 / e_unit, h0 / h_unit)
-        if n < 0 or n + 1 >= len(samples):
+        if not _reversal_inside(n, len(samples)):
             continue
         flips = [k for k, (a, b) in enumerate(itertools.pairwise(samples)) if b[0] != a[0]]
         predicted.append(n)
@@ -239,22 +239,66 @@ def _collisions_before_reversal(sk: theory.SlottedSkate, runs: list[list[tuple[f
     return predicted, observed
 
 
+def _reversal_inside(n: int, samples: int) -> bool:
+    """Whether a start is judged by collisions_before_reversal: (B.6) predicts a reversal after ``n`` non-reversing
+    impacts (n >= 0) and its stance is among the ``samples`` simulated ones."""
+    return n >= 0 and n + 1 < samples
+
+
+def _reversal_predicted(params: Values, sk: theory.SlottedSkate) -> bool:
+    """Whether collisions_before_reversal exists at ``params``: (B.6) applies (L0 > 0 or L0 < -Delta) and some start
+    of the batch reverses inside the stances the run simulates, by the map from the start (B.6-B.7 for the reversal,
+    the map's stance durations against the run's duration for the stances)."""
+    if -sk.Delta <= sk.L0 <= 0.0:
+        return False
+    V, Om = initial_conditions(params)
+    rho, v0 = float(params["rho"]), abs(float(params["V0"]))
+    horizon = _duration(params, V, Om) * v0 / rho
+    for v, om in zip(V, Om, strict=True):
+        q = theory.initial_state(sk, v / v0, om * rho / v0, 0.0)
+        if abs(q.H_plus) < 1e-12:
+            continue
+        n = theory.collisions_before_reversal(sk, q.D_plus, q.E_plus, q.H_plus)
+        stances, elapsed = 0, 0.0
+        while n >= 0 and stances < n + 2:  # the stances that end inside the run, up to the reversal's
+            q = theory.return_map(sk, q.D_plus, q.E_plus, q.theta_plus, q.H_plus)
+            elapsed += q.duration
+            if elapsed > horizon:
+                break
+            stances += 1
+        if _reversal_inside(n, stances):
+            return True
+    return False
+
+
 FINAL_DECAY = 1e-6  # the final state is read once |H| has decayed to this fraction of its initial value
 FINAL_IMPACTS_MAX = 400
 
 
-def _final_state_checks(params: Values, settings: Values, sk: theory.SlottedSkate,
-                        tolerance: float) -> list[checks.Check]:
-    """The user's start run until its rotation has died out: final slot speed (B.10/B.12) and reversal count."""
+def _decay(params: Values, sk: theory.SlottedSkate) -> tuple[theory.MapStep, int, float, int] | None:
+    """The map from the user's start until its rotation has decayed by FINAL_DECAY: the state there, the impacts, the
+    time (paper units) and the reversals on the way; None when there is no rotation to decay or it does not decay
+    within FINAL_IMPACTS_MAX impacts (unstable, spinning): no final state (B.10/B.12) to check."""
     rho, v0 = float(params["rho"]), abs(float(params["V0"]))
-    V, Om = float(params["V0"]) / v0, float(params["Omega0"]) * rho / v0
-    q = theory.initial_state(sk, V, Om, 0.0)
+    q = theory.initial_state(sk, float(params["V0"]) / v0, float(params["Omega0"]) * rho / v0, 0.0)
     h0, n, duration, reversals = abs(q.H_plus), 0, 0.0, 0
     while abs(q.H_plus) > FINAL_DECAY * h0 and n < FINAL_IMPACTS_MAX:
         q = theory.return_map(sk, q.D_plus, q.E_plus, q.theta_plus, q.H_plus)
         n, duration, reversals = n + 1, duration + q.duration, reversals + int(q.reversed)
     if h0 == 0.0 or abs(q.H_plus) > FINAL_DECAY * h0:
-        return []  # no rotation to decay, or it does not decay (unstable, spinning): no final state to check
+        return None
+    return q, n, duration, reversals
+
+
+def _final_state_checks(params: Values, settings: Values, sk: theory.SlottedSkate,
+                        tolerance: float) -> list[checks.Check]:
+    """The user's start run until its rotation has died out: final slot speed (B.10/B.12) and reversal count."""
+    decay = _decay(params, sk)
+    if decay is None:
+        return []
+    q, n, duration, reversals = decay
+    rho, v0 = float(params["rho"]), abs(float(params["V0"]))
+    V, Om = float(params["V0"]) / v0, float(params["Omega0"]) * rho / v0
     final = theory.final_state(sk, V, Om)
     model = build(params, settings)
     start = start_states(model, params, np.array([float(params["V0"])]), np.array([float(params["Omega0"])]))
@@ -328,11 +372,28 @@ STRESS_CASES = (
 )
 
 
+#: Every check :func:`evaluate` reports for some parameters, in its order; :func:`checks_at`: those at given ones.
+CHECKS = ("sigma4_forward", "sigma4_fit_forward", "stability_forward", "sigma4_backward", "sigma4_fit_backward",
+          "stability_backward", "energy_loss", "heading", "reversals", "collisions_before_reversal", "final_speed",
+          "final_reversals")
+
+
+def checks_at(params: Values, settings: Values) -> tuple[str, ...]:
+    """The checks :func:`evaluate` reports at ``params``: sigma4 (3.10), its fit and the stability verdict (3.11-3.12)
+    each way, whatever the samples (a run with fewer than 3 non-reversing pairs a way fails that way's fit as
+    missing), the map's impact checks (B.1-B.5); the collisions before the first reversal where (B.6) predicts one
+    inside the run, and the final state where the map's rotation decays (B.10/B.12)."""
+    sk = skate(params)
+    own = {"collisions_before_reversal": _reversal_predicted(params, sk),
+           "final_speed": _decay(params, sk) is not None}
+    own["final_reversals"] = own["final_speed"]
+    return tuple(check for check in CHECKS if own.get(check, True))
+
+
 #: Where a preset must hold (mjpoincare tune): the defaults, the other stability region (slot behind the mass centre),
 #: the regression gate's two other points (a long slot behind the mass centre; the mirrored defaults) and a fast slide
 #: (20x the slot speed: few steps per stance, the hardest impacts on the pegs).
-_SKATE = ("sigma4_forward sigma4_fit_forward stability_forward sigma4_backward sigma4_fit_backward stability_backward "
-          "energy_loss heading reversals collisions_before_reversal final_speed final_reversals stable")
+_SKATE = " ".join((*CHECKS, "stable"))
 #: The gate's runs of this scenario (:mod:`mjpoincare.gate`), as measured by ``mjpoincare margins`` (MuJoCo 4.0.0,
 #: numpy 2.4.6, scipy 1.17.1, this repository's CPU): each spread is the measured one rounded up to 2 digits. A
 #: declared miss's range spans this measurement and the one an earlier margins run declared (machines and builds
@@ -374,6 +435,8 @@ SLOTTED_SKATE = Scenario(
     stress_cases=STRESS_CASES,
     region_map=REGION_MAP,
     mechanisms=("rollout", "fractional_step"),
+    checks=CHECKS,
+    checks_at=checks_at,
     tolerances=TOLERANCES,
     gate_cases=GATE_CASES,
     coverage=COVERAGE,
