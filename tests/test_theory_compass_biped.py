@@ -6,10 +6,12 @@ from __future__ import annotations
 
 import math
 import re
+from dataclasses import replace
 
 import numpy as np
 import pytest
 from mjpoincare.analysis.theory import compass_biped as cb
+from mjpoincare.analysis.theory import compass_biped_flight as flight
 from mjpoincare.analysis.theory.compass_biped import CompassBiped
 from scipy.integrate import solve_ivp
 
@@ -353,3 +355,129 @@ def test_pull_back_from_legs_parallel_inverts_the_swing() -> None:
         x = cb.fixed_point(bp) + np.array([0.01, -0.01, 0.02, -0.03])
         y, _ = cb.legs_parallel_state(bp, x)
         assert cb.post_impact_from_parallel(bp, y) == pytest.approx(x, abs=1e-9)
+
+
+# --- the free biped at the trailing foot's release (compass_biped_flight) ----------------------------------------
+def flight_points(bp: CompassBiped, s: np.ndarray) -> list[tuple[float, np.ndarray, np.ndarray]]:
+    """(mass, position, velocity) of the hip and the two leg masses in the slope frame, s = (x, z, phi_0, phi_1, and
+    their rates): the hip at (x, z), leg i's mass b below it along -u(phi_i)."""
+    hip, v_hip = s[:2], s[4:6]
+    return [(bp.m_h, hip, v_hip)] + [(bp.m_l, hip - bp.b * u(s[2 + i]), v_hip - bp.b * s[6 + i] * du(s[2 + i]))
+                                     for i in (0, 1)]
+
+
+def slope_gravity(bp: CompassBiped) -> np.ndarray:
+    return bp.gravity * np.array([math.sin(bp.slope), -math.cos(bp.slope)])
+
+
+def flight_kinetic(bp: CompassBiped, s: np.ndarray) -> float:
+    return sum(0.5 * m * float(v @ v) for m, _, v in flight_points(bp, s))
+
+
+def flight_potential(bp: CompassBiped, q: np.ndarray) -> float:
+    return -sum(m * float(slope_gravity(bp) @ p) for m, p, _ in flight_points(bp, np.concatenate([q, np.zeros(4)])))
+
+
+def flight_state() -> np.ndarray:
+    return np.array([*RNG.uniform(-1.0, 1.0, 2), *RNG.uniform(-0.6, 0.6, 2), *RNG.uniform(-2.0, 2.0, 4)])
+
+
+FLIGHT_BIPEDS = [replace(cb.kisa(), tau_ankle=0.5, tau_hip=0.2),
+                 CompassBiped(m_h=3.0, m_l=2.0, a=0.3, b=0.8, slope=0.1, gravity=9.0, tau_ankle=-1.0, tau_hip=0.7)]
+
+
+@pytest.mark.parametrize("bp", FLIGHT_BIPEDS)
+def test_flight_eom_equals_lagrangian_of_point_masses(bp):
+    """M = the Hessian of T in qd, h = (dp/dq) qd - dT/dq and G = -dU/dq, by finite differences of the point masses'
+    T and U in MuJoCo's coordinates (x, z, phi_0, phi_1)."""
+    for _ in range(5):
+        s = flight_state()
+        q, qd = s[:4], s[4:]
+        mass = flight.mass_matrix(bp, q[2:])
+
+        def momentum(qq, vv):
+            return grad(lambda w: flight_kinetic(bp, np.concatenate([qq, w])), vv, 1e-3)  # exact: T quadratic in qd
+
+        hess = np.vstack([grad(lambda w, k=k, q=q: momentum(q, w)[k], qd, 1e-3) for k in range(4)])
+        assert mass == pytest.approx(hess, abs=1e-6)
+        assert np.all(np.linalg.eigvalsh(mass) > 0)
+        dpdq = np.vstack([grad(lambda z, k=k, qd=qd: momentum(z, qd)[k], q, 1e-5) for k in range(4)])
+        h_qd = dpdq @ qd - grad(lambda z, qd=qd: flight_kinetic(bp, np.concatenate([z, qd])), q)
+        assert flight.velocity_terms(bp, q[2:], qd[2:]) == pytest.approx(h_qd, abs=1e-5)
+        assert flight.gravity_forces(bp, q[2:]) == pytest.approx(-grad(lambda z: flight_potential(bp, z), q), abs=1e-6)
+
+
+@pytest.mark.parametrize("bp", FLIGHT_BIPEDS)
+def test_flight_accelerations_obey_momentum_and_energy_balance(bp):
+    """Along the computed accelerations, by central differences of point-mass quantities: the linear momentum
+    changes by gravity only (the torques are couples), the angular momentum about the origin by gravity's moment
+    plus the external torque Q_0 + Q_1 (the hip torque's pair cancels; the ankle torque reacts on the world through
+    the hip's fixed orientation), and the energy T + U by the hinge torques' power: four balances, one per
+    acceleration."""
+    for _ in range(5):
+        s = flight_state()
+        torques = RNG.uniform(-2.0, 2.0, 2)
+        rate = np.concatenate([s[4:], flight.accelerations(bp, s[2:4], s[6:], torques)])
+
+        def along(f, s=s, rate=rate):
+            return (f(s + 1e-6 * rate) - f(s - 1e-6 * rate)) / 2e-6
+
+        def linear(y):
+            return sum(m * v for m, _, v in flight_points(bp, y))
+
+        def angular(y):
+            return sum(cross(p, m * v) for m, p, v in flight_points(bp, y))  # cross(p, v) = -(p x v)_y
+
+        total = bp.m_h + 2 * bp.m_l
+        assert along(linear) == pytest.approx(total * slope_gravity(bp), abs=1e-6)
+        moment = sum(cross(p, m * slope_gravity(bp)) for m, p, _ in flight_points(bp, s))
+        assert along(angular) == pytest.approx(moment - torques.sum(), abs=1e-6)
+        assert along(lambda y: flight_kinetic(bp, y) + flight_potential(bp, y[:4])) == pytest.approx(
+            float(torques @ s[6:]), abs=1e-6)
+
+
+@pytest.mark.parametrize("bp", FLIGHT_BIPEDS)
+def test_pinned_foot_gives_the_stance_eom(bp):
+    """Pinning leg 0's foot (hip at l u(phi_0) from it) projects the free biped onto 003 eq 4.5: J^T M J = M_4.5,
+    J^T (M Jdot thetad + h) = C thetad and J^T G = G_4.5, J = d(x, z, phi_0, phi_1)/d(theta_st, theta_sw)."""
+    for _ in range(5):
+        x = random_state()
+        phi, (w0, _) = x[:2] - bp.slope, x[2:]
+        c, s = math.cos(phi[0]), math.sin(phi[0])
+        jac = np.array([[bp.l * c, 0.0], [-bp.l * s, 0.0], [1.0, 0.0], [0.0, 1.0]])
+        mass = flight.mass_matrix(bp, phi)
+        assert jac.T @ mass @ jac == pytest.approx(cb.mass_matrix(bp, x[:2]), abs=1e-12)
+        jdot_qd = np.array([-bp.l * s * w0**2, -bp.l * c * w0**2, 0.0, 0.0])
+        assert jac.T @ (mass @ jdot_qd + flight.velocity_terms(bp, phi, x[2:])) == pytest.approx(
+            cb.coriolis(bp, x[:2], x[2:]) @ x[2:], abs=1e-12)
+        assert jac.T @ flight.gravity_forces(bp, phi) == pytest.approx(cb.gravity_vector(bp, x[:2]), abs=1e-12)
+
+
+@pytest.mark.parametrize("bp", [cb.kisa(), *FLIGHT_BIPEDS])
+def test_release_acceleration_is_the_released_foots_second_derivative(bp):
+    """release_acceleration at the gait's pre-impact state is the second central difference of the trailing foot
+    sphere's slope-normal height z - (l - r) cos phi_0 along the free biped's flow (DOP853, +-1e-3 s), with the
+    torques moved to the leading leg (Q_0 + Q_1 = tau_ankle, Q_0 = tau_hip); at rest without torques it is free
+    fall, -g cos gamma."""
+    radius = 2.5e-4
+    x_minus = cb.step(bp, cb.fixed_point(bp)).x_minus
+    phi = x_minus[:2] - bp.slope
+    start = np.array([0.0, 0.0, *phi, bp.l * x_minus[2] * math.cos(phi[0]), -bp.l * x_minus[2] * math.sin(phi[0]),
+                      *x_minus[2:]])
+    torques = flight.release_torques(bp)
+    assert sum(torques) == pytest.approx(bp.tau_ankle, abs=1e-15) and torques[0] == bp.tau_hip
+
+    def rhs(_t, y):
+        return np.concatenate([y[4:], flight.accelerations(bp, y[2:4], y[6:], torques)])
+
+    def height(t: float) -> float:
+        y = start if t == 0 else solve_ivp(rhs, (0.0, t), start, method="DOP853", rtol=1e-13, atol=1e-14).y[:, -1]
+        return float(y[1] - (bp.l - radius) * math.cos(y[2]))
+
+    step = 1e-3
+    second = (height(step) - 2 * height(0.0) + height(-step)) / step**2
+    accel = flight.release_acceleration(bp, x_minus, radius)
+    assert accel == pytest.approx(second, rel=1e-5)
+    rest = np.array([*x_minus[:2], 0.0, 0.0])
+    assert flight.release_acceleration(replace(bp, tau_ankle=0.0, tau_hip=0.0), rest, radius) == pytest.approx(
+        -bp.gravity * math.cos(bp.slope), rel=1e-14)

@@ -4,7 +4,6 @@ fall the ``trailing_foot_release`` check is judged against."""
 
 from __future__ import annotations
 
-import copy
 import math
 
 import mujoco
@@ -13,11 +12,10 @@ import numpy as np
 from mjpoincare.analysis.adaptive_stopping import FitSettling
 from mjpoincare.analysis.start_designs import sphere_offsets
 from mjpoincare.analysis.theory import compass_biped as theory
-from mjpoincare.backends.mujoco_c import MujocoBatch
+from mjpoincare.analysis.theory import compass_biped_flight as flight
 from mjpoincare.params import Values
-from mjpoincare.scenarios.base import JointIndex
 from mjpoincare.scenarios.compass_biped_controller import GaitController
-from mjpoincare.seam import STATE_SPEC, RolloutReport
+from mjpoincare.seam import RolloutReport
 from mjpoincare.settings import rollout_options
 from mjpoincare.simulate import event_rollout, initial_states
 
@@ -88,20 +86,11 @@ def walk(model: mujoco.MjModel, bp: theory.CompassBiped, starts: np.ndarray, ste
 def release_tolerance(model: mujoco.MjModel, bp: theory.CompassBiped, x_star: np.ndarray, foot_radius: float
                       ) -> tuple[float, float]:
     """(a, depth): the released trailing foot's slope-normal acceleration a (m/s^2, < 0 downward) at the exact
-    pre-impact state of the gait from ``x_star`` (MuJoCo's own, with no contact and the gait's torques), and the
-    depth it falls from rest in RELEASE_FALL_STEPS semi-implicit Euler steps, |a| dt^2 n (n + 1)/2."""
-    m = copy.copy(model)
-    controller = GaitController(m, bp, 1, foot_radius)
-    state = post_impact_states(m, bp, theory.step(bp, x_star).x_minus[None, :], foot_radius)
-    with MujocoBatch([m], state, threads=0) as batch:
-        controller.configure(batch)
-        batch.set_contact(0, controller.feet[0], False)
-    data = mujoco.MjData(m)
-    mujoco.mj_setState(m, data, state[0], STATE_SPEC)
-    mujoco.mj_forward(m, data)
-    z, leg = JointIndex.of(m, "z"), JointIndex.of(m, "leg0")
-    q, w = float(data.qpos[leg.qpos]), float(data.qvel[leg.dof])
-    accel = float(data.qacc[z.dof]) + (bp.l - foot_radius) * (math.sin(q) * float(data.qacc[leg.dof])
-                                                               + math.cos(q) * w * w)
+    pre-impact state of the gait from ``x_star``, from the exact free biped with the torques switched to the new
+    stance leg, as the controller switches them with the release
+    (:func:`mjpoincare.analysis.theory.compass_biped_flight.release_acceleration`; not from MuJoCo, so that a dynamics
+    regression cannot move the tolerance with the error), and the depth it falls from rest in RELEASE_FALL_STEPS
+    semi-implicit Euler steps of ``model``'s timestep, |a| dt^2 n (n + 1)/2."""
+    accel = flight.release_acceleration(bp, theory.step(bp, x_star).x_minus, foot_radius)
     n = RELEASE_FALL_STEPS
-    return accel, max(0.0, -accel) * m.opt.timestep**2 * n * (n + 1) / 2
+    return accel, max(0.0, -accel) * model.opt.timestep**2 * n * (n + 1) / 2
