@@ -46,7 +46,7 @@ LAYER_OF: dict[str, str] = {
     "mjpoincare.stress": "commands", "mjpoincare.tune": "commands", "mjpoincare.tune_pages": "commands",
     "mjpoincare.releases": "commands", "mjpoincare.gate": "commands", "mjpoincare.gate_environments": "commands",
     "mjpoincare.report": "commands", "mjpoincare.render": "commands", "mjpoincare.reports": "commands",
-    "mjpoincare.bench_scaling": "commands",
+    "mjpoincare.bench_scaling": "commands", "mjpoincare.baseline": "commands", "mjpoincare.power": "commands",
     "mjpoincare.cli": "face", "mjpoincare.api": "face", "mjpoincare.pytest_plugin": "face", "mjpoincare.envs": "face",
     "mjpoincare.__init__": "face",
 }

@@ -67,6 +67,10 @@ def test_failing_check_reports_values_beside_project_tests(pytester: pytest.Pyte
     (["--mjpoincare", "rimless-wheel", "--mjpoincare-set", "timestep=1"], "timestep must be in (0, 0.05] (got 1)"),
     (["--mjpoincare", "rimless-wheel", "--mjpoincare-set", "timestep"], "--mjpoincare-set expects NAME=VALUE"),
     (["--mjpoincare-set", "timestep=2e-4"], "--mjpoincare-set given without --mjpoincare"),
+    (["--mjpoincare", "rimless-wheel", "--mjpoincare-baseline", "absent.json"],
+     "--mjpoincare-baseline absent.json does not exist"),
+    (["--mjpoincare", "rimless-wheel", "--mjpoincare-update-baseline"],
+     "--mjpoincare-update-baseline needs --mjpoincare-baseline PATH"),
 ])
 def test_bad_input_is_a_one_line_usage_error(pytester: pytest.Pytester, args: list[str], message: str) -> None:
     result = run(pytester, *args)
@@ -105,3 +109,27 @@ def test_without_option_the_plugin_adds_nothing(pytester: pytest.Pytester) -> No
     result = run(pytester, "-v")
     result.assert_outcomes(passed=1)
     assert "mjpoincare::" not in result.stdout.str()
+
+
+@pytest.mark.mujoco
+def test_a_baseline_catches_a_timestep_one_percent_off_that_every_tolerance_passes(pytester: pytest.Pytester) -> None:
+    """Recorded with ``--mjpoincare-update-baseline``, the same run passes against it; at a timestep 1 % off the
+    preset's, every check still passes its tolerance and at least one item fails on the baseline, naming the check,
+    the old and new errors and the resolution."""
+    from mjpoincare import scenarios
+
+    scenario = all_gated("rimless-wheel[fast]")
+    timestep = 1.01 * float(scenarios.get(scenario).presets["fast"]["timestep"])
+    base = ("--mjpoincare", scenario, "--mjpoincare-preset", "fast", "--mjpoincare-baseline", "b.json", "-v")
+    recorded = run(pytester, *base, "--mjpoincare-update-baseline")
+    assert recorded.ret == pytest.ExitCode.OK and (pytester.path / "b.json").is_file(), recorded.stdout.str()
+    again = run(pytester, *base)
+    assert again.ret == pytest.ExitCode.OK, again.stdout.str()
+    moved = run(pytester, *base, "--mjpoincare-set", f"timestep={timestep!r}")
+    out = moved.stdout.str()
+    assert moved.ret == pytest.ExitCode.TESTS_FAILED, out
+    assert "mjpoincare check" not in out, "a tolerance failed: the change is not below the tolerance"
+    failed = [name for name, verdict in nodes(scenario).findall(out) if verdict == "FAILED"]
+    assert failed, out
+    assert re.search(rf"rimless-wheel\[fast\]::{failed[0]}: error \S+ -> \S+: changed \S+, \S+ x its resolution",
+                     out), out

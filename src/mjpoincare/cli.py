@@ -1,4 +1,5 @@
-"""``mjpoincare list | validate | bench | sweep | converge | stress | margins | tune | render``: the command line."""
+"""``mjpoincare list | validate | bench | sweep | converge | stress | margins | power | tune | render``: the command
+line."""
 
 from __future__ import annotations
 
@@ -7,9 +8,13 @@ import importlib.util
 import sys
 from collections.abc import Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from mjpoincare.parallel import machine_cores
-from mjpoincare.params import ParameterError, grid_syntax, parse_assignments
+from mjpoincare.params import ParameterError, Value, grid_syntax, parse_assignments
+
+if TYPE_CHECKING:
+    from mjpoincare.result import Result
 
 EXIT_PASS, EXIT_FAIL, EXIT_BAD_INPUT = 0, 1, 2
 
@@ -49,6 +54,12 @@ def _cmd_validate(args: argparse.Namespace) -> int:
     assignments = parse_assignments(args.set)
     check_output_path(args.json, "--json")  # before the inputs: resolving them self-tests the seam (a tiny rollout)
     check_output_path(args.report, "--report", directory=True)
+    if args.update_baseline and not args.baseline:
+        raise ParameterError("--update-baseline needs --baseline PATH (the file to record into)")
+    if args.baseline:
+        from mjpoincare import baseline
+
+        baseline.check_path(args.baseline, args.update_baseline)
     for name in names:  # refuse bad input before any simulation or file
         scenario, _, params, _ = resolve_inputs(name, assignments, args.preset)
         if args.peer:
@@ -81,6 +92,7 @@ def _cmd_validate(args: argparse.Namespace) -> int:
     if args.json:
         payload = results[0].to_dict() if len(results) == 1 else [r.to_dict() for r in results]
         write_json(payload, args.json)
+    changed = _compare_or_record_baseline(args, results, assignments) if args.baseline else []
     if args.report:
         from mjpoincare.report import write_index, write_report
 
@@ -91,7 +103,31 @@ def _cmd_validate(args: argparse.Namespace) -> int:
             paths.insert(0, write_index(pages, args.report))
         if args.json != "-":
             print("\n".join(f"report: {path}" for path in paths))
-    return EXIT_PASS if all(r.passed for r in results) else EXIT_FAIL
+    return EXIT_PASS if all(r.passed for r in results) and not changed else EXIT_FAIL
+
+
+def _compare_or_record_baseline(args: argparse.Namespace, results: list[Result], assignments: dict[str, Value]
+                                ) -> list[str]:
+    """With ``--update-baseline``: record each result with its resolution (the gate's perturbations, re-run) into
+    ``--baseline``, and return nothing; without: the lines of every check that moved beyond its resolution."""
+    from mjpoincare import baseline
+
+    out = sys.stderr if args.json == "-" else sys.stdout
+    if not args.update_baseline:
+        recorded = baseline.load(args.baseline)
+        lines = [d.message() for r in results for d in baseline.deviations(r, recorded)]
+        print("\n".join([f"baseline {args.baseline}: {len(lines)} change(s) beyond the resolution", *lines])
+              if lines else f"baseline {args.baseline}: no change beyond the resolution", file=out)
+        return lines
+    from mjpoincare.result import write_json
+    from mjpoincare.stamp import environment
+
+    previous = baseline.load(args.baseline) if Path(args.baseline).exists() else None
+    records = [(baseline.run_key(r), baseline.entry(r, baseline.perturbation_spreads(r, assignments)))
+               for r in results]
+    write_json(baseline.updated(previous, records, environment()), args.baseline)
+    print(f"baseline {args.baseline}: recorded {', '.join(key for key, _ in records)}", file=out)
+    return []
 
 
 def _select_still_backend() -> str | None:
@@ -247,6 +283,45 @@ def _cmd_margins(args: argparse.Namespace) -> int:
     return EXIT_PASS if all(r["holds"] for r in rows) else EXIT_FAIL
 
 
+def _cmd_power(args: argparse.Namespace) -> int:
+    from mjpoincare import gate, power
+    from mjpoincare.result import check_output_path, write_json
+
+    check_output_path(args.json, "--json")
+    if args.workers < 1:
+        raise ParameterError(f"--workers must be >= 1 (got {args.workers})")
+    cases = [c for c in power.default_cases() if not args.case or any(k in c.label for k in args.case)]
+    if not cases:
+        raise ParameterError("--case matches no case; cases: " + ", ".join(c.label for c in power.default_cases()))
+    chosen = [p for p in power.plants() if not args.change or p.change in ("none", *args.change)]
+    unknown_changes = set(args.change) - {p.change for p in power.plants()}
+    if unknown_changes:
+        raise ParameterError(f"--change must be among {', '.join(sorted({p.change for p in power.plants()}))} "
+                             f"(got {', '.join(sorted(unknown_changes))})")
+    power.committed_baseline()
+    stamp = None
+    if args.json:
+        from mjpoincare.stamp import environment
+
+        stamp = environment()
+    rows = power.power_rows(cases, chosen, args.workers)
+    if args.json != "-":
+        from mjpoincare.analysis.tables import text_table
+
+        print(text_table(("case", "change", "verdict", "by the tolerance", "by the baseline"),
+                         [(r["case"], power.Plant(r["change"], r["size"]).label, power.verdict(r),
+                           r["raised"] or ",".join(r["tolerance"]), ",".join(r["baseline"])) for r in rows]))
+    if stamp is not None:
+        import mujoco
+
+        from mjpoincare.analysis.checks import jsonable
+        from mjpoincare.baseline import MULTIPLE
+
+        write_json(jsonable({"mujoco_version": mujoco.__version__, "multiple": MULTIPLE, "margin": gate.MARGIN,
+                             "stamp": stamp, "rows": rows}), args.json)
+    return EXIT_PASS if power.holds(rows) else EXIT_FAIL
+
+
 def _cmd_tune(args: argparse.Namespace) -> int:
     from mjpoincare import scenarios
     from mjpoincare.result import check_output_path, write_json
@@ -325,6 +400,11 @@ def build_parser() -> argparse.ArgumentParser:
     val.add_argument("--json", metavar="PATH|-", help="write the result as JSON (- for stdout)")
     val.add_argument("--seed", type=int, default=0, help="seed of the bootstrap (same seed, same result)")
     val.add_argument("--report", metavar="DIR", help="write a self-contained HTML report per scenario into DIR")
+    val.add_argument("--baseline", metavar="PATH", help="compare each check's error with this baseline file's (exit "
+                     "1 on a change beyond 3 x its resolution, or a check missing or new; a file that does not exist "
+                     "is an error)")
+    val.add_argument("--update-baseline", action="store_true", help="record this run into --baseline instead (kept: "
+                     "its other runs), each check's resolution measured by re-running under the gate's perturbations")
     val.add_argument("--extrapolate", action="store_true", help="also run the timestep grids 2h and 4h and report "
                      "each scalar check's Richardson value and GCI band where its order is clean (not judged)")
     val.add_argument("--peer", choices=("drake",), help="add an outside simulator's value of each check (drake: "
@@ -413,6 +493,17 @@ def build_parser() -> argparse.ArgumentParser:
                          "at its baseline): all (default), none, or labels such as OPENBLAS_CORETYPE=Prescott")
     margins.add_argument("--workers", type=int, default=2, help="environment processes at once")
     margins.set_defaults(func=_cmd_margins)
+
+    pw = sub.add_parser("power", help="the gate's power: plant physics changes of known size (gravity, timestep, a "
+                        "body's mass and inertia, friction, solref, impratio, cone, integrator, a contact pair) into "
+                        "each scenario's default gate case; which checks catch them by tolerance and by baseline")
+    pw.add_argument("--case", action="append", default=[], metavar="TEXT", help="only cases whose label contains TEXT")
+    pw.add_argument("--change", action="append", default=[], metavar="CHANGE", help="only this change (repeatable; "
+                    "the unplanted control always runs)")
+    pw.add_argument("--json", metavar="PATH|-", help="write the rows as JSON (make power: "
+                    "docs/results/gate/power.json)")
+    pw.add_argument("--workers", type=int, default=2, help="planted runs at once (processes)")
+    pw.set_defaults(func=_cmd_power)
 
     tune = sub.add_parser("tune", help="search the simulator settings for the cheapest that pass at every coverage "
                           "point (Optuna, multi-objective: CPU seconds against the worst error/tolerance)")

@@ -3,7 +3,9 @@
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Iterator, Mapping
+from contextlib import contextmanager
+from contextvars import ContextVar
 from importlib import resources
 from importlib.abc import Traversable
 
@@ -14,6 +16,8 @@ from mjpoincare.settings import apply_unskip
 
 #: The package holding the MJCF files (``models/`` in the source tree, ``mjpoincare/mjcf/`` in a wheel).
 MODELS_PACKAGE = "mjpoincare.mjcf"
+#: An edit every compiled model gets in this context (:func:`planted`), None outside it.
+_PLANTED: ContextVar[Callable[[mujoco.MjModel], object] | None] = ContextVar("planted", default=None)
 #: The files the models ``<include>``, by the name they include them with (relative to the models' folder).
 INCLUDES = ("common/looks.xml",)
 
@@ -42,6 +46,22 @@ def compile_spec(spec: mujoco.MjSpec, settings: Mapping[str, Value] | None = Non
     if settings is not None:
         apply_unskip(spec, settings)
     try:
-        return spec.compile()
+        model = spec.compile()
     except ValueError as err:
         raise ParameterError(f"model {spec.modelname!r} does not compile: {str(err).splitlines()[0]}") from None
+    edit = _PLANTED.get()
+    if edit is not None:
+        edit(model)
+    return model
+
+
+@contextmanager
+def planted(edit: Callable[[mujoco.MjModel], object] | None) -> Iterator[None]:
+    """Within the block, every model :func:`compile_spec` compiles is passed to ``edit`` first (the gate's power
+    measurement plants physics changes this way, :mod:`mjpoincare.power`); None: no edit. Context-local: other
+    threads and the caller's state are untouched."""
+    token = _PLANTED.set(edit)
+    try:
+        yield
+    finally:
+        _PLANTED.reset(token)

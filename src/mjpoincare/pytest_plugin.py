@@ -4,6 +4,7 @@ Usage (the plugin is registered through the ``pytest11`` entry point ``mjpoincar
 
     pytest --mjpoincare rimless-wheel,compass-biped [--mjpoincare-preset fast]
            [--mjpoincare-set timestep=2e-4 ...] [--mjpoincare-seed 0]
+           [--mjpoincare-baseline PATH [--mjpoincare-update-baseline]]
 
 Each scenario gives one item per check of its :class:`~mjpoincare.result.Result`, node id
 ``mjpoincare::<scenario>::<check>`` (the ``stable`` check, divergence + MuJoCo warnings, included); every item
@@ -13,6 +14,14 @@ then the scenario / preset / seed / settings. Exit status is pytest's: 0 all pas
 4 bad input (unknown scenario, preset or ``--mjpoincare-set`` value: a one-line usage error naming the parameter
 and its bound, raised in ``pytest_configure`` before any simulation). Without ``--mjpoincare`` the plugin adds
 nothing and imports nothing beyond pytest (no MuJoCo, numpy or scipy); ``-p no:mjpoincare`` disables it.
+
+With ``--mjpoincare-baseline PATH`` (:mod:`mjpoincare.baseline`) an item also fails when its check's error moved
+from the one recorded in ``PATH`` for the same scenario, preset and parameters by more than its resolution allows
+(naming the old and new errors and the resolution), or when the check is missing from the run or from the baseline;
+a ``PATH`` that does not exist is a usage error. With ``--mjpoincare-update-baseline`` the runs are recorded into
+``PATH`` instead (whole, at the end of the session; its other runs kept), each check's resolution measured by
+re-running the scenario under the rounding perturbations, and the items judge the tolerances only (as
+syrupy's ``--snapshot-update``).
 
 How the items get into the session (pytest 8 and 9): a ``pytest_make_collect_report`` wrapper adds one collector
 per scenario to the *session's* collect report. pytest then expands those collectors exactly as it expands files:
@@ -55,6 +64,8 @@ class Request:
     preset: str | None
     seed: int
     assignments: dict[str, str]
+    baseline: str | None = None
+    update_baseline: bool = False
 
     def describe(self, scenario: str | None = None) -> str:
         """One line: scenario(s), preset, seed and the ``--mjpoincare-set`` values."""
@@ -65,6 +76,9 @@ class Request:
 
 _REQUEST = pytest.StashKey[Request]()
 _RESULTS = pytest.StashKey["dict[str, Result | Exception]"]()
+#: Per scenario: check name -> the baseline's complaint (compare mode), or the run's record (update mode).
+_CHANGES = pytest.StashKey["dict[str, dict[str, str]]"]()
+_RECORDS = pytest.StashKey["dict[str, dict[str, Any]]"]()
 
 
 def pytest_addoption(parser: pytest.Parser) -> None:
@@ -78,6 +92,10 @@ def pytest_addoption(parser: pytest.Parser) -> None:
                     help="set a parameter or simulator setting for every scenario (repeatable)")
     group.addoption("--mjpoincare-seed", type=int, default=None, metavar="SEED",
                     help="seed of the experiment design's random parts (default 0)")
+    group.addoption("--mjpoincare-baseline", default=None, metavar="PATH",
+                    help="also fail a check whose error moved beyond its resolution from this baseline's")
+    group.addoption("--mjpoincare-update-baseline", action="store_true", default=False,
+                    help="record the runs into --mjpoincare-baseline instead (resolution measured by re-running)")
 
 
 def pytest_configure(config: pytest.Config) -> None:
@@ -87,6 +105,8 @@ def pytest_configure(config: pytest.Config) -> None:
         return
     config.stash[_REQUEST] = request
     config.stash[_RESULTS] = {}
+    config.stash[_CHANGES] = {}
+    config.stash[_RECORDS] = {}
     config.addinivalue_line("markers", f"{MARKER}: an mjpoincare analytic check (added by --mjpoincare)")
 
 
@@ -96,9 +116,13 @@ def _parse_request(config: pytest.Config) -> Request | None:
     preset: str | None = config.getoption("mjpoincare_preset")
     sets: list[str] = config.getoption("mjpoincare_set")
     seed: int | None = config.getoption("mjpoincare_seed")
+    baseline: str | None = config.getoption("mjpoincare_baseline")
+    update: bool = config.getoption("mjpoincare_update_baseline")
     if not given:
         extra = [flag for flag, value in (("--mjpoincare-preset", preset), ("--mjpoincare-set", sets),
-                                          ("--mjpoincare-seed", seed)) if value is not None and value != []]
+                                          ("--mjpoincare-seed", seed), ("--mjpoincare-baseline", baseline),
+                                          ("--mjpoincare-update-baseline", update or None))
+                 if value is not None and value != []]
         if extra:
             raise pytest.UsageError(f"{', '.join(extra)} given without --mjpoincare SCENARIOS "
                                     "(nothing would be validated)")
@@ -112,8 +136,20 @@ def _parse_request(config: pytest.Config) -> Request | None:
         if "=" not in item or not item.partition("=")[0].strip():
             raise pytest.UsageError(f"--mjpoincare-set expects NAME=VALUE (got {item!r})")
 
+    if update and not baseline:
+        raise pytest.UsageError("--mjpoincare-update-baseline needs --mjpoincare-baseline PATH (the file to record "
+                                "into)")
+
     from mjpoincare.params import ParameterError, parse_assignments
     from mjpoincare.validation import resolve_inputs
+
+    if baseline:
+        from mjpoincare.baseline import check_path
+
+        try:
+            check_path(baseline, update, option="--mjpoincare-baseline")
+        except ParameterError as err:
+            raise pytest.UsageError(str(err)) from None
 
     try:
         assignments = parse_assignments(sets)
@@ -124,7 +160,7 @@ def _parse_request(config: pytest.Config) -> Request | None:
             resolve_inputs(name, assignments, preset)
         except ParameterError as err:
             raise pytest.UsageError(f"--mjpoincare {name}: {err}") from None
-    return Request(names, preset, 0 if seed is None else seed, assignments)
+    return Request(names, preset, 0 if seed is None else seed, assignments, baseline, update)
 
 
 def pytest_report_header(config: pytest.Config) -> str | None:
@@ -163,7 +199,44 @@ def _result(config: pytest.Config, scenario: str) -> Result | Exception:
             cache[scenario] = mjpoincare.validate(scenario, request.preset, request.seed, **request.assignments)
         except Exception as err:  # a crash becomes a failing item, not a collection error that stops the session
             cache[scenario] = err
+        else:
+            _against_baseline(config, scenario, cache[scenario])
     return cache[scenario]
+
+
+def _against_baseline(config: pytest.Config, scenario: str, result: Result) -> None:
+    """Compare ``result`` with the baseline (its complaints per check), or measure its record (update mode)."""
+    request = config.stash[_REQUEST]
+    if request.baseline is None:
+        return
+    from mjpoincare import baseline
+
+    if request.update_baseline:
+        config.stash[_RECORDS][baseline.run_key(result)] = baseline.entry(
+            result, baseline.perturbation_spreads(result, request.assignments))
+        return
+    changes = config.stash[_CHANGES].setdefault(scenario, {})
+    for deviation in baseline.deviations(result, baseline.load(request.baseline)):
+        names = [c.name for c in result.checks] if deviation.check == "*" else [deviation.check]
+        for name in names:
+            changes[name] = f"baseline {request.baseline}: {deviation.message()}"
+
+
+def pytest_sessionfinish(session: pytest.Session) -> None:
+    """In update mode, write the recorded runs into the baseline, whole (its other runs kept)."""
+    records = session.config.stash.get(_RECORDS, None)
+    if not records:
+        return
+    from pathlib import Path
+
+    from mjpoincare import baseline
+    from mjpoincare.result import write_json
+    from mjpoincare.stamp import environment
+
+    path = session.config.stash[_REQUEST].baseline
+    assert path is not None
+    previous = baseline.load(path) if Path(path).exists() else None
+    write_json(baseline.updated(previous, records.items(), environment()), path)
 
 
 class ScenarioCollector(pytest.Collector):
@@ -174,7 +247,9 @@ class ScenarioCollector(pytest.Collector):
         result = _result(self.config, self.name)
         if isinstance(result, Exception):
             return [RunErrorItem.from_parent(self, name="validate")]
-        return [CheckItem.from_parent(self, name=check.name) for check in result.checks]
+        names = [check.name for check in result.checks]
+        names += [name for name in self.config.stash[_CHANGES].get(self.name, {}) if name not in names]
+        return [CheckItem.from_parent(self, name=name) for name in names]
 
 
 class _MjpoincareItem(pytest.Item):
@@ -226,22 +301,36 @@ class CheckFailed(AssertionError):
         self.check = check
 
 
+class BaselineChanged(AssertionError):
+    """A check's error moved beyond its resolution from the baseline's, or one of the two lacks the check."""
+
+
 class CheckItem(_MjpoincareItem):
-    """One check of a scenario's cached result: passes when the check passed."""
+    """One check of a scenario's cached result: passes when the check passed and, against a baseline, did not move
+    beyond its resolution."""
 
     def runtest(self) -> None:
-        """Read the check from the cached result; raise :class:`CheckFailed` if it failed."""
+        """Read the check from the cached result; raise :class:`CheckFailed` if it failed, then
+        :class:`BaselineChanged` if it moved from the baseline."""
         result = _result(self.config, self.scenario)
         assert not isinstance(result, Exception)
-        check = next(c for c in result.checks if c.name == self.name)
+        change = self.config.stash[_CHANGES].get(self.scenario, {}).get(self.name)
+        check = next((c for c in result.checks if c.name == self.name), None)
+        if check is None:
+            raise BaselineChanged(change)
         self.user_properties.extend([("analytic", _fmt(check.analytic)), ("simulated", _fmt(check.simulated)),
                                      ("error", f"{_fmt(check.error)} {check.kind}"),
                                      ("tolerance", _fmt(check.tolerance)), ("unit", check.unit)])
         if not check.passed:
             raise CheckFailed(check)
+        if change is not None:
+            raise BaselineChanged(change)
 
     def repr_failure(self, excinfo: pytest.ExceptionInfo[BaseException], style: Any = None) -> Any:
-        """A failed check as its values, tolerance and reason (no traceback); other errors as usual."""
+        """A failed check as its values, tolerance and reason, a baseline change as its one line (no traceback);
+        other errors as usual."""
+        if isinstance(excinfo.value, BaselineChanged):
+            return CheckFailureRepr((str(excinfo.value),), _Crash(str(excinfo.value)))
         if not isinstance(excinfo.value, CheckFailed):
             return super().repr_failure(excinfo, style)
         result = _result(self.config, self.scenario)

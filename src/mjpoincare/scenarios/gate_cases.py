@@ -69,9 +69,9 @@ class Miss:
 
 @dataclass(frozen=True)
 class Watch:
-    """A check that passes without the gate's margin: asserted to stay within its tolerance plus ``spread``, the
-    largest change of its error over the ensemble of environments and perturbations that ``mjpoincare margins``
-    measured; ``why``: why it sits there (what sets its error at this preset)."""
+    """A check that passes without the gate's margin: asserted to stay within its tolerance in every environment of
+    the ensemble, its error's largest change there at most ``spread`` (what ``mjpoincare margins`` measured);
+    ``why``: why it sits there (what sets its error at this preset)."""
 
     check: str
     spread: float
@@ -83,7 +83,7 @@ class GateCase:
     """One validation run of the gate and what the tests assert of it.
 
     ``gated``: checks asserted to pass; ``misses``: checks asserted as strict expected misses; ``watched``: checks
-    asserted within their tolerance plus their spread. Together they name every check of the run
+    asserted within their tolerance. Together they name every check of the run
     (tests/test_gate.py).
     """
 
