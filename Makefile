@@ -90,7 +90,7 @@ margins: $(STAMP)
 	$(PYTHON) -m venv $(OLDEST)
 	$(OLDEST)/bin/python -m pip install --quiet --upgrade pip
 	$(OLDEST)/bin/python -m pip install --quiet "numpy==1.26.4" "scipy==1.11.4" -e .
-	$(OLDEST)/bin/mjpoincare margins --base-only --json renders/margins-oldest.json || true
+	$(OLDEST)/bin/mjpoincare margins --base-only --json renders/margins-oldest.json
 	$(BIN)/mjpoincare margins --compare renders/margins-oldest.json --json docs/results/gate/margins.json; \
 		status=$$?; $(BIN)/python -m mjpoincare.reports.gate_page && exit $$status
 
@@ -145,13 +145,15 @@ bench: $(STAMP)
 	$(BIN)/mjpoincare bench rimless-wheel
 
 # Gate a MuJoCo upgrade (or check an older one): a separate venv with that MuJoCo, the regression tests
-# (every scenario against its analytic values) and the default validation, saved as renders/gate-mujoco-V.json.
+# (every scenario against its analytic values, and the seam's self-tests), the rollout seam's tests and the default
+# validation, saved as renders/gate-mujoco-V.json.
 gate:
 	@test -n "$(MUJOCO)" || { echo "usage: make gate MUJOCO=<version>   e.g. make gate MUJOCO=3.3.7"; exit 2; }
 	$(PYTHON) -m venv .venv-mujoco-$(MUJOCO)
 	.venv-mujoco-$(MUJOCO)/bin/python -m pip install --quiet --upgrade pip
 	.venv-mujoco-$(MUJOCO)/bin/python -m pip install --quiet -e ".[dev]" "mujoco==$(MUJOCO)"
 	.venv-mujoco-$(MUJOCO)/bin/python -m pytest -q -m mujoco
+	.venv-mujoco-$(MUJOCO)/bin/python -m pytest -q tests/test_rollout_seam.py
 	.venv-mujoco-$(MUJOCO)/bin/mjpoincare validate --json renders/gate-mujoco-$(MUJOCO).json
 
 clean:

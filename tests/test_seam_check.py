@@ -1,27 +1,33 @@
 """The harness's self-tests: every seam mechanism works on the loaded MuJoCo (and on MJX and MuJoCo Warp where they
 are installed), a planted broken mechanism refuses the run with exit 2 and one line naming it, and every scenario
-declares each mechanism its controllers call."""
+declares each mechanism its controllers call. Marked ``mujoco``: the MuJoCo upgrade gate (``make gate``) runs them."""
 
 from __future__ import annotations
 
 import ast
 import importlib
 import inspect
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from types import ModuleType
 
 import mujoco
+import numpy as np
 import pytest
 from conftest import BACKEND_DISTRIBUTIONS, required_in_ci
 
 from mjpoincare import cli, seam_check
 from mjpoincare.backends import LACKS, REQUIRES, _importable
 from mjpoincare.backends.mujoco_c import MujocoBatch
+from mjpoincare.mjcompat import efc_diag_inverse_inertia
 from mjpoincare.scenarios import REGISTRY
 
-#: The seam method (or MuJoCo C field reader) each mechanism stands behind.
+pytestmark = pytest.mark.mujoco
+
+#: The seam method (or MuJoCo C field reader, or ``control=``: native control handed to a rollout) each mechanism
+#: stands behind.
 CALLS = {"set_contact": "contact", "set_eq_active": "equality", "set_friction": "friction",
-         "advance": "fractional_step", "set_actuator": "actuator", "efc_diag_inverse_inertia": "contact_fields"}
+         "advance": "fractional_step", "set_actuator": "actuator", "control=": "control",
+         "efc_diag_inverse_inertia": "contact_fields"}
 
 
 @pytest.fixture(autouse=True)
@@ -75,6 +81,87 @@ def test_a_mechanism_that_raises_is_a_refusal_not_a_traceback(monkeypatch: pytes
     assert "per-trajectory friction does not work" in capsys.readouterr().err
 
 
+_SET_CONTACT, _ADVANCE, _SET_ACTUATOR, _RUN_CHUNK = (MujocoBatch.set_contact, MujocoBatch.advance,
+                                                    MujocoBatch.set_actuator, MujocoBatch.run_chunk)
+
+
+def _contact_of_every_geom(self: MujocoBatch, index: int, geom: int, on: bool) -> None:
+    """Switches every geom of trajectory ``index``, not only ``geom``."""
+    for each in range(self.models[index].ngeom):
+        _SET_CONTACT(self, index, each, on)
+
+
+def _advance_of_trajectory_0(self: MujocoBatch, index: int, state: np.ndarray, seconds: float) -> np.ndarray:
+    """Steps with trajectory 0's model whatever ``index``."""
+    return _ADVANCE(self, 0, state, seconds)
+
+
+def _actuator_without_gear(self: MujocoBatch, index: int, actuator: int, *, bias: float | None = None,
+                           gear: float | None = None) -> None:
+    """Sets the bias force and leaves the gear as it was."""
+    _SET_ACTUATOR(self, index, actuator, bias=bias)
+
+
+def _chunk_without_control(self: MujocoBatch, nstep: int, control: np.ndarray | None = None) -> np.ndarray:
+    """Steps with no ctrl whatever ``control``."""
+    return _RUN_CHUNK(self, nstep)
+
+
+def _chunk_with_trajectory_0s_control(self: MujocoBatch, nstep: int, control: np.ndarray | None = None
+                                      ) -> np.ndarray:
+    """Steps every trajectory with trajectory 0's ctrl."""
+    return _RUN_CHUNK(self, nstep, None if control is None else np.repeat(control[:1], len(control), axis=0))
+
+
+def _chunk_with_first_step_control(self: MujocoBatch, nstep: int, control: np.ndarray | None = None) -> np.ndarray:
+    """Holds each trajectory's first ctrl over the whole chunk."""
+    return _RUN_CHUNK(self, nstep, None if control is None else np.repeat(control[:, :1], nstep, axis=1))
+
+
+#: Broken seam methods planted into MuJoCo C's batch, each with the mechanism whose self-test must refuse it and a
+#: scenario run that uses that mechanism (compass-biped-friction's Gait III: its PD reference is native control).
+PLANTED: dict[str, tuple[str, Callable[..., object], str, list[str]]] = {
+    "contact switched on every geom": ("set_contact", _contact_of_every_geom, "contact", ["compass-biped"]),
+    "fractional step ignoring the trajectory": ("advance", _advance_of_trajectory_0, "fractional_step",
+                                                ["slotted-skate"]),
+    "actuator ignoring the gear": ("set_actuator", _actuator_without_gear, "actuator", ["compass-biped"]),
+    "control ignored": ("run_chunk", _chunk_without_control, "control",
+                        ["compass-biped-friction", "--set", "gait=iii"]),
+    "trajectory 0's control for all": ("run_chunk", _chunk_with_trajectory_0s_control, "control",
+                                       ["compass-biped-friction", "--set", "gait=iii"]),
+    "first step's control held": ("run_chunk", _chunk_with_first_step_control, "control",
+                                  ["compass-biped-friction", "--set", "gait=iii"]),
+}
+
+
+@pytest.mark.parametrize("planted", list(PLANTED))
+def test_a_planted_break_refuses_the_scenario_that_uses_it(planted: str, monkeypatch: pytest.MonkeyPatch,
+                                                            capsys: pytest.CaptureFixture[str]) -> None:
+    """Each break is seen by its mechanism's self-test (which the unbroken seam passes), and the validation of a
+    scenario that declares the mechanism is refused with exit 2 and one line, nothing simulated."""
+    method, broken, key, run = PLANTED[planted]
+    monkeypatch.setattr(MujocoBatch, method, broken)
+    assert seam_check.failure(key) is not None  # seen before a validation that would simulate with it
+    assert key in REGISTRY[run[0]].mechanisms
+    seam_check.failure.cache_clear()
+    assert cli.main(["validate", *run]) == cli.EXIT_BAD_INPUT
+    out, err = capsys.readouterr()
+    assert out == ""  # nothing simulated, nothing reported
+    lines = err.strip().splitlines()
+    assert len(lines) == 1, lines
+    assert f"{seam_check.MECHANISMS[key].name} does not work on MuJoCo {mujoco.__version__}" in lines[0], lines[0]
+
+
+def test_a_contact_field_read_at_another_row_refuses_the_run(monkeypatch: pytest.MonkeyPatch,
+                                                             capsys: pytest.CaptureFixture[str]) -> None:
+    """A diagonal inverse inertia read one constraint row off (the bob's equality's for the ball, the ball's friction
+    row for the pebble) does not turn a resting ball's contact force into the acceleration g."""
+    monkeypatch.setattr(seam_check, "efc_diag_inverse_inertia",
+                        lambda data: np.roll(efc_diag_inverse_inertia(data), 1))
+    assert cli.main(["validate", "rimless-wheel-friction"]) == cli.EXIT_BAD_INPUT
+    assert "contact fields (normal force, diagonal inverse inertia) does not work" in capsys.readouterr().err
+
+
 def test_scenarios_without_the_broken_mechanism_still_run_its_self_test_only_when_declared(
         monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(MujocoBatch, "set_contact", lambda self, index, geom, on: None)
@@ -105,6 +192,7 @@ def _calls(module: ModuleType) -> set[str]:
         if isinstance(node, ast.Call):
             func = node.func
             names.add(func.attr if isinstance(func, ast.Attribute) else getattr(func, "id", ""))
+            names.update(f"{keyword.arg}=" for keyword in node.keywords if keyword.arg)
     return names
 
 

@@ -7,9 +7,13 @@ self-tests once per process, backend and precision; a mechanism that does not do
 naming the mechanism and the release), and no physics is reported from a harness that did not work.
 
 Each self-test is a physical observation with a margin of an order of magnitude, not a reading of the fields it
-wrote: a ball of 1 kg resting on a plane (its contact, friction and fields) and a bob on a vertical slide held by a
-joint equality and pushed by an affine actuator. Free fall over ``T = 0.05 s`` drops ``g T^2 / 2 = 12.3 mm``; a
-held body moves less than 1 mm in that time.
+wrote. The model: two balls resting on a plane, a 1 kg ball and a 0.1 kg pebble (two colliding pairs: their contacts,
+friction and fields), a bob on a vertical slide held by a joint equality, and a free 0.5 kg lift on a vertical slide
+with an affine actuator (its bias force and gear) and a motor (native control). Free fall over ``T = 0.05 s`` drops
+``g T^2 / 2 = 12.3 mm``; a held body moves less than 1 mm in that time. Every self-test steps
+:data:`TRAJECTORIES` trajectories that its events set apart (which ball is released, the friction coefficient, the
+fraction of a step, the gear, the control), so that a mechanism that acts on the wrong trajectory or geom, or drops
+an argument, is seen.
 """
 
 from __future__ import annotations
@@ -33,13 +37,25 @@ STEPS = 50
 TIMESTEP = 1e-3
 #: Free fall over the observation, m.
 FREE_FALL = 0.5 * GRAVITY * (STEPS * TIMESTEP) ** 2
-#: A body the seam holds (contact, equality on) moves less than this, m (a tenth of the free fall).
+#: A body the seam holds (contact, equality, actuator on) moves less than this, m (a tenth of the free fall).
 HELD = 0.1 * FREE_FALL
 #: What agrees exactly agrees to this many machine epsilons of the backend's precision (times of at most 1 s, speeds
-#: of at most 1 m/s, a 1 kg body's inverse inertia): rounding, never a missing or wrong mechanism.
+#: of at most 1 m/s): rounding, never a missing or wrong mechanism.
 EXACT = 64.0
-#: Radius of the ball, m.
+#: Radius of both balls, m.
 RADIUS = 0.1
+#: Masses of the ball and the pebble, kg: a decade apart, so that a contact field read at the other contact's rows
+#: is off by a factor of ten.
+BALL, PEBBLE = 1.0, 0.1
+#: How deep a resting ball starts pressed into the plane, m.
+PRESS = 1e-4
+#: Masses of the bob and the lift, kg, so that the bodies add up to 2 kg: Drake's contact stiffness is built on the
+#: moving mass (:mod:`mjpoincare.backends.drake_plant`), and its contact release is measured at that (docs/engines.md).
+BOB, LIFT = 0.4, 0.5
+#: The lift's weight, N.
+WEIGHT = LIFT * GRAVITY
+#: Trajectories of every self-test: one shape, so that MJX and MuJoCo Warp compile one chunk for them all.
+TRAJECTORIES = 3
 
 _MODEL = f"""
 <mujoco model="seam self-test">
@@ -49,22 +65,37 @@ _MODEL = f"""
     <body name="ball" pos="0 0 {RADIUS}">
       <joint name="ball_x" type="slide" axis="1 0 0"/>
       <joint name="ball_z" type="slide" axis="0 0 1"/>
-      <geom name="ball" type="sphere" size="{RADIUS}" mass="1" contype="1" conaffinity="0" condim="3"
+      <geom name="ball" type="sphere" size="{RADIUS}" mass="{BALL}" contype="1" conaffinity="0" condim="3"
+            friction="1 0 0"/>
+    </body>
+    <body name="pebble" pos="1 0 {RADIUS}">
+      <joint name="pebble_x" type="slide" axis="1 0 0"/>
+      <joint name="pebble_z" type="slide" axis="0 0 1"/>
+      <geom name="pebble" type="sphere" size="{RADIUS}" mass="{PEBBLE}" contype="1" conaffinity="0" condim="3"
             friction="1 0 0"/>
     </body>
     <body name="bob" pos="2 0 1">
       <joint name="bob_z" type="slide" axis="0 0 1"/>
-      <geom name="bob" type="sphere" size="0.05" mass="1" contype="0" conaffinity="0"/>
+      <geom name="bob" type="sphere" size="0.05" mass="{BOB}" contype="0" conaffinity="0"/>
+    </body>
+    <body name="lift" pos="3 0 1">
+      <joint name="lift_z" type="slide" axis="0 0 1"/>
+      <geom name="lift" type="sphere" size="0.05" mass="{LIFT}" contype="0" conaffinity="0"/>
     </body>
   </worldbody>
   <equality>
     <joint name="hold" joint1="bob_z"/>
   </equality>
   <actuator>
-    <general name="push" joint="bob_z" gaintype="fixed" gainprm="0" biastype="affine" biasprm="0 0 0"/>
+    <general name="push" joint="lift_z" gaintype="fixed" gainprm="0" biastype="affine" biasprm="0 0 0"/>
+    <general name="drive" joint="lift_z" gaintype="fixed" gainprm="0"/>
   </actuator>
 </mujoco>
 """
+
+
+#: Opens a batch of the backend under test over a model and its starts (B, nstate).
+Opener = Callable[[mujoco.MjModel, np.ndarray], Batch]
 
 
 class MechanismFailed(ParameterError):
@@ -77,145 +108,223 @@ class Mechanism:
 
     Attributes:
         name: what the mechanism is, as the refusal names it.
-        test: ``(batch opener, eps) -> None`` when it works, or what went wrong, in a few words with the numbers
+        test: ``(opener, eps) -> None`` when it works, or what went wrong, in a few words with the numbers
             (``eps``: the machine epsilon of the backend's precision, which scales the exact comparisons).
         c_only: the mechanism reads MuJoCo C's ``mjData`` whatever the backend (a check's field), so it is tested on
             MuJoCo C.
     """
 
     name: str
-    test: Callable[[Callable[[np.ndarray], Batch], float], str | None]
+    test: Callable[[Opener, float], str | None]
     c_only: bool = False
 
 
 def self_test_model() -> mujoco.MjModel:
-    """The self-tests' model (ball on a plane, a held bob with an actuator)."""
+    """The self-tests' model (a ball and a pebble on a plane, a held bob, a lift with an affine actuator and a
+    motor whose gain is 0: Drake refuses a model with an actuator that makes a force, and the control self-test
+    sets it)."""
     return mujoco.MjModel.from_xml_string(_MODEL)
 
 
-def _starts(model: mujoco.MjModel, count: int = 2, *, ball_z: float = RADIUS - 1e-4, ball_vx: float = 0.0
-            ) -> np.ndarray:
-    """``count`` identical starts (every test steps two trajectories for the same number of steps, so that MJX and
-    MuJoCo Warp compile one chunk for them all): the ball pressed 0.1 mm into the plane (sliding at ``ball_vx``),
-    the bob held."""
-    qpos = np.tile([0.0, ball_z - RADIUS, 0.0], (count, 1))  # slide joints measure from the body's position
-    qvel = np.tile([ball_vx, 0.0, 0.0], (count, 1))
+def _starts(model: mujoco.MjModel, *, height: float = -PRESS, speed: float = 0.0) -> np.ndarray:
+    """:data:`TRAJECTORIES` identical starts: both balls' lowest points ``height`` above the plane (pressed
+    :data:`PRESS` into it by default), sliding along it at ``speed``; the bob and the lift at rest."""
+    qpos = np.zeros((TRAJECTORIES, model.nq))
+    qvel = np.zeros((TRAJECTORIES, model.nv))
+    for ball in ("ball", "pebble"):  # slide joints measure from the body's position
+        qpos[:, model.joint(f"{ball}_z").qposadr[0]] = height
+        qvel[:, model.joint(f"{ball}_x").dofadr[0]] = speed
     return initial_states(model, qpos, qvel)
 
 
-def _drop(batch: Batch, qpos: int) -> np.ndarray:
-    """How far each trajectory's coordinate ``qpos`` falls over one observation, m (B,)."""
+def _coordinate(model: mujoco.MjModel, joint: str) -> int:
+    """Column of joint ``joint``'s coordinate in a recorded state (time first)."""
+    return 1 + int(model.joint(joint).qposadr[0])
+
+
+def _speed(model: mujoco.MjModel, joint: str) -> int:
+    """Column of joint ``joint``'s speed in a recorded state."""
+    return 1 + model.nq + int(model.joint(joint).dofadr[0])
+
+
+def _drops(batch: Batch, columns: list[int]) -> np.ndarray:
+    """How far each trajectory's coordinates ``columns`` fall over one observation, m (B, k)."""
     chunk = batch.run_chunk(STEPS)
-    return chunk[:, 0, 1 + qpos] - chunk[:, -1, 1 + qpos]
+    return chunk[:, 0, columns] - chunk[:, -1, columns]
 
 
-def _rollout(opener: Callable[[np.ndarray], Batch], eps: float) -> str | None:
+def _mm(values: np.ndarray) -> list:
+    """Lengths ``values``, m, in mm to the micrometre (for a message)."""
+    return np.round(np.asarray(values) * 1e3, 3).tolist()
+
+
+def _rollout(opener: Opener, eps: float) -> str | None:
     model = self_test_model()
-    start = _starts(model, 2, ball_z=1.0)  # in the air
-    with opener(start) as batch:
+    z = _coordinate(model, "ball_z")
+    start = _starts(model, height=1.0)  # in the air
+    with opener(model, start) as batch:
         first = batch.run_chunk(STEPS)
-        batch.set_states(np.array([1]), start[1:])  # trajectory 1 starts again, trajectory 0 goes on
+        batch.set_states(np.array([1]), start[1:2])  # trajectory 1 starts again, trajectories 0 and 2 go on
         second = batch.run_chunk(STEPS)
-    ticks = np.diff(np.concatenate([first[:, :, 0], second[:, 1:, 0]], axis=1), axis=1)
-    if not (np.abs(ticks[0] - TIMESTEP) < EXACT * eps).all():  # rounding of times near 0.1 s
-        return f"recorded times advance by {ticks[0].min():.6g}-{ticks[0].max():.6g} s per step, not the timestep"
-    drop = first[0, 0, 2] - first[0, -1, 2]
-    again = second[1, 0, 2] - second[1, -1, 2]
-    if not (abs(drop - FREE_FALL) < 0.05 * FREE_FALL and abs(again - drop) < EXACT * eps
-            and second[0, 0, 2] == first[0, -1, 2]):
-        return (f"a falling ball dropped {drop * 1e3:.4g} mm (free fall {FREE_FALL * 1e3:.4g}), "
-                f"{again * 1e3:.4g} mm after its state was set back")
+    ticks = np.concatenate([np.diff(first[:, :, 0]), np.diff(second[:, :, 0])], axis=1)
+    if not (np.abs(ticks - TIMESTEP) < EXACT * eps).all():  # rounding of times near 0.1 s
+        return f"recorded times advance by {ticks.min():.6g}-{ticks.max():.6g} s per step, not the timestep"
+    drop = first[:, 0, z] - first[:, -1, z]
+    again = second[1, 0, z] - second[1, -1, z]
+    went_on = (second[[0, 2], 0] == first[[0, 2], -1]).all()
+    if not ((np.abs(drop - FREE_FALL) < 0.05 * FREE_FALL).all() and abs(again - drop[1]) < EXACT * eps and went_on):
+        return (f"falling balls dropped {_mm(drop)} mm (free fall {FREE_FALL * 1e3:.4g}), the one set back to its "
+                f"start {again * 1e3:.4g} mm, the others {'went on' if went_on else 'were moved'}")
     return None
 
 
-def _release_and_restore(opener: Callable[[np.ndarray], Batch], switch: Callable[[Batch, bool], None], qpos: int,
-                         what: str) -> str | None:
-    """Trajectory 1's ``switch`` off: its body (coordinate ``qpos``) falls freely while trajectory 0's stays held;
-    switched on again and both set back to the start, both stay held."""
-    with opener(_starts(self_test_model())) as batch:
+def _release_and_restore(opener: Opener, switch: Callable[[Batch, bool], None],
+                         joints: tuple[str, ...], falls: np.ndarray, what: str) -> str | None:
+    """``switch`` off releases, in each trajectory, the bodies (on the vertical slides ``joints``) that ``falls``
+    (B, k) marks: each of them falls freely over an observation while every other stays held; switched on again and
+    all set back to the start, every body stays held."""
+    model = self_test_model()
+    columns = [_coordinate(model, joint) for joint in joints]
+    with opener(model, _starts(model)) as batch:
         start = batch.states()
         switch(batch, False)
-        released = _drop(batch, qpos)
+        released = _drops(batch, columns)
         switch(batch, True)
-        batch.set_states(np.arange(2), start)
-        restored = _drop(batch, qpos)
-    if not abs(released[1] - FREE_FALL) < 0.1 * FREE_FALL:
-        return (f"a released {what} fell {released[1] * 1e3:.3g} mm in {STEPS * TIMESTEP:g} s "
+        batch.set_states(np.arange(TRAJECTORIES), start)
+        restored = _drops(batch, columns)
+    if not (np.abs(released[falls] - FREE_FALL) < 0.1 * FREE_FALL).all():
+        return (f"{what}: the released ones fell {_mm(released[falls])} mm in {STEPS * TIMESTEP:g} s "
                 f"(free fall {FREE_FALL * 1e3:.3g})")
-    if not (abs(released[0]) < HELD and abs(restored).max() < HELD):
-        return f"a held (or restored) {what} moved {max(abs(released[0]), abs(restored).max()) * 1e3:.3g} mm"
+    moved = max(np.abs(released[~falls]).max(), np.abs(restored).max())
+    if not moved < HELD:
+        return (f"{what}: a held (or restored) one moved {moved * 1e3:.3g} mm (drops by trajectory and body "
+                f"{_mm(released)}, restored {_mm(restored)})")
     return None
 
 
-def _contact_release(opener: Callable[[np.ndarray], Batch], eps: float) -> str | None:
-    ball = self_test_model().geom("ball").id
-    return _release_and_restore(opener, lambda batch, on: batch.set_contact(1, ball, on), 1,
-                                "ball resting on a plane (its contact)")
+def _contact_release(opener: Opener, eps: float) -> str | None:
+    model = self_test_model()
+    ball, pebble = model.geom("ball").id, model.geom("pebble").id
+
+    def switch(batch: Batch, on: bool) -> None:
+        batch.set_contact(1, ball, on)
+        batch.set_contact(2, pebble, on)
+
+    falls = np.array([[False, False], [True, False], [False, True]])
+    return _release_and_restore(opener, switch, ("ball_z", "pebble_z"), falls,
+                                "balls resting on a plane (trajectory 1 releases the ball's contact, 2 the pebble's)")
 
 
-def _equality_toggle(opener: Callable[[np.ndarray], Batch], eps: float) -> str | None:
+def _equality_toggle(opener: Opener, eps: float) -> str | None:
     hold = self_test_model().equality("hold").id
-    return _release_and_restore(opener, lambda batch, on: batch.set_eq_active(1, hold, on), 2,
-                                "bob held by a joint equality")
+    return _release_and_restore(opener, lambda batch, on: batch.set_eq_active(1, hold, on), ("bob_z",),
+                                np.array([[False], [True], [False]]),
+                                "bobs held by a joint equality (trajectory 1 releases it)")
 
 
-def _friction(opener: Callable[[np.ndarray], Batch], eps: float) -> str | None:
+def _friction(opener: Opener, eps: float) -> str | None:
     model = self_test_model()
-    mus = (0.1, 0.5)
-    with opener(_starts(model, 2, ball_vx=1.0)) as batch:
+    mus = np.array([0.05, 0.2, 0.8])  # a factor of 4 apart: a coefficient set in another trajectory is seen
+    columns = [_speed(model, "ball_x"), _speed(model, "pebble_x")]
+    with opener(model, _starts(model, speed=1.0)) as batch:
         for index, mu in enumerate(mus):
-            batch.set_friction(index, mu)
+            batch.set_friction(index, float(mu))
         chunk = batch.run_chunk(STEPS)
-    lost = chunk[:, 0, 1 + model.nq] - chunk[:, -1, 1 + model.nq]  # the ball's x speed lost to friction, m/s
-    expected = np.array(mus) * GRAVITY * STEPS * TIMESTEP
+    lost = chunk[:, 0, columns] - chunk[:, -1, columns]  # each ball's speed lost to friction, m/s (B, 2)
+    expected = mus[:, None] * GRAVITY * STEPS * TIMESTEP
     if not (np.abs(lost - expected) < 0.25 * expected).all():
-        return (f"balls sliding at mu {mus} lost {np.round(lost, 4).tolist()} m/s in {STEPS * TIMESTEP:g} s "
-                f"(Coulomb: {np.round(expected, 4).tolist()})")
+        return (f"a ball and a pebble sliding at mu {mus.tolist()} lost {np.round(lost, 4).tolist()} m/s in "
+                f"{STEPS * TIMESTEP:g} s (Coulomb: {np.round(expected[:, 0], 4).tolist()})")
     return None
 
 
-def _fractional_step(opener: Callable[[np.ndarray], Batch], eps: float) -> str | None:
+def _fractional_step(opener: Opener, eps: float) -> str | None:
+    """Each trajectory's own fraction of a step with its own model: trajectory k's lift is pushed up by a bias force of
+    k/2 its weight (through the actuator: a broken actuator fails this too), so over a step of ``h`` its speed changes
+    by exactly ``(k/2 - 1) g h``."""
     model = self_test_model()
-    start = _starts(model, 2, ball_z=1.0)  # in the air
-    with opener(start) as batch:
-        fraction = 0.3 * batch.timestep
-        after = batch.advance(0, start[0], fraction)
+    push, vz = model.actuator("push").id, _speed(model, "lift_z")
+    support = np.arange(TRAJECTORIES) / 2.0  # of the weight
+    start = _starts(model)
+    with opener(model, start) as batch:
+        for index in range(1, TRAJECTORIES):
+            batch.set_actuator(index, push, bias=float(support[index]) * WEIGHT)
+        fractions = np.array([0.2, 0.5, 0.8]) * batch.timestep
+        after = np.array([batch.advance(index, start[index], float(fractions[index]))
+                          for index in range(TRAJECTORIES)])
         full = batch.run_chunk(STEPS)
-    dt, vz = after[0] - start[0, 0], after[1 + model.nq + 1] - start[0, 1 + model.nq + 1]
-    if not (abs(dt - fraction) < EXACT * eps and abs(vz + GRAVITY * fraction) < EXACT * eps):
-        return (f"a step of {fraction:g} s advanced the time by {dt:.6g} s and the falling ball's speed by "
-                f"{vz:.6g} m/s (expected {-GRAVITY * fraction:.6g})")
-    if not abs(full[0, 1, 0] - full[0, 0, 0] - TIMESTEP) < EXACT * eps:
-        return f"the step after a fractional step lasted {full[0, 1, 0] - full[0, 0, 0]:.6g} s, not the timestep"
+    dt, gained = after[:, 0] - start[:, 0], after[:, vz] - start[:, vz]
+    expected = (support - 1.0) * GRAVITY * fractions
+    if not ((np.abs(dt - fractions) < EXACT * eps).all() and (np.abs(gained - expected) < EXACT * eps).all()):
+        return (f"steps of {np.round(fractions, 6).tolist()} s advanced the times by {np.round(dt, 6).tolist()} s "
+                f"and the speeds of lifts held up by (0, 1/2, 1) x their weight by {np.round(gained, 6).tolist()} m/s "
+                f"(expected {np.round(expected, 6).tolist()})")
+    ticks = full[:, 1, 0] - full[:, 0, 0]
+    if not (np.abs(ticks - TIMESTEP) < EXACT * eps).all():
+        return f"the steps after fractional steps lasted {ticks.tolist()} s, not the timestep"
     return None
 
 
-def _actuator(opener: Callable[[np.ndarray], Batch], eps: float) -> str | None:
+def _actuator(opener: Opener, eps: float) -> str | None:
+    """Trajectory 1's lift is held up by a bias force of minus its weight through a gear of -1, trajectory 2's by half
+    its weight through a gear of 2 (set before the bias, which must keep it); trajectory 0's falls freely."""
     model = self_test_model()
-    hold, push = model.equality("hold").id, model.actuator("push").id
-    with opener(_starts(model, 2)) as batch:
-        for index in range(2):
-            batch.set_eq_active(index, hold, False)
-        batch.set_actuator(1, push, bias=GRAVITY, gear=1.0)  # trajectory 1's bob is held up by its actuator
-        drops = _drop(batch, 2)
-    if not (abs(drops[0] - FREE_FALL) < 0.1 * FREE_FALL and abs(drops[1]) < HELD):
-        return (f"a bob with a bias force of its weight fell {drops[1] * 1e3:.3g} mm, one without "
-                f"{drops[0] * 1e3:.3g} mm (free fall {FREE_FALL * 1e3:.3g})")
+    push = model.actuator("push").id
+    with opener(model, _starts(model)) as batch:
+        batch.set_actuator(1, push, bias=-WEIGHT, gear=-1.0)
+        batch.set_actuator(2, push, gear=2.0)
+        batch.set_actuator(2, push, bias=0.5 * WEIGHT)
+        drops = _drops(batch, [_coordinate(model, "lift_z")])[:, 0]
+    if not (abs(drops[0] - FREE_FALL) < 0.1 * FREE_FALL and (np.abs(drops[1:]) < HELD).all()):
+        return (f"lifts with bias forces (-1, 1/2) x their weight through gears (-1, 2) fell {_mm(drops[1:])} mm, "
+                f"one without {drops[0] * 1e3:.3g} mm (free fall {FREE_FALL * 1e3:.3g})")
     return None
 
 
-def _contact_fields(opener: Callable[[np.ndarray], Batch], eps: float) -> str | None:
+def _control(opener: Opener, eps: float) -> str | None:
+    """Native control, per trajectory and per step: trajectory 0's lift gets no force and falls freely, trajectory
+    1's its weight throughout and stays held, trajectory 2's twice its weight for the first half of the steps and
+    none for the second, so it rises by half the free fall and comes to rest."""
+    model = self_test_model()
+    control = np.zeros((TRAJECTORIES, STEPS, model.nu))
+    drive = model.actuator("drive").id
+    model.actuator_gainprm[drive, 0] = 1.0  # 1 N per unit of ctrl
+    control[1, :, drive] = WEIGHT
+    control[2, : STEPS // 2, drive] = 2.0 * WEIGHT
+    z, vz = _coordinate(model, "lift_z"), _speed(model, "lift_z")
+    with opener(model, _starts(model)) as batch:
+        chunk = batch.run_chunk(STEPS, control)
+    drops, speed = chunk[:, 0, z] - chunk[:, -1, z], chunk[2, -1, vz]
+    if not (abs(drops[0] - FREE_FALL) < 0.1 * FREE_FALL and abs(drops[1]) < HELD
+            and abs(drops[2] + 0.5 * FREE_FALL) < HELD and abs(speed) < 0.1 * GRAVITY * STEPS * TIMESTEP):
+        return (f"lifts driven by (0, 1, 2 then 0) x their weight fell {_mm(drops)} mm (free fall "
+                f"{FREE_FALL * 1e3:.3g}, held, rising {0.5 * FREE_FALL * 1e3:.3g}), the last ending at {speed:.3g} m/s "
+                "(at rest)")
+    return None
+
+
+def _contact_fields(opener: Opener, eps: float) -> str | None:
+    """The ball and the pebble settled on the plane: each contact's normal force (``efc_force`` at its
+    ``efc_address``) is its body's weight, and the diagonal inverse inertia of that row times that force is the
+    acceleration it gives the body, g (a translating body's inverse inertia is 1/m in every direction)."""
     del opener, eps  # read from MuJoCo C's mjData in float64, whatever the backend
     model = self_test_model()
     data = mujoco.MjData(model)
     mujoco.mj_setState(model, data, _starts(model)[0], STATE_SPEC)
+    for _ in range(STEPS):
+        mujoco.mj_step(model, data)
     mujoco.mj_forward(model, data)
-    if data.ncon != 1:
-        return f"a ball pressed into a plane has {data.ncon} contacts, not 1"
-    diag = float(efc_diag_inverse_inertia(data)[data.contact[0].efc_address])
-    expected = float(model.body_invweight0[model.body("ball").id, 0])  # MuJoCo's translational inverse weight
-    if not abs(diag - expected) <= EXACT * np.finfo(float).eps * expected:
-        return f"the contact's diagonal inverse inertia reads {diag:.6g} 1/kg, not the body's {expected:.6g}"
+    diag = efc_diag_inverse_inertia(data)
+    for name, mass in (("ball", BALL), ("pebble", PEBBLE)):
+        touching = np.flatnonzero((data.contact.geom == model.geom(name).id).any(axis=1))
+        if touching.size != 1:
+            return f"the resting {name} has {touching.size} contacts with the plane, not 1"
+        address = int(data.contact.efc_address[touching[0]])
+        force, inverse = float(data.efc_force[address]), float(diag[address])
+        if not (abs(force / (mass * GRAVITY) - 1.0) < 0.1 and abs(inverse * force / GRAVITY - 1.0) < 0.1):
+            return (f"the resting {name}'s ({mass:g} kg) contact pushes with {force:.4g} N (its weight "
+                    f"{mass * GRAVITY:.4g}), and its diagonal inverse inertia {inverse:.4g} 1/kg gives that force an "
+                    f"acceleration of {inverse * force:.4g} m/s^2 (g {GRAVITY:g})")
     return None
 
 
@@ -227,7 +336,9 @@ MECHANISMS: dict[str, Mechanism] = {
     "friction": Mechanism(name="per-trajectory friction", test=_friction),
     "fractional_step": Mechanism(name="fractional steps", test=_fractional_step),
     "actuator": Mechanism(name="per-trajectory actuator force", test=_actuator),
-    "contact_fields": Mechanism(name="contact fields (diagonal inverse inertia)", test=_contact_fields, c_only=True),
+    "control": Mechanism(name="native control", test=_control),
+    "contact_fields": Mechanism(name="contact fields (normal force, diagonal inverse inertia)", test=_contact_fields,
+                                c_only=True),
 }
 
 
@@ -240,8 +351,8 @@ def failure(key: str, backend: str = "mujoco", precision: str = "float64") -> st
         backend, precision = "mujoco", "float64"
     eps = float(np.finfo(np.float32 if precision == "float32" else np.float64).eps)
 
-    def opener(state0: np.ndarray) -> Batch:
-        return open_batch(self_test_model(), state0, threads=1, backend=backend, precision=precision)
+    def opener(model: mujoco.MjModel, state0: np.ndarray) -> Batch:
+        return open_batch(model, state0, threads=1, backend=backend, precision=precision)
 
     try:
         return mechanism.test(opener, eps)

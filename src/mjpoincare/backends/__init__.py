@@ -24,7 +24,7 @@ UNSUPPORTED: dict[str, dict[tuple[str, Value], str]] = {
 }
 #: The seam mechanisms (keys of :data:`mjpoincare.seam_check.MECHANISMS`) whose self-tests fail on each backend, so
 #: that every run of a scenario that uses one is refused before any simulation (Drake: docs/engines.md says why).
-LACKS: dict[str, tuple[str, ...]] = {"drake": ("contact", "equality", "actuator", "fractional_step")}
+LACKS: dict[str, tuple[str, ...]] = {"drake": ("contact", "equality", "actuator", "control", "fractional_step")}
 #: The packages each backend needs, and the extra that installs them.
 REQUIRES = {"mjx": (("jax", "mujoco.mjx"), "mjpoincare[mjx]"), "warp": (("warp", "mujoco_warp"), "mjpoincare[warp]"),
             "drake": (("pydrake",), "mjpoincare[peers]")}
