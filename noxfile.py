@@ -2,7 +2,8 @@
 
     nox -s "release(mujoco='3.3.7')"          the history's runs on MuJoCo 3.3.7 (make releases runs them all)
     nox -s release_point -- 3.3.5 [ARGS]      the same on any release, for python -m mjpoincare.releases bisect
-    nox -s oldest                             the default validation on the oldest MuJoCo admitted (CI)
+    nox -s oldest                             every built-in scenario's default validation on the oldest MuJoCo
+                                              admitted (CI)
 
 Each session installs the checkout (editable, so that its runs are stamped with the git commit) and one MuJoCo
 release into its own environment, every other dependency pinned by requirements/lock.txt (so that a change between
@@ -16,7 +17,7 @@ from pathlib import Path
 
 import nox
 
-from mjpoincare.releases import OLDEST, RELEASES
+from mjpoincare.releases import OLDEST, RELEASES, history_scenarios
 
 nox.options.default_venv_backend = "uv"
 nox.options.reuse_existing_virtualenvs = True
@@ -55,10 +56,11 @@ def release_point(session: nox.Session) -> None:
 
 @nox.session
 def oldest(session: nox.Session) -> None:
-    """The default validation on the oldest MuJoCo that pyproject.toml admits, installed from the checkout as a
-    package, run from an empty directory: it must exit 0."""
+    """The default validation of every built-in scenario (the release history's, not only the default scenarios) on
+    the oldest MuJoCo that pyproject.toml admits, installed from the checkout as a package, run from an empty
+    directory: it must exit 0."""
     _install(session, OLDEST, editable=False)
     session.run("python", "-c", f"import mujoco; assert mujoco.__version__ == {OLDEST!r}, mujoco.__version__")
     with tempfile.TemporaryDirectory() as empty:
         session.chdir(empty)
-        session.run("mjpoincare", "validate")
+        session.run("mjpoincare", "validate", *history_scenarios())

@@ -1,10 +1,14 @@
 """The MuJoCo release history: the range pyproject.toml admits is the history's, the committed page re-renders byte
-for byte from its JSON and covers every minor line, a change is real only beyond its spread, and a bisection finds
-the first patch release of a change (on a synthetic index: no simulation here)."""
+for byte from its JSON and covers every minor line, a change is real only beyond three spreads and roundoff (the
+page's real changes recomputed from the JSON's raw values), and a bisection finds the first patch release of a
+change (on a synthetic index: no simulation here)."""
 
 from __future__ import annotations
 
+import importlib.util
+import itertools
 import json
+import math
 import re
 import subprocess
 from pathlib import Path
@@ -12,11 +16,14 @@ from typing import Any
 
 import pytest
 
-from mjpoincare import releases, scenarios
+from mjpoincare import baseline, gate, releases, scenarios
 from mjpoincare.params import ParameterError
 
 ROOT = Path(__file__).resolve().parent.parent
 PAYLOADS = releases.load(ROOT / releases.OUT)
+#: The rule the page states, written out again: a change is real beyond MULTIPLE times the larger spread and beyond
+#: ROUNDOFF of max(1, the larger magnitude of the two values).
+MULTIPLE, ROUNDOFF = 3.0, 1e-12
 
 
 def test_the_range_pyproject_admits_starts_at_the_oldest_release_of_the_history() -> None:
@@ -45,11 +52,48 @@ def test_committed_page_reproduces_from_its_json_and_covers_the_history() -> Non
     page = ROOT / releases.PAGE
     assert page.read_text() == releases.render(PAYLOADS), f"{page} is stale: run make releases-render"
     assert [p["mujoco"] for p in PAYLOADS] == list(releases.RELEASES)
+    built_in = releases.history_scenarios()
+    held = {r["scenario"] for p in PAYLOADS for r in p["runs"]}
+    assert set(scenarios.DEFAULT_SCENARIOS) <= held <= set(built_in)
+    if missing := [n for n in built_in if n not in held]:  # named on the page until make releases runs them
+        assert f"Not in this history yet: {', '.join(missing)} " in page.read_text()
     for payload in PAYLOADS:
         presets = {"fast", "accurate"} if payload["mujoco"] in releases.ACCURATE_ON else {"fast"}
         ran = {(r["scenario"], r["preset"]) for r in payload["runs"]}
-        assert ran == {(n, p) for n in scenarios.DEFAULT_SCENARIOS for p in presets}, payload["mujoco"]
+        assert ran == {(n, p) for n in held for p in presets}, payload["mujoco"]
         assert payload["environment"]["mujoco"] == payload["mujoco"]
+
+
+def test_the_history_and_the_oldest_job_run_every_built_in_scenario(monkeypatch: pytest.MonkeyPatch,
+                                                                    tmp_path: Path) -> None:
+    """Not only the default validation's scenarios: the registry's, the biped with friction among them."""
+    built_in = releases.history_scenarios()
+    assert set(scenarios.DEFAULT_SCENARIOS) | {"compass-biped-friction"} <= set(built_in)
+    monkeypatch.chdir(ROOT)
+    spec = importlib.util.spec_from_file_location("noxfile", ROOT / "noxfile.py")
+    assert spec is not None and spec.loader is not None
+    noxfile = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(noxfile)
+
+    class Session:
+        def __init__(self) -> None:
+            self.runs: list[tuple[str, ...]] = []
+
+        def create_tmp(self) -> str:
+            return str(tmp_path)
+
+        def install(self, *args: str) -> None:
+            pass
+
+        def chdir(self, path: str) -> None:
+            pass
+
+        def run(self, *args: str) -> None:
+            self.runs.append(args)
+
+    session = Session()
+    noxfile.oldest(session)
+    assert session.runs[-1] == ("mjpoincare", "validate", *built_in)
 
 
 @pytest.mark.parametrize("payload", PAYLOADS, ids=[p["mujoco"] for p in PAYLOADS])
@@ -78,6 +122,72 @@ def _payload(version: str, value: float, spread: float, refused: str | None = No
            {"scenario": "toy", "preset": "fast", "refused": None, "passed": True, "wall_s": 1.0, "warnings": [],
             "checks": [check]})
     return {"schema": releases.SCHEMA, "mujoco": version, "environment": env, "runs": [run]}
+
+
+def _change(a: Any, b: Any) -> tuple[float, float]:
+    """The change of a check's value and its roundoff floor: the largest difference of their numbers (inf for labels
+    that differ or another shape), and ROUNDOFF of max(1, the largest magnitude)."""
+    def numbers(value: Any) -> list[Any]:
+        return [x for item in value for x in numbers(item)] if isinstance(value, list) else [value]
+
+    xa, xb = numbers(a), numbers(b)
+    if len(xa) != len(xb) or not all(isinstance(x, int | float) for x in xa + xb):
+        return (0.0 if xa == xb else math.inf), ROUNDOFF
+    change = max((abs(x - y) for x, y in zip(xa, xb, strict=True)), default=0.0)
+    return change, ROUNDOFF * max([1.0, *map(abs, xa + xb)])
+
+
+def _cells(line: str) -> list[str]:
+    return [cell.strip() for cell in re.split(r"(?<!\\)\|", line.strip())[1:-1]]
+
+
+def test_the_pages_real_changes_are_those_the_raw_values_give() -> None:
+    """Each verdict recomputed from the committed JSON's simulated values and spreads, apart from the renderer: the
+    page's table of real changes and its **real** marks are exactly those."""
+    expected = set()
+    for scenario, preset in {(r["scenario"], r["preset"]) for p in PAYLOADS for r in p["runs"]}:
+        runs = [(p["mujoco"], r) for p in PAYLOADS for r in p["runs"]
+                if (r["scenario"], r["preset"]) == (scenario, preset) and not r["refused"]]
+        for (before, a), (after, b) in itertools.pairwise(runs):
+            old = {c["name"]: c for c in a["checks"]}
+            for c in b["checks"]:
+                if c["name"] in old:
+                    change, floor = _change(old[c["name"]]["simulated"], c["simulated"])
+                    spread = max(math.inf if s is None else s for s in (old[c["name"]]["spread"], c["spread"]))
+                    if change > MULTIPLE * spread and change > floor:
+                        expected.add((scenario, preset, c["name"], after, before))
+    page = (ROOT / releases.PAGE).read_text()
+    table = [_cells(line) for line in page.split("\n## Real changes\n")[1].splitlines() if line.startswith("| ")]
+    listed = {tuple(row[:5]) for row in table[1:]}
+    marked = set()
+    for section in re.finditer(r"^## (\S+) \[(\w+)\]\n(.*?)(?=^## )", page, re.M | re.S):
+        rows = [_cells(line) for line in section[3].splitlines() if line.startswith("| ")]
+        marked |= {(section[1], section[2], check, row[0]) for row in rows[1:]
+                   for check, cell in zip(rows[0][2:], row[2:], strict=True) if "**real**" in cell}
+    assert listed == expected
+    assert marked == {key[:4] for key in expected}
+    assert ("slotted-skate", "fast", "final_speed", "3.11.0", "3.10.0") not in expected  # 4.4e-16, spread 0
+    assert (releases.MULTIPLE, gate.ROUNDOFF) == (baseline.MULTIPLE, ROUNDOFF) == (MULTIPLE, ROUNDOFF)
+    assert "exceeds both 3 times the larger of the two spreads and the roundoff floor, 1e-12 of max(1," in page
+
+
+@pytest.mark.parametrize(("after", "spread", "real"), [
+    (1.00947 + 4.4e-16, 0.0, False),  # roundoff: two ulps, no spread measured
+    (1.00947 + 1.7e-6, 1e-6, False),  # 1.7 spreads
+    (1.00947 + 3.5e-6, 1e-6, True),  # 3.5 spreads, far above the floor
+    (1.00947 + 3.5e-14, 1e-14, False),  # 3.5 spreads, under the floor
+], ids=["roundoff", "1.7-spreads", "3.5-spreads", "3.5-spreads-under-roundoff"])
+def test_a_change_is_real_only_beyond_three_spreads_and_roundoff(monkeypatch: pytest.MonkeyPatch, after: float,
+                                                                 spread: float, real: bool) -> None:
+    """The page and a bisection apply one rule to a hand-built pair of releases."""
+    payloads = [_payload("3.10.0", 1.00947, spread), _payload("3.11.0", after, spread)]
+    (found,) = releases.changes(payloads, "toy", "fast")
+    assert found["real"] is real and found["change"] > 0 and found["spread"] == spread
+    assert ("| toy | fast | eigenvalue | 3.11.0 | 3.10.0 |" in releases.render(payloads)) is real
+    monkeypatch.setattr(releases, "_index_versions", lambda: ["3.10.0", "3.11.0"])
+    values = {"3.10.0": 1.00947, "3.11.0": after}
+    result = releases.bisect("3.10.0", "3.11.0", "toy", "fast", "eigenvalue", lambda v: (values[v], spread))
+    assert result["first"] == ("3.11.0" if real else None)
 
 
 def test_a_change_is_real_only_beyond_the_larger_spread() -> None:

@@ -3,16 +3,21 @@
 Three steps, each a subcommand:
 
 - ``run``: in an environment with one MuJoCo release installed (a nox session of ``noxfile.py``, uv as the
-  installer), the default validation of every default scenario at ``fast`` (and ``accurate`` on the oldest and the
-  newest release), each run again under :data:`SPREAD` (seed, threads, start perturbations up to 1e-9); per check the
+  installer), the default validation of every built-in scenario of the registry (:func:`history_scenarios`: the
+  default scenarios and those left to their own command) at ``fast`` (and ``accurate`` on the oldest and the newest
+  release), each run again under :data:`SPREAD` (seed, threads, start perturbations up to 1e-9); per check the
   value, the error and the spread (the largest change of the value under those perturbations) go to
   ``json/mujoco-<release>.json``, stamped with the environment, written whole after each scenario (a run resumes from
   the scenarios its file already holds). A scenario whose seam self-test refuses the release is recorded as refused.
-- ``render``: ``docs/results/mujoco-releases.md`` from that JSON (a pure function of it, re-rendered byte for byte).
-  Between consecutive releases a change of a check's value is **real** when it exceeds the spread measured on either
-  release, and **jitter** otherwise; each real change names the first release where it appears.
+- ``render``: ``docs/results/mujoco-releases.md`` from that JSON (a pure function of it and of the built-in
+  scenarios, naming those it lacks; re-rendered byte for byte).
+  Between consecutive releases a change of a check's value is **real** (:func:`is_real`) when it exceeds both
+  :data:`mjpoincare.baseline.MULTIPLE` (3) times the larger of the spreads measured on the two releases and the
+  roundoff floor (:func:`roundoff_floor`: :data:`mjpoincare.gate.ROUNDOFF`, 1e-12, of max(1, the larger magnitude of
+  the two values)), and **jitter** otherwise; each real change names the first release where it appears.
 - ``bisect``: two releases and one check; the patch releases between them (from the package index) are run one at a
-  time through the nox session ``release_point`` until the first release with the real change is found.
+  time through the nox session ``release_point`` until the first release with a real change (the same rule) is
+  found.
 """
 
 from __future__ import annotations
@@ -29,7 +34,8 @@ from pathlib import Path
 from typing import Any
 
 from mjpoincare.analysis.tables import markdown_table, table_cell
-from mjpoincare.gate import PERTURBATIONS
+from mjpoincare.baseline import MULTIPLE
+from mjpoincare.gate import PERTURBATIONS, ROUNDOFF
 from mjpoincare.params import ParameterError
 from mjpoincare.result import format_value, write_json, write_text
 
@@ -85,6 +91,21 @@ def distance(a: Any, b: Any) -> float:
     return 0.0 if fa == fb else math.inf
 
 
+def roundoff_floor(a: Any, b: Any) -> float:
+    """The smallest change between two values of one check that is not roundoff: :data:`ROUNDOFF` of max(1, the
+    largest magnitude of their finite numbers)."""
+    magnitudes = [abs(x) for value in (a, b) if isinstance(flat := _flat(value), list) for x in flat
+                  if math.isfinite(x)]
+    return ROUNDOFF * max([1.0, *magnitudes])
+
+
+def is_real(change: float, spread: float, floor: float) -> bool:
+    """Whether a change of a check's value between two releases is real: beyond :data:`MULTIPLE` times ``spread``
+    (the larger of the two releases' spreads; inf when one is unknown) and beyond ``floor``
+    (:func:`roundoff_floor`)."""
+    return change > MULTIPLE * spread and change > floor
+
+
 def _check_rows(base: dict[str, Any], variants: Sequence[dict[str, Any]]) -> list[dict[str, Any]]:
     rows = []
     for check in base["checks"]:
@@ -94,6 +115,14 @@ def _check_rows(base: dict[str, Any], variants: Sequence[dict[str, Any]]) -> lis
                      "error": check["error"], "error_kind": check["error_kind"], "tolerance": check["tolerance"],
                      "passed": check["passed"], "spread": spread if math.isfinite(spread) else None})
     return rows
+
+
+def history_scenarios() -> list[str]:
+    """The scenarios the history runs: every one the registry lists that this distribution declares (the default
+    validation's and those left to their own command; a plugin's scenarios are its own to track)."""
+    from mjpoincare.scenarios import REGISTRY
+
+    return [name for name in REGISTRY if REGISTRY.distribution(name) == "mjpoincare"]
 
 
 def run_scenario(name: str, preset: str) -> dict[str, Any]:
@@ -122,7 +151,7 @@ def run_release(out: Path, presets: Sequence[str] | None = None, names: Sequence
 
     version = mujoco.__version__
     presets = list(presets or (["fast", "accurate"] if version in ACCURATE_ON else ["fast"]))
-    names = list(names or scenarios.DEFAULT_SCENARIOS)
+    names = list(names or history_scenarios())
     for name in names:
         scenarios.get(name).preset(presets[0])
     path = out / "json" / f"mujoco-{version}.json"
@@ -155,7 +184,8 @@ def load(out: Path = OUT) -> list[dict[str, Any]]:
 
 def changes(payloads: Sequence[dict[str, Any]], scenario: str, preset: str) -> list[dict[str, Any]]:
     """Between each pair of consecutive releases that ran ``scenario`` at ``preset``: per check, the change of its
-    value, the larger of the two spreads, and whether the change is real (beyond that spread) or jitter."""
+    value, the larger of the two spreads, and whether the change is real (:func:`is_real`: beyond :data:`MULTIPLE`
+    times that spread and the roundoff floor) or jitter."""
     runs = [(p["mujoco"], _run(p, scenario, preset)) for p in payloads]
     runs = [(v, r) for v, r in runs if r is not None and not r["refused"]]
     out = []
@@ -168,8 +198,9 @@ def changes(payloads: Sequence[dict[str, Any]], scenario: str, preset: str) -> l
             change = distance(old["simulated"], check["simulated"])
             spreads = [s if s is not None else math.inf for s in (old["spread"], check["spread"])]
             spread = max(spreads)
+            floor = roundoff_floor(old["simulated"], check["simulated"])
             out.append({"check": check["name"], "from": before, "to": after, "change": change, "spread": spread,
-                        "tolerance": check["tolerance"], "real": change > spread})
+                        "tolerance": check["tolerance"], "real": is_real(change, spread, floor)})
     return out
 
 
@@ -182,17 +213,25 @@ def _number(x: float | None, digits: int = 3) -> str:
 
 
 def render(payloads: Sequence[dict[str, Any]]) -> str:
-    """``docs/results/mujoco-releases.md`` from the releases' payloads, oldest first (a pure function of them)."""
+    """``docs/results/mujoco-releases.md`` from the releases' payloads, oldest first (a pure function of them and of
+    the built-in scenarios, :func:`history_scenarios`, those the payloads lack being named)."""
+    held = {r["scenario"] for p in payloads for r in p["runs"]}
+    missing = [name for name in history_scenarios() if name not in held]
     lines = ["<!-- generated by `make releases` (python -m mjpoincare.releases render) from releases/json/: "
              "do not edit -->", "", "# MuJoCo release history", "",
-             "The default validation of every default scenario on each release the suite admits (the oldest, then the "
+             "The default validation of every built-in scenario on each release the suite admits (the oldest, then the "
              "newest patch of each minor line), at the `fast` preset, and at `accurate` on the oldest and the newest. "
              "Each release ran in its own environment (`noxfile.py`, session `release`, uv as the installer). A "
              "check's **spread** is the largest change of its value under seed 1, one rollout thread and the starts "
              "scaled by 1 + 1e-12 and 1 + 1e-9 on that release. Between consecutive releases a change is **real** when "
-             "it exceeds the larger of the two spreads, **jitter** otherwise. Values are the simulated ones (complex "
-             "numbers as [re, im]); errors are against the analytic values, of the kind the scenario pages state.",
-             "", "## Releases", ""]
+             f"it exceeds both {MULTIPLE:g} times the larger of the two spreads and the roundoff floor, {ROUNDOFF:g} "
+             "of max(1, the larger magnitude of the two values); **jitter** otherwise. Values are the simulated ones "
+             "(complex numbers as [re, im]); errors are against the analytic values, of the kind the scenario pages "
+             "state.", ""]
+    if missing:
+        lines += [f"Not in this history yet: {', '.join(missing)} (the runs predate the history running every "
+                  "built-in scenario; `make releases` runs what each release's file lacks).", ""]
+    lines += ["## Releases", ""]
     releases = []
     for p in payloads:
         env = p["environment"]
@@ -211,9 +250,9 @@ def render(payloads: Sequence[dict[str, Any]]) -> str:
             all_real += [(name, preset, c) for c in found if c["real"]]
             lines += _scenario_section(payloads, name, preset, found)
     lines += ["## Real changes", "",
-              "Every change beyond the spread, with the first release where it appears (`python -m mjpoincare.releases "
-              "bisect` finds the patch release within a minor line). Real is not large: the last column is the change "
-              "against the check's tolerance.", ""]
+              f"Every real change (beyond {MULTIPLE:g} spreads and the roundoff floor), with the first release where "
+              "it appears (`python -m mjpoincare.releases bisect` finds the patch release within a minor line). Real "
+              "is not large: the last column is the change against the check's tolerance.", ""]
     if all_real:
         rows = []
         for name, preset, c in all_real:
@@ -285,8 +324,9 @@ def _index_versions() -> list[str]:
 
 def bisect(low: str, high: str, scenario: str, preset: str, check: str,
            value_at: Callable[[str], tuple[Any, float]]) -> dict[str, Any]:
-    """The first release after ``low`` up to ``high`` whose value of ``check`` differs from ``low``'s by more than
-    the spread; ``value_at(release) -> (value, spread)`` runs it. Assumes one change between them (a bisection)."""
+    """The first release after ``low`` up to ``high`` whose value of ``check`` really differs from ``low``'s
+    (:func:`is_real`: beyond :data:`MULTIPLE` times the larger spread and the roundoff floor); ``value_at(release) ->
+    (value, spread)`` runs it. Assumes one change between them (a bisection)."""
     candidates = patch_releases(low, high)
     if not candidates or candidates[-1] != high:
         raise ParameterError(f"bisect: {high} is not a release after {low} on the package index")
@@ -295,7 +335,7 @@ def bisect(low: str, high: str, scenario: str, preset: str, check: str,
 
     def changed(release: str) -> bool:
         value, spread = probed.setdefault(release, value_at(release))
-        return distance(base, value) > max(base_spread, spread)
+        return is_real(distance(base, value), max(base_spread, spread), roundoff_floor(base, value))
 
     if not changed(high):
         return {"scenario": scenario, "preset": preset, "check": check, "low": low, "high": high, "first": None,
@@ -377,7 +417,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     run = sub.add_parser("run", help="the history's runs on the loaded MuJoCo into OUT/json/")
     run.add_argument("--out", type=Path, default=OUT)
     run.add_argument("--preset", action="append", help="presets (default: fast; + accurate on the oldest and newest)")
-    run.add_argument("--scenario", action="append", help="scenarios (default: the default validation's)")
+    run.add_argument("--scenario", action="append", help="scenarios (default: every built-in scenario of the registry)")
     render_cmd = sub.add_parser("render", help="docs/results/mujoco-releases.md from OUT/json/")
     render_cmd.add_argument("--out", type=Path, default=OUT)
     render_cmd.add_argument("--page", type=Path, default=PAGE)
