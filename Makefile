@@ -11,6 +11,11 @@
 #                     spread over the environments this machine emulates (every OpenBLAS kernel the CPU runs, numpy at
 #                     its baseline, each in its own process), under seed, threads, starts x(1+1e-12) and x(1+1e-9) and
 #                     the oldest numpy/scipy allowed, and resolution, into docs/results/gate/ (JSON and page)
+#   make baseline     the gate's regression baseline (docs/results/gate/baseline.json): every gate check's error and
+#                     resolution (its spread over the environments make margins measured and the rounding
+#                     perturbations); refuses when an error left that measurement's range (run make margins first)
+#   make power        the gate's power (docs/results/gate-power.md): physics changes of known size planted into each
+#                     scenario's default gate case, and which checks catch them by tolerance and by the baseline
 #   make results         every scenario's default validation at each preset into docs/results/json/, then its pages
 #   make results-render  re-render docs/results/*.md from the committed JSON (no simulation)
 #   make backends     the backends' findings: every scenario on MuJoCo C, MJX (x64, float32) and MuJoCo Warp, one process
@@ -52,8 +57,8 @@ TUNE_SCENARIOS ?= rimless-wheel rimless-wheel-friction slotted-skate rimless-whe
 TUNE_TRIALS ?= 16
 BACKENDS_OUT ?= docs/results/backends
 
-.PHONY: validate test test-latest lock margins results results-render backends gpu-check bench gate clean releases \
-	releases-render bisect tune tune-render engines engines-render
+.PHONY: validate test test-latest lock margins baseline power results results-render backends gpu-check bench gate \
+	clean releases releases-render bisect tune tune-render engines engines-render
 
 PYTHON_CHECK := $(PYTHON) -c 'import sys; sys.exit(0 if sys.version_info >= (3, 10) else "mjpoincare needs Python >= 3.10")'
 
@@ -93,6 +98,13 @@ margins: $(STAMP)
 	$(OLDEST)/bin/mjpoincare margins --base-only --json renders/margins-oldest.json
 	$(BIN)/mjpoincare margins --compare renders/margins-oldest.json --json docs/results/gate/margins.json; \
 		status=$$?; $(BIN)/python -m mjpoincare.reports.gate_page && exit $$status
+
+baseline: $(STAMP)
+	$(BIN)/python -m mjpoincare.reports.gate_baseline
+
+power: $(STAMP)
+	$(BIN)/mjpoincare power --json docs/results/gate/power.json --workers $(WORKERS); \
+		status=$$?; $(BIN)/python -m mjpoincare.reports.gate_power_page && exit $$status
 
 results: $(STAMP)
 	$(BIN)/python -m mjpoincare.reports.results_pages
