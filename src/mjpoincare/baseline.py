@@ -80,12 +80,17 @@ class Deviation:
 
 
 def run_key(result: Result) -> str:
+    """The key of ``result``'s run (:func:`key_of` its scenario, preset and parameters)."""
+    return key_of(result.scenario, result.preset, result.params)
+
+
+def key_of(scenario: str, preset: str, params: Mapping[str, Value]) -> str:
     """``scenario[preset,name=value,...]``: the parameters that differ from the scenario's defaults, in its order."""
     from mjpoincare import scenarios
 
-    defaults = {p.name: p.default for p in scenarios.get(result.scenario).params}
-    changed = [f"{k}={v}" for k, v in result.params.items() if k in defaults and v != defaults[k]]
-    return f"{result.scenario}[{','.join([result.preset, *changed])}]"
+    declared = scenarios.get(scenario).params
+    changed = [f"{p.name}={params[p.name]}" for p in declared if p.name in params and params[p.name] != p.default]
+    return f"{scenario}[{','.join([preset, *changed])}]"
 
 
 def floor(error: float) -> float:
