@@ -163,10 +163,11 @@ def check_path(path: str, update: bool, option: str = "--baseline") -> None:
         load(path, option)
 
 
-def deviations(result: Result, baseline: Mapping[str, Any]) -> list[Deviation]:
+def deviations(result: Result, baseline: Mapping[str, Any], key: str | None = None) -> list[Deviation]:
     """Every check of ``result`` that moved beyond :data:`MULTIPLE` resolutions from ``baseline``'s record of the
-    same run, or that one of the two lacks; the run missing from the baseline is one deviation."""
-    key = run_key(result)
+    same run (``key``: of the run recorded under that key instead, e.g. the unchanged run of a planted change of
+    a parameter), or that one of the two lacks; the run missing from the baseline is one deviation."""
+    key = key or run_key(result)
     recorded = baseline["runs"].get(key)
     if recorded is None:
         return [Deviation(run=key, check="*", old=math.nan, new=math.nan, resolution=math.nan,

@@ -8,8 +8,9 @@ which. Each :class:`Plant` changes one thing:
   cone and the integrator, each switched to another choice;
 - through the compiled model (:func:`mjpoincare.mjcf_loader.planted`, every model the run compiles): gravity, one
   body's mass and rotational inertia together (the body the renders follow: the wheel's hub, the biped's hip, the
-  skate), and every geom's sliding friction, each scaled by ``1 + size``; and one contact pair dropped (the first
-  colliding geom of a moving body made to collide with nothing).
+  skate), and every geom's sliding friction, each scaled by ``1 + size`` (and a Coulomb coefficient ``mu`` the
+  scenario sets per trajectory at run time, which overrides the model's, scaled through its parameter); and one
+  contact pair dropped (the first colliding geom of a moving body made to collide with nothing).
 
 A planted run is judged as the gate judges its case: **caught by the tolerance** when a gated or watched check fails
 or a declared miss leaves its band (or the run raises: a crash is loud); **caught by the baseline** when a check
@@ -19,6 +20,7 @@ of every case must be caught by neither, or nothing else in the table means anyt
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
@@ -74,7 +76,14 @@ def default_cases() -> tuple[GateCase, ...]:
 
 
 def setting_assignments(plant: Plant, case: GateCase) -> dict[str, Value]:
-    """The ``--set`` values of a plant made through the settings (empty for one made through the model)."""
+    """The ``--set`` values of a plant made through the settings, or through a friction parameter the scenario
+    applies per trajectory (empty for one made through the model alone)."""
+    if plant.change == "friction":
+        from mjpoincare.validation import resolve_values
+
+        _, _, params, _ = resolve_values(case.scenario, dict(case.values), case.preset)
+        mu = params.get("mu")
+        return {"mu": float(mu) * (1.0 + float(plant.size or 0.0))} if isinstance(mu, float) and mu > 0 else {}
     if plant.change in ("timestep", "solref_timeconst", "impratio"):
         from mjpoincare.validation import resolve_inputs
 
@@ -112,6 +121,8 @@ def model_edit(plant: Plant, body: str) -> Callable[[mujoco.MjModel], str] | Non
             return "every geom's sliding friction"
     elif plant.change == "contact_pair":
         def edit(model: mujoco.MjModel) -> str:
+            if model.opt.disableflags & mujoco.mjtDisableBit.mjDSBL_CONTACT:
+                return "nothing (the model disables contact)"
             colliding = [g for g in range(model.ngeom) if model.geom_bodyid[g] > 0
                          and (model.geom_contype[g] or model.geom_conaffinity[g])]
             if not colliding:
@@ -146,11 +157,16 @@ def run_plant(label: str, plant: Plant) -> dict[str, Any]:
     by_tolerance = [c.name for c in result.checks
                     if (not misses[c.name].matches(c.error) if c.name in misses else not c.passed)]
     committed = committed_baseline()
-    by_baseline = sorted({d.check for d in baseline.deviations(result, committed)})
+    key = baseline.key_of(case.scenario, case.preset, dict(case.values))
+    by_baseline = sorted({d.check for d in baseline.deviations(result, committed, key)})
+    recorded = committed["runs"][key]["checks"]
+    moves = [(abs(c.error - recorded[c.name]["error"]) / recorded[c.name]["resolution"], c.name)
+             for c in result.checks if c.name in recorded and recorded[c.name]["error"] is not None
+             and recorded[c.name]["resolution"] is not None and math.isfinite(c.error)]
     return {"case": label, "change": plant.change, "size": plant.size, "raised": None,
             "settings": {k: v for k, v in assignments.items() if k not in dict(case.values)},
             "edited": sorted(set(edited)), "tolerance": by_tolerance, "baseline": by_baseline,
-            "wall_s": time.perf_counter() - start}
+            "largest_move": list(max(moves, default=(0.0, ""))), "wall_s": time.perf_counter() - start}
 
 
 def committed_baseline() -> dict[str, Any]:

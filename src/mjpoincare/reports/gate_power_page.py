@@ -24,6 +24,12 @@ def _plant(row: dict[str, Any]) -> str:
     return Plant(row["change"], row["size"]).label
 
 
+def _move(largest: list[Any]) -> str:
+    """A run's largest move in resolutions, with the check that made it (none where nothing moved)."""
+    size, check = largest
+    return f"{size:.2g} ({check})" if size else "0"
+
+
 def render(payload: dict[str, Any]) -> str:
     """The page: stamp, what was planted, the verdict per change and case, what caught each, and what nothing
     caught."""
@@ -52,10 +58,13 @@ def render(payload: dict[str, Any]) -> str:
     if missed:
         lines += ["These planted changes moved no check beyond its tolerance or its resolution: the gate cannot see "
                   "them at this size.", "",
-                  markdown_table(("case", "change", "what the plant changed"),
-                                 [(r["case"], _plant(r), ", ".join(r["edited"]) or "the settings "
-                                   + ", ".join(f"{k}={v}" for k, v in r.get("settings", {}).items()))
-                                  for r in missed]), ""]
+                  markdown_table(("case", "change", "what the plant changed", "largest move (resolutions)"),
+                                 [(r["case"], _plant(r), ", ".join([*r["edited"], *(
+                                     f"{k}={v:.6g}" if isinstance(v, float) else f"{k}={v}"
+                                     for k, v in r.get("settings", {}).items())]),
+                                   _move(r["largest_move"])) for r in missed]),
+                  "", "A largest move of 0 is a run identical to the recorded one to the last digit the baseline "
+                  "holds: the plant did not reach the physics the checks see.", ""]
     else:
         lines += ["Every planted change was caught.", ""]
     lines += ["## Which checks caught each change", "",
