@@ -120,19 +120,64 @@ def _in_tmp_dir(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[Pat
     assert not (tmp_path / "MUJOCO_LOG.TXT").exists(), "MuJoCo wrote MUJOCO_LOG.TXT into the working directory"
 
 
+#: The xdist group of the second-kernel test and of every test of a kernel-sensitive gate case: that test runs those
+#: cases in its own process beside their second-kernel run, and the gate's tests of them read its runs.
+KERNEL_GROUP = "gate-kernel-sensitive"
+
+
+def _gate_case_label(item: pytest.Item) -> str | None:
+    """The label of the gate case a test is parametrized by (its ``case`` argument), if any."""
+    from mjpoincare.scenarios.gate_cases import GateCase
+
+    case = getattr(item, "callspec", None) and item.callspec.params.get("case")
+    return case.label if isinstance(case, GateCase) else None
+
+
+class _GateGroups:
+    """A plugin of one hook (a conftest holds one implementation of each hook: the other orders the items, last)."""
+
+    @pytest.hookimpl(tryfirst=True)
+    def pytest_collection_modifyitems(self, items: list[pytest.Item]) -> None:
+        _group_gate_cases(items)
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    config.pluginmanager.register(_GateGroups(), "mjpoincare-gate-groups")
+
+
+def _group_gate_cases(items: list[pytest.Item]) -> None:
+    """Under pytest-xdist (``make test`` runs ``--dist loadgroup``), the tests of one gate case share a worker, and
+    so its run (:func:`mjpoincare.gate.run_case` caches a run per process): each case is its own group, but the
+    kernel-sensitive cases, which the second-kernel test runs here to compare, are one group with that test. Marked
+    first, before xdist names the groups; harmless without xdist."""
+    sensitive = set(kernel_sensitive_cases())
+    for item in items:
+        label = _gate_case_label(item)
+        if item.nodeid == KERNEL_TEST or label in sensitive:
+            item.add_marker(pytest.mark.xdist_group(KERNEL_GROUP))
+        elif label is not None:
+            item.add_marker(pytest.mark.xdist_group(f"gate-{label}"))
+
+
+def _xdist_worker(config: pytest.Config) -> bool:
+    """Whether this process is a pytest-xdist worker (each worker collects every item, so none starts a side run)."""
+    return hasattr(config, "workerinput")
+
+
 @pytest.hookimpl(trylast=True)
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
     """The backend tests run last: they load JAX and Warp, whose native threads make every later process pool spawn
     its workers instead of forking them (:func:`mjpoincare.parallel.start_method`), which costs the sweeps and
     convergence ladders after them their start-up time. The MJX validation starts now, in a process of its own, when
     its test is selected and MJX is installed (its test reports a missing MJX). This hook runs last, after ``-m`` and
-    ``-k`` have deselected what they deselect, and ``--collect-only`` starts nothing."""
+    ``-k`` have deselected what they deselect, and ``--collect-only`` starts nothing. Under pytest-xdist no worker
+    starts either: each test starts its own run (the other worker is the concurrency)."""
     items.sort(key=lambda item: item.nodeid.startswith("tests/test_backends.py"))
     from mjpoincare.backends import check_installed
     from mjpoincare.params import ParameterError
 
     selected = {item.nodeid for item in items}
-    if config.option.collectonly:
+    if config.option.collectonly or _xdist_worker(config):
         return
     if KERNEL_TEST in selected and "Prescott" in runnable_kernels() and kernel_sensitive_cases():
         config.stash[kernel_run_key] = start_environment(second_kernel(), kernel_sensitive_cases())
@@ -142,13 +187,18 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
         check_installed("mjx")
     except ParameterError:
         return
+    config.stash[mjx_run_key] = start_mjx_run()
+
+
+def start_mjx_run() -> tuple[subprocess.Popen[bytes], Path]:
+    """The MJX validation :data:`MJX_RUN` started in a process of its own (one XLA thread), and its output folder."""
     out = Path(tempfile.mkdtemp(prefix="mjpoincare-mjx-"))
     scenario, backend, precision, preset = MJX_RUN
     env = {**os.environ, "XLA_FLAGS": "--xla_cpu_multi_thread_eigen=false intra_op_parallelism_threads=1"}
     process = subprocess.Popen([sys.executable, "-m", "mjpoincare.reports.backend_findings", "run", scenario, backend,
                                 precision, "--preset", preset, "--out", str(out)], cwd=out, env=env,
                                stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
-    config.stash[mjx_run_key] = (process, out)
+    return process, out
 
 
 def pytest_unconfigure(config: pytest.Config) -> None:

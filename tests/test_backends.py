@@ -225,11 +225,14 @@ def test_a_setting_a_backend_lacks_is_refused_in_one_line() -> None:
 
 def test_rimless_wheel_on_mjx_passes_its_fast_checks(request: pytest.FixtureRequest) -> None:
     """The rimless wheel's fast-preset validation on MJX (x64), run by the findings command in a process of its own
-    (``conftest.MJX_RUN``, started at collection): every check MuJoCo C's gate gates on that run passes against MuJoCo
-    C's tolerances (the others are the gate's to watch), and the record carries MJX's compile seconds."""
+    (``conftest.MJX_RUN``, started at collection; under pytest-xdist, here): every check MuJoCo C's gate gates on that
+    run passes against MuJoCo C's tolerances (the others are the gate's to watch), and the record carries MJX's
+    compile seconds."""
     _require("mjx")
-    from conftest import MJX_RUN, mjx_run_key
+    from conftest import MJX_RUN, mjx_run_key, start_mjx_run
 
+    if mjx_run_key not in request.config.stash:  # not started at collection (a pytest-xdist worker): start it now
+        request.config.stash[mjx_run_key] = start_mjx_run()
     process, out = request.config.stash[mjx_run_key]
     output, _ = process.communicate(timeout=1800)
     assert process.returncode == 0, output.decode()

@@ -118,14 +118,15 @@ def test_the_gate_page_renders_from_the_committed_measurement() -> None:
 @pytest.mark.skipif("Prescott" not in runnable_kernels(), reason="OpenBLAS's Prescott kernel is x86-64 only")
 def test_the_gate_holds_under_a_second_blas_kernel(request: pytest.FixtureRequest) -> None:
     """The kernel-sensitive cases, run under the second kernel (``conftest.second_kernel``) in a process of their own
-    (started at collection, beside the rest of the suite), move from this process's runs by at most their measured
+    (started at collection, beside the rest of the suite; under pytest-xdist, here, beside this process's runs of
+    them), move from this process's runs by at most their measured
     spread."""
     labels = kernel_sensitive_cases()
     assert labels, "the committed measurement names no kernel-sensitive case: nothing would be re-run"
     second = second_kernel()
     process = request.config.stash.get(kernel_run_key, None) or start_environment(second, labels)
-    there = read_environment(process, second, labels)
-    lines = gate.environment_disagreements(there, _errors_here(labels), _spreads(), second.label)
+    here = _errors_here(labels)  # while the second kernel runs, when this test started it
+    lines = gate.environment_disagreements(read_environment(process, second, labels), here, _spreads(), second.label)
     assert not lines, "\n".join(lines)
 
 
