@@ -134,34 +134,25 @@ def _gate_case_label(item: pytest.Item) -> str | None:
 
 
 class _GateGroups:
-    """A plugin of one hook (a conftest holds one implementation of each hook: the other orders the items, last)."""
+    """Under pytest-xdist with ``--dist loadgroup``, the tests of one gate case share a worker, and so its run
+    (:func:`mjpoincare.gate.run_case` caches a run per process): each case is its own group, but the kernel-sensitive
+    cases, which the second-kernel test runs in its own process to compare, are one group with that test. A plugin of
+    its own because a conftest holds one implementation of a hook, and this one must run first, before xdist names
+    the groups (the conftest's orders the items, last); without xdist the marks do nothing."""
 
     @pytest.hookimpl(tryfirst=True)
     def pytest_collection_modifyitems(self, items: list[pytest.Item]) -> None:
-        _group_gate_cases(items)
+        sensitive = set(kernel_sensitive_cases())
+        for item in items:
+            label = _gate_case_label(item)
+            if item.nodeid == KERNEL_TEST or label in sensitive:
+                item.add_marker(pytest.mark.xdist_group(KERNEL_GROUP))
+            elif label is not None:
+                item.add_marker(pytest.mark.xdist_group(f"gate-{label}"))
 
 
 def pytest_configure(config: pytest.Config) -> None:
     config.pluginmanager.register(_GateGroups(), "mjpoincare-gate-groups")
-
-
-def _group_gate_cases(items: list[pytest.Item]) -> None:
-    """Under pytest-xdist (``make test`` runs ``--dist loadgroup``), the tests of one gate case share a worker, and
-    so its run (:func:`mjpoincare.gate.run_case` caches a run per process): each case is its own group, but the
-    kernel-sensitive cases, which the second-kernel test runs here to compare, are one group with that test. Marked
-    first, before xdist names the groups; harmless without xdist."""
-    sensitive = set(kernel_sensitive_cases())
-    for item in items:
-        label = _gate_case_label(item)
-        if item.nodeid == KERNEL_TEST or label in sensitive:
-            item.add_marker(pytest.mark.xdist_group(KERNEL_GROUP))
-        elif label is not None:
-            item.add_marker(pytest.mark.xdist_group(f"gate-{label}"))
-
-
-def _xdist_worker(config: pytest.Config) -> bool:
-    """Whether this process is a pytest-xdist worker (each worker collects every item, so none starts a side run)."""
-    return hasattr(config, "workerinput")
 
 
 @pytest.hookimpl(trylast=True)
@@ -177,7 +168,7 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
     from mjpoincare.params import ParameterError
 
     selected = {item.nodeid for item in items}
-    if config.option.collectonly or _xdist_worker(config):
+    if config.option.collectonly or hasattr(config, "workerinput"):  # an xdist worker: each collects every item
         return
     if KERNEL_TEST in selected and "Prescott" in runnable_kernels() and kernel_sensitive_cases():
         config.stash[kernel_run_key] = start_environment(second_kernel(), kernel_sensitive_cases())
