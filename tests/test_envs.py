@@ -43,8 +43,47 @@ def test_environment_contract(name: str) -> None:
         for key, value in step.observation.items():
             spec[key].validate(value)
             assert np.all(np.isfinite(value)), (key, value)
-    assert env.control_timestep() == pytest.approx(env.physics.timestep())
+    n_sub_steps = envs.sub_steps(envs.DEFAULT_CONTROL_TIMESTEP, env.physics.timestep())
+    assert env.control_timestep() == pytest.approx(n_sub_steps * env.physics.timestep())
+    assert abs(env.control_timestep() - envs.DEFAULT_CONTROL_TIMESTEP) <= env.physics.timestep() / 2
     assert env.physics.data.time == pytest.approx(t0 + STEPS * env.control_timestep(), rel=1e-9)
+
+
+@pytest.mark.parametrize("requested", [0.01, 0.0123, 0.025])
+def test_control_timestep_is_rounded_to_whole_physics_steps(requested: float) -> None:
+    """dm_control needs a control step of whole physics steps; the tuned timesteps rarely divide 10 ms, so a requested
+    ``control_timestep`` is rounded to the nearest whole number of physics steps (within half a step)."""
+    env = envs.load("rimless-wheel", environment_kwargs={"control_timestep": requested})
+    h = env.physics.timestep()
+    steps = env.control_timestep() / h
+    assert steps == pytest.approx(round(steps), abs=1e-9)
+    assert abs(env.control_timestep() - requested) <= h / 2
+    env.reset()
+    t0 = env.physics.data.time
+    env.step([])
+    assert env.physics.data.time == pytest.approx(t0 + env.control_timestep(), rel=1e-9)
+
+
+def test_n_sub_steps_is_kept_and_a_bad_control_timestep_is_refused() -> None:
+    env = envs.load("rimless-wheel", environment_kwargs={"n_sub_steps": 1})
+    assert env.control_timestep() == pytest.approx(env.physics.timestep())
+    with pytest.raises(ParameterError, match="control_timestep"):
+        envs.load("rimless-wheel", environment_kwargs={"control_timestep": 0.0})
+
+
+def test_suite_style_domain_and_task_names() -> None:
+    """``suite_load(domain, task)`` as dm_control's ``suite.load``: the scenario and its preset, every pair in
+    ``ALL_TASKS``; an unknown domain or task is one line naming the known ones."""
+    assert ("rimless-wheel", "accurate") in envs.ALL_TASKS
+    assert {domain for domain, _ in envs.ALL_TASKS} == set(scenarios.REGISTRY)
+    env = envs.suite_load("rimless-wheel", "accurate", environment_kwargs={"time_limit": 1.0})
+    accurate = scenarios.get("rimless-wheel").preset("accurate")[1]
+    if "timestep" in accurate:
+        assert env.physics.timestep() == pytest.approx(float(accurate["timestep"]))
+    with pytest.raises(ParameterError, match="unknown domain 'rimless_wheel'"):
+        envs.suite_load("rimless_wheel", "fast")
+    with pytest.raises(ParameterError, match="unknown task 'walk' of domain rimless-wheel"):
+        envs.suite_load("rimless-wheel", "walk")
 
 
 def test_named_access_and_parameterised_model() -> None:

@@ -47,7 +47,8 @@ LAYER_OF: dict[str, str] = {
     "mjpoincare.releases": "commands", "mjpoincare.gate": "commands", "mjpoincare.gate_environments": "commands",
     "mjpoincare.report": "commands", "mjpoincare.render": "commands", "mjpoincare.reports": "commands",
     "mjpoincare.bench_scaling": "commands", "mjpoincare.baseline": "commands", "mjpoincare.power": "commands",
-    "mjpoincare.cli": "face", "mjpoincare.api": "face", "mjpoincare.pytest_plugin": "face", "mjpoincare.envs": "face",
+    "mjpoincare.cli": "face", "mjpoincare.__main__": "face",
+    "mjpoincare.api": "face", "mjpoincare.pytest_plugin": "face", "mjpoincare.envs": "face",
     "mjpoincare.__init__": "face",
 }
 

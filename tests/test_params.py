@@ -15,7 +15,15 @@ CONE = Param("cone", "elliptic", "cone", str, choices=("pyramidal", "elliptic"))
 def test_coerce_converts_text() -> None:
     assert SPOKES.coerce("10") == 10
     assert SLOPE.coerce("0.1") == pytest.approx(0.1)
-    assert CONE.coerce("Pyramidal") == "pyramidal"
+    assert CONE.coerce(" pyramidal ") == "pyramidal"
+
+
+def test_a_choice_is_case_sensitive_and_a_bool_is_no_number() -> None:
+    """MJCF's own values are case-sensitive; ``Pyramidal`` is refused with the hint, not guessed."""
+    with pytest.raises(ParameterError, match="cone must be one of .* values are case-sensitive"):
+        CONE.coerce("Pyramidal")
+    with pytest.raises(ParameterError, match="spokes must be a number"):
+        SPOKES.coerce(True)
 
 
 @pytest.mark.parametrize(
@@ -38,7 +46,9 @@ def test_bad_values_name_parameter_and_range(param: Param, value: str, needle: s
 
 
 def test_assignments_and_unknown_names() -> None:
-    assert parse_assignments(["spokes=10", "slope = 0.1", "spokes=12"]) == {"spokes": "12", "slope": "0.1"}
+    assert parse_assignments(["spokes=10", "slope = 0.1"]) == {"spokes": "10", "slope": "0.1"}
+    with pytest.raises(ParameterError, match=r"--set spokes is given twice \('10' and '12'\)"):
+        parse_assignments(["spokes=10", "slope = 0.1", "spokes=12"])
     with pytest.raises(ParameterError, match="name=value"):
         parse_assignments(["spokes"])
     with pytest.raises(ParameterError, match="unknown parameter 'spoke'"):

@@ -2,11 +2,13 @@
 
 ``mjpoincare.validate(scenario, preset=None, seed=0, **values) -> Result`` is the Python API (see
 :mod:`mjpoincare.api`). The names below are loaded on first use, so that ``mjpoincare.analysis`` (numpy and scipy
-only) imports without MuJoCo.
+only) imports without MuJoCo; ``__version__`` is the installed distribution's version.
 """
 
 from __future__ import annotations
 
+from importlib.metadata import PackageNotFoundError
+from importlib.metadata import version as _distribution_version
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
@@ -15,7 +17,12 @@ if TYPE_CHECKING:
     from mjpoincare.result import Result
 
 _LAZY = {"validate": "mjpoincare.api", "Result": "mjpoincare.result", "ParameterError": "mjpoincare.params"}
-__all__ = ["ParameterError", "Result", "validate"]
+__all__ = ["ParameterError", "Result", "__version__", "validate"]
+
+try:
+    __version__ = _distribution_version("mjpoincare")
+except PackageNotFoundError:  # a source tree on sys.path, not installed
+    __version__ = "0+unknown"
 
 
 def __getattr__(name: str) -> Any:
@@ -24,3 +31,7 @@ def __getattr__(name: str) -> Any:
 
         return getattr(importlib.import_module(_LAZY[name]), name)
     raise AttributeError(f"module 'mjpoincare' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(__all__)

@@ -6,7 +6,9 @@ The command line (:mod:`mjpoincare.cli`) is a thin layer over this function: the
 
 from __future__ import annotations
 
-from mjpoincare.params import ParameterError, Value
+from mjpoincare import scenarios
+from mjpoincare import settings as sim_settings
+from mjpoincare.params import ParameterError, Value, typed
 from mjpoincare.result import Result
 from mjpoincare.validation import run_validation
 
@@ -22,7 +24,7 @@ def validate(scenario: str, preset: str | None = None, seed: int = 0, *, peer: s
         peer: an outside simulator (``"drake"``, for rimless-wheel and compass-biped; the extra
             ``mjpoincare[peers]``) whose value of each check the result's ``extras["peer"]`` carries.
         **values: physical parameters and simulator settings, typed (``spokes=8``, ``timestep=2e-4``,
-            ``integrator="rk4"``); text as on the command line is accepted too.
+            ``integrator="rk4"``): text for a number (``spokes="8"``) is refused, as is a bool.
 
     Returns:
         The :class:`~mjpoincare.result.Result`: ``passed`` (bool) and ``checks`` (name, analytic, simulated,
@@ -34,4 +36,5 @@ def validate(scenario: str, preset: str | None = None, seed: int = 0, *, peer: s
     """
     if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
         raise ParameterError(f"seed must be an integer >= 0 (got {seed!r})")
+    typed([*scenarios.get(scenario).params, *sim_settings.SETTINGS], values)
     return run_validation(scenario, values, preset, seed, peer=peer)

@@ -48,7 +48,7 @@ def _cmd_validate(args: argparse.Namespace) -> int:
     from mjpoincare import scenarios
     from mjpoincare.api import validate
     from mjpoincare.result import check_output_path, write_json
-    from mjpoincare.validation import peer_of, resolve_inputs
+    from mjpoincare.validation import peer_of, resolve_inputs, typed_values
 
     names = args.scenario or list(scenarios.DEFAULT_SCENARIOS)
     assignments = parse_assignments(args.set)
@@ -70,7 +70,8 @@ def _cmd_validate(args: argparse.Namespace) -> int:
             coarse_grids(name, assignments, args.preset)
     if args.report:
         _require_viz("--report", "matplotlib")
-    results = [validate(name, args.preset, args.seed, peer=args.peer, **assignments) for name in names]
+    results = [validate(name, args.preset, args.seed, peer=args.peer, **typed_values(name, assignments))
+               for name in names]
     if args.extrapolate:
         from mjpoincare.extrapolate import extrapolate
 
@@ -388,7 +389,13 @@ def _cmd_render(args: argparse.Namespace) -> int:
 
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser (exposed for tests and docs)."""
+    from importlib.metadata import version
+
+    from mjpoincare import __version__
+
     parser = argparse.ArgumentParser(prog="mjpoincare", description=__doc__)
+    parser.add_argument("--version", action="version",
+                        version=f"mjpoincare {__version__} (MuJoCo {version('mujoco')})")
     sub = parser.add_subparsers(dest="command", required=True)
     sub.add_parser("list", help="list scenarios, their parameters and presets").set_defaults(func=_cmd_list)
 

@@ -52,13 +52,21 @@ from dm_control.rl import control
 from dm_control.suite import base
 
 from mjpoincare import scenarios
-from mjpoincare.params import ParameterError, Value
+from mjpoincare import settings as sim_settings
+from mjpoincare.params import ParameterError, Value, typed
 from mjpoincare.validation import resolve_inputs
 
 #: The loadable names: every scenario of the registry.
 ALL: tuple[str, ...] = tuple(scenarios.REGISTRY)
 #: Default episode length, s (``environment_kwargs={"time_limit": ...}`` overrides it).
 DEFAULT_TIME_LIMIT = 10.0
+#: Default control timestep, s, as in dm_control's suite (10-25 ms); rounded to whole physics steps
+#: (:func:`sub_steps`).
+DEFAULT_CONTROL_TIMESTEP = 0.01
+#: ``(domain, task)`` pairs for :func:`suite_load`, as ``dm_control.suite.ALL_TASKS``: each scenario with each of
+#: its presets.
+ALL_TASKS: tuple[tuple[str, str], ...] = tuple((name, preset) for name in scenarios.REGISTRY
+                                               for preset in scenarios.get(name).presets)
 _FULLPHYSICS = mujoco.mjtState.mjSTATE_FULLPHYSICS
 
 
@@ -176,6 +184,15 @@ def _limit_controls(model: mujoco.MjModel) -> None:
             model.actuator_ctrlrange[i] = (-limit, limit)
 
 
+def sub_steps(control_timestep: float, physics_timestep: float) -> int:
+    """Whole physics steps per control step: ``control_timestep / physics_timestep`` rounded to the nearest integer,
+    at least 1 (the environment's ``control_timestep()`` is then that many physics steps, which is what dm_control
+    requires; the requested and the rounded value differ by at most half a physics step)."""
+    if not control_timestep > 0:
+        raise ParameterError(f"control_timestep must be > 0 s (got {control_timestep!r})")
+    return max(1, round(control_timestep / physics_timestep))
+
+
 def load(name: str, preset: str | None = None, environment_kwargs: Mapping[str, Any] | None = None,
          task_kwargs: Mapping[str, Any] | None = None, **values: Value) -> control.Environment:
     """The dm_control environment of scenario ``name``.
@@ -184,14 +201,17 @@ def load(name: str, preset: str | None = None, environment_kwargs: Mapping[str, 
         name: a registered scenario (:data:`ALL`), e.g. ``"rimless-wheel"``.
         preset: simulator preset (``"fast"``, ``"accurate"``, ...); None is the scenario's default.
         environment_kwargs: passed to :class:`dm_control.rl.control.Environment` (``time_limit``, default
-            :data:`DEFAULT_TIME_LIMIT`; ``control_timestep`` or ``n_sub_steps``, default one physics step).
+            :data:`DEFAULT_TIME_LIMIT`; ``n_sub_steps``, or ``control_timestep`` in s, default
+            :data:`DEFAULT_CONTROL_TIMESTEP`, rounded to whole physics steps by :func:`sub_steps`: the environment's
+            ``control_timestep()`` returns the rounded value).
         task_kwargs: passed to :class:`SystemTask`: ``start`` (row of the start batch, None: random) and ``random``.
-        **values: physical parameters and simulator settings, typed (``spokes=8``) or as text, as for
-            :func:`mjpoincare.validate`.
+        **values: physical parameters and simulator settings, typed (``spokes=8``; text for a number is refused),
+            as for :func:`mjpoincare.validate`.
 
     Raises:
         ParameterError: any bad input (unknown scenario, preset or parameter, value out of range), one line.
     """
+    typed([*scenarios.get(name).params, *sim_settings.SETTINGS], values)
     scenario, _, params, settings = resolve_inputs(name, values, preset)
     model, batches = scenario.probe(params, settings)
     _unit_gains(model)
@@ -199,7 +219,27 @@ def load(name: str, preset: str | None = None, environment_kwargs: Mapping[str, 
     physics = Physics.from_model(wrapper.MjModel(model))
     task = SystemTask(scenario.track_body, batches[0][0], source=scenario.source, **dict(task_kwargs or {}))
     kwargs = {"time_limit": DEFAULT_TIME_LIMIT, **dict(environment_kwargs or {})}
+    if "n_sub_steps" not in kwargs:
+        requested = kwargs.pop("control_timestep", DEFAULT_CONTROL_TIMESTEP)
+        kwargs["n_sub_steps"] = sub_steps(requested, model.opt.timestep)
     return control.Environment(physics, task, **kwargs)
 
 
-__all__ = ["ALL", "DEFAULT_TIME_LIMIT", "Physics", "SystemTask", "load"]
+def suite_load(domain_name: str, task_name: str, task_kwargs: Mapping[str, Any] | None = None,
+               environment_kwargs: Mapping[str, Any] | None = None, **values: Value) -> control.Environment:
+    """:func:`load` named as ``dm_control.suite.load(domain_name, task_name, ...)``: the domain is the scenario, the
+    task its preset (:data:`ALL_TASKS`), e.g. ``suite_load("rimless-wheel", "accurate")``.
+
+    Raises:
+        ParameterError: an unknown domain or task, one line naming the known ones, and any bad input of :func:`load`.
+    """
+    if domain_name not in scenarios.REGISTRY:
+        raise ParameterError(f"unknown domain {domain_name!r}; known: {', '.join(scenarios.REGISTRY)}")
+    tasks = [task for domain, task in ALL_TASKS if domain == domain_name]
+    if task_name not in tasks:
+        raise ParameterError(f"unknown task {task_name!r} of domain {domain_name}; known: {', '.join(tasks)}")
+    return load(domain_name, task_name, environment_kwargs=environment_kwargs, task_kwargs=task_kwargs, **values)
+
+
+__all__ = ["ALL", "ALL_TASKS", "DEFAULT_CONTROL_TIMESTEP", "DEFAULT_TIME_LIMIT", "Physics", "SystemTask", "load",
+           "sub_steps", "suite_load"]

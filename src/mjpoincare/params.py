@@ -58,10 +58,13 @@ class Param:
     def coerce(self, value: Any) -> Value:
         """Convert ``value`` (text or number) to this parameter's type and check its range."""
         if self.kind is str:
-            text = str(value).strip().lower()
+            text = str(value).strip()
             if self.choices is not None and text not in self.choices:
-                raise ParameterError(f"{self.name} must be {self.range_text()} (got {value!r})")
+                hint = "; values are case-sensitive" if text.lower() in self.choices else ""
+                raise ParameterError(f"{self.name} must be {self.range_text()} (got {value!r}{hint})")
             return text
+        if isinstance(value, bool):
+            raise ParameterError(f"{self.name} must be a number {self.range_text()} (got {value!r})")
         try:
             number = float(value)
         except (TypeError, ValueError):
@@ -82,14 +85,29 @@ class Param:
 
 
 def parse_assignments(items: Iterable[str]) -> dict[str, str]:
-    """Parse CLI ``name=value`` strings into a dict (later assignments win)."""
+    """Parse CLI ``name=value`` strings into a dict; a name given twice is refused (which value was meant is not
+    guessed)."""
     out: dict[str, str] = {}
     for item in items:
         name, sep, value = item.partition("=")
         if not sep or not name.strip():
             raise ParameterError(f"--set expects name=value (got {item!r})")
+        if name.strip() in out:
+            raise ParameterError(f"--set {name.strip()} is given twice ({out[name.strip()]!r} and {value.strip()!r}); "
+                                 "give it once")
         out[name.strip()] = value.strip()
     return out
+
+
+def typed(declared: Sequence[Param], values: Mapping[str, Any]) -> None:
+    """Refuse text where ``declared`` expects a number, for Python callers (the command line's ``--set`` is text and
+    goes through :func:`parse_assignments`): ``spokes="8"`` raises, ``spokes=8`` passes."""
+    by_name = {p.name: p for p in declared}
+    for name, value in values.items():
+        param = by_name.get(name)
+        if param is not None and param.kind is not str and isinstance(value, str):
+            raise ParameterError(f"{name} must be a number {param.range_text()}, not text (got {value!r}; text is "
+                                 "for the command line's --set)")
 
 
 def resolve(
@@ -128,9 +146,12 @@ def parse_values(text: str) -> list[str]:
     """``0.07,0.072,0.074`` or ``0.07:0.076:4`` (start:stop:count) -> value strings."""
     if text.count(":") == 2:
         try:
-            return _span(*text.split(":"))
+            values = _span(*text.split(":"))
         except ValueError:
             raise ParameterError(f"--values START:STOP:COUNT expects numbers (got {text!r})") from None
+        if not values:
+            raise ParameterError(f"--values START:STOP:COUNT needs COUNT >= 1 (got {text!r})")
+        return values
     values = [v.strip() for v in text.split(",") if v.strip()]
     if not values:
         raise ParameterError("--values needs at least one value")

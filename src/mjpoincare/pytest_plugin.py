@@ -193,10 +193,12 @@ def _result(config: pytest.Config, scenario: str) -> Result | Exception:
     cache = config.stash[_RESULTS]
     if scenario not in cache:
         import mjpoincare
+        from mjpoincare.validation import typed_values
 
         request = config.stash[_REQUEST]
         try:
-            cache[scenario] = mjpoincare.validate(scenario, request.preset, request.seed, **request.assignments)
+            cache[scenario] = mjpoincare.validate(scenario, request.preset, request.seed,
+                                                  **typed_values(scenario, request.assignments))
         except Exception as err:  # a crash becomes a failing item, not a collection error that stops the session
             cache[scenario] = err
         else:

@@ -31,6 +31,16 @@ def resolve_values(name: str, assignments: Mapping[str, Value], preset: str | No
     return scenario, preset_name, params, settings
 
 
+def typed_values(name: str, assignments: Mapping[str, Value]) -> dict[str, Value]:
+    """``--set``-style text ``assignments`` of scenario ``name`` as typed values (``{"spokes": "8"}`` ->
+    ``{"spokes": 8}``), each through its :class:`~mjpoincare.params.Param`, for :func:`mjpoincare.validate`, which
+    takes typed values only; bad text raises :class:`ParameterError`."""
+    scenario = scenarios.get(name)
+    unknown(assignments, scenario.params, sim_settings.SETTINGS)
+    by_name = {p.name: p for p in (*scenario.params, *sim_settings.SETTINGS)}
+    return {key: by_name[key].coerce(value) for key, value in assignments.items()}
+
+
 def resolve_inputs(name: str, assignments: Mapping[str, Value], preset: str | None
                    ) -> tuple[scenarios.Scenario, str, dict, dict]:
     """:func:`resolve_values`, then the seam self-test: a seam mechanism the scenario uses that fails its self-test on
