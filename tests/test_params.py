@@ -20,7 +20,7 @@ def test_coerce_converts_text() -> None:
 
 def test_a_choice_is_case_sensitive_and_a_bool_is_no_number() -> None:
     """MJCF's own values are case-sensitive; ``Pyramidal`` is refused with the hint, not guessed."""
-    with pytest.raises(ParameterError, match="cone must be one of .* values are case-sensitive"):
+    with pytest.raises(ParameterError, match=r"cone must be one of .* values are case-sensitive"):
         CONE.coerce("Pyramidal")
     with pytest.raises(ParameterError, match="spokes must be a number"):
         SPOKES.coerce(True)

@@ -47,13 +47,14 @@ def _cmd_validate(args: argparse.Namespace) -> int:
     no_gl = _select_still_backend() if args.report else None  # before MuJoCo is imported
     from mjpoincare import scenarios
     from mjpoincare.api import validate
-    from mjpoincare.result import check_output_path, write_json
+    from mjpoincare.result import check_output_path, distinct_outputs, write_json
     from mjpoincare.validation import peer_of, resolve_inputs, typed_values
 
     names = args.scenario or list(scenarios.DEFAULT_SCENARIOS)
     assignments = parse_assignments(args.set)
     check_output_path(args.json, "--json")  # before the inputs: resolving them self-tests the seam (a tiny rollout)
     check_output_path(args.report, "--report", directory=True)
+    distinct_outputs(json=args.json, report=args.report, baseline=args.baseline if args.update_baseline else None)
     if args.update_baseline and not args.baseline:
         raise ParameterError("--update-baseline needs --baseline PATH (the file to record into)")
     if args.baseline:
@@ -70,6 +71,11 @@ def _cmd_validate(args: argparse.Namespace) -> int:
             coarse_grids(name, assignments, args.preset)
     if args.report:
         _require_viz("--report", "matplotlib")
+    from mjpoincare.cost import refuse_long
+    from mjpoincare.validation import run_steps
+
+    for name in names:
+        refuse_long(run_steps(name, assignments, args.preset), f"validate {name}", allow=args.allow_long)
     results = [validate(name, args.preset, args.seed, peer=args.peer, **typed_values(name, assignments))
                for name in names]
     if args.extrapolate:
@@ -154,7 +160,7 @@ def _report_still(name: str, assignments: dict[str, str], preset: str | None) ->
 
 def _cmd_bench(args: argparse.Namespace) -> int:
     from mjpoincare.bench import run_bench, run_skips
-    from mjpoincare.result import check_output_path
+    from mjpoincare.result import check_output_path, distinct_outputs
 
     if args.scaling and not args.param:
         raise ParameterError("bench --scaling needs --param NAME (the swept parameter or setting)")
@@ -173,6 +179,8 @@ def _cmd_bench(args: argparse.Namespace) -> int:
         return run_skips(args.scenario, parse_assignments(args.set), json_path)
     check_output_path(args.json and args.json.format(scenario=args.scenario), "--json")
     check_output_path(args.output.format(scenario=args.scenario), "--output")
+    distinct_outputs(json=args.json and args.json.format(scenario=args.scenario),
+                     output=args.output.format(scenario=args.scenario))
     _require_viz("bench's plot", "matplotlib")
     return run_bench(args.scenario, parse_assignments(args.set), args.output, args.json, quick=args.quick)
 
@@ -180,7 +188,7 @@ def _cmd_bench(args: argparse.Namespace) -> int:
 def _cmd_sweep(args: argparse.Namespace) -> int:
     from mjpoincare import scenarios
     from mjpoincare.params import parse_values
-    from mjpoincare.result import check_output_path
+    from mjpoincare.result import check_output_path, distinct_outputs
     from mjpoincare.sweep import run_own_sweep, run_region_map, run_sweep
 
     scenario = scenarios.get(args.scenario)
@@ -193,26 +201,37 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
                                  f"{', '.join(with_map)})")
         output = (args.output or facet.output).format(scenario=scenario.name)
         check_output_path(output, "--output")
+        distinct_outputs(json=args.json, output=output)
         _require_viz("sweep --grid", "matplotlib")
         return run_region_map(scenario.name, facet, args.grid, parse_assignments(args.set), args.preset, args.json,
                               output, workers=args.workers)
     if not (args.param and args.values):
         raise ParameterError("sweep needs --param and --values (or --grid)")
+    values = parse_values(args.values)
+    if args.param not in scenario.param_sweeps:
+        from mjpoincare.cost import refuse_long
+        from mjpoincare.validation import run_steps
+
+        assignments = parse_assignments(args.set)
+        ends = {values[0], values[len(values) // 2], values[-1]}  # a value's steps vary smoothly along the sweep
+        steps = len(values) * max(run_steps(scenario.name, {**assignments, args.param: v}, args.preset) for v in ends)
+        refuse_long(steps, f"sweep {scenario.name} over {len(values)} values", allow=args.allow_long)
     if args.param in scenario.param_sweeps:
-        return run_own_sweep(scenario.name, args.param, scenario.param_sweeps[args.param], parse_values(args.values),
+        return run_own_sweep(scenario.name, args.param, scenario.param_sweeps[args.param], values,
                              parse_assignments(args.set), args.preset, args.json, resume=args.resume,
                              workers=args.workers)
-    return run_sweep(args.scenario, args.param, parse_values(args.values), parse_assignments(args.set), args.preset,
+    return run_sweep(args.scenario, args.param, values, parse_assignments(args.set), args.preset,
                      args.json, args.locate, workers=args.workers, engine=args.engine, scheduler=args.scheduler,
                      resume=args.resume)
 
 
 def _cmd_converge(args: argparse.Namespace) -> int:
     from mjpoincare.converge import DEFAULT_AXES, run_converge
-    from mjpoincare.result import check_output_path
+    from mjpoincare.result import check_output_path, distinct_outputs
 
     check_output_path(args.json, "--json")
     check_output_path(args.report, "--report", directory=True)
+    distinct_outputs(json=args.json, report=args.report)
     if args.report:
         _require_viz("--report", "matplotlib")
     return run_converge(args.scenario, parse_assignments(args.set), args.preset, json_path=args.json,
@@ -325,13 +344,14 @@ def _cmd_power(args: argparse.Namespace) -> int:
 
 def _cmd_tune(args: argparse.Namespace) -> int:
     from mjpoincare import scenarios
-    from mjpoincare.result import check_output_path, write_json
+    from mjpoincare.result import check_output_path, distinct_outputs, write_json
     from mjpoincare.stamp import environment
     from mjpoincare.tune import STUDY_DIR, run_study, summary
 
     name = scenarios.get(args.scenario).name
     check_output_path(args.json, "--json")
     check_output_path(args.plot, "--plot")
+    distinct_outputs(json=args.json, plot=args.plot, study=args.study)
     if args.plot:
         _require_viz("tune --plot", "matplotlib")
     path = Path(args.study or STUDY_DIR / f"{name}.db")
@@ -365,8 +385,10 @@ def _cmd_tune(args: argparse.Namespace) -> int:
 
 
 def _cmd_render(args: argparse.Namespace) -> int:
-    from mjpoincare.render import parse_size, render_frames, select_gl_backend, write_media
+    from mjpoincare.render import check_media_path, parse_size, render_frames, select_gl_backend, write_media
 
+    output = args.output or f"renders/{args.scenario}.mp4"
+    check_media_path(output)
     size = parse_size(args.size)
     assignments = parse_assignments(args.set)
     if not args.seconds > 0 or not 1 <= args.fps <= 240:
@@ -375,12 +397,12 @@ def _cmd_render(args: argparse.Namespace) -> int:
     from mjpoincare.validation import resolve_inputs
 
     resolve_inputs(args.scenario, assignments, args.preset)
-    output = args.output or f"renders/{args.scenario}.mp4"
     from mjpoincare.result import check_output_path
 
     check_output_path(output, "--output")
     _require_viz("render", "mediapy", "imageio_ffmpeg")
-    frames, timing = render_frames(args.scenario, assignments, args.preset, args.seconds, args.fps, size)
+    frames, timing = render_frames(args.scenario, assignments, args.preset, args.seconds, args.fps, size,
+                                   last_only=output.lower().endswith(".png"))
     write_media(output, frames, args.fps)
     print(f"wrote {output}: {len(frames)} frames {size[0]}x{size[1]} with MUJOCO_GL={backend}; "
           f"simulate {timing['simulate_s']:.2f} s, render {timing['ms_per_frame']:.1f} ms/frame")
@@ -414,6 +436,8 @@ def build_parser() -> argparse.ArgumentParser:
                      "its other runs), each check's resolution measured by re-running under the gate's perturbations")
     val.add_argument("--extrapolate", action="store_true", help="also run the timestep grids 2h and 4h and report "
                      "each scalar check's Richardson value and GCI band where its order is clean (not judged)")
+    val.add_argument("--allow-long", action="store_true", help="run even when the run's estimated MuJoCo steps "
+                     "exceed 1e9 (refused otherwise, before any simulation)")
     val.add_argument("--peer", choices=("drake",), help="add an outside simulator's value of each check (drake: "
                      "rimless-wheel and compass-biped; pip install 'mjpoincare[peers]')")
     val.set_defaults(func=_cmd_validate)
@@ -454,6 +478,8 @@ def build_parser() -> argparse.ArgumentParser:
                        "'mjpoincare[dask]')")
     sweep.add_argument("--scheduler", metavar="ADDRESS", help="Dask scheduler address (default: a local cluster "
                        "of --workers processes)")
+    sweep.add_argument("--allow-long", action="store_true", help="run even when the sweep's estimated MuJoCo steps "
+                       "exceed 1e9 (refused otherwise, before any simulation)")
     sweep.add_argument("--resume", action="store_true", help="skip the values the --json results file already holds")
     sweep.set_defaults(func=_cmd_sweep)
 

@@ -57,9 +57,23 @@ def parse_size(text: str) -> tuple[int, int]:
     return width, height
 
 
+#: The formats ``render`` writes, by file suffix.
+MEDIA_SUFFIXES = (".mp4", ".gif", ".png")
+
+
+def check_media_path(path: str) -> None:
+    """Refuse, before any simulation, an output whose suffix is not one of :data:`MEDIA_SUFFIXES`."""
+    from mjpoincare.params import ParameterError
+
+    if Path(path).suffix.lower() not in MEDIA_SUFFIXES:
+        raise ParameterError(f"--output {path}: the format is chosen by the suffix, one of "
+                             f"{', '.join(MEDIA_SUFFIXES)} (got {Path(path).suffix or 'none'!r})")
+
+
 def render_frames(name: str, assignments: Mapping[str, str], preset: str | None, seconds: float, fps: int,
-                  size: tuple[int, int]) -> tuple[np.ndarray, dict[str, float]]:
-    """Frames (n, height, width, 3) of ``seconds`` of the scenario, and timings."""
+                  size: tuple[int, int], *, last_only: bool = False) -> tuple[np.ndarray, dict[str, float]]:
+    """Frames (n, height, width, 3) of ``seconds`` of the scenario at ``fps``, and timings; ``last_only``: only the
+    last of them, (1, height, width, 3) (a still: the clip is simulated whole, one frame is drawn)."""
     import mujoco
     from scipy import ndimage
 
@@ -90,13 +104,14 @@ def render_frames(name: str, assignments: Mapping[str, str], preset: str | None,
     model.vis.scale.contactwidth, model.vis.scale.contactheight = 0.06, 0.02
     model.vis.rgba.contactpoint[:] = (1.0, 0.15, 0.1, 1.0)
     model.vis.quality.offsamples = 0  # software (Mesa) rendering: multisampling costs more than it shows
-    frames = np.empty((nframes, height, width, 3), np.uint8)
+    drawn = range(nframes - 1, nframes) if last_only else range(nframes)
+    frames = np.empty((len(drawn), height, width, 3), np.uint8)
     start = time.perf_counter()
     with mujoco.Renderer(model, big_h, big_w) as renderer:
         renderer.scene.flags[mujoco.mjtRndFlag.mjRND_SHADOW] = False
         renderer.scene.flags[mujoco.mjtRndFlag.mjRND_REFLECTION] = False
-        for i in range(nframes):
-            row = (i + 1) * frame_every - 1
+        for i, frame in enumerate(drawn):
+            row = (frame + 1) * frame_every - 1
             mujoco.mj_setState(model, data, states[row], mujoco.mjtState.mjSTATE_FULLPHYSICS)
             if mocap is not None:
                 data.mocap_pos[:] = mocap[row]
@@ -108,8 +123,8 @@ def render_frames(name: str, assignments: Mapping[str, str], preset: str | None,
             top, left = (big_h - height) // 2, (big_w - width) // 2
             frames[i] = image[top : top + height, left : left + width]
     render_wall = time.perf_counter() - start
-    return frames, {"frames": float(nframes), "simulate_s": sim_wall, "render_s": render_wall,
-                    "ms_per_frame": 1e3 * render_wall / nframes}
+    return frames, {"frames": float(len(drawn)), "simulate_s": sim_wall, "render_s": render_wall,
+                    "ms_per_frame": 1e3 * render_wall / len(drawn)}
 
 
 def render_still(name: str, assignments: Mapping[str, str], preset: str | None, size: tuple[int, int] = (480, 360),
@@ -126,7 +141,7 @@ def render_still(name: str, assignments: Mapping[str, str], preset: str | None, 
     from matplotlib.image import imsave
 
     try:
-        frames, _ = render_frames(name, assignments, preset, seconds, 10, size)
+        frames, _ = render_frames(name, assignments, preset, seconds, 10, size, last_only=True)
     except mujoco.FatalError as err:
         raise RenderError(f"MUJOCO_GL={os.environ.get('MUJOCO_GL', '')}: {err}; {INSTALL_HINT}") from None
     buffer = io.BytesIO()
@@ -135,20 +150,23 @@ def render_still(name: str, assignments: Mapping[str, str], preset: str | None, 
 
 
 def write_media(path: str, frames: np.ndarray, fps: int) -> None:
-    """Write a video (``.mp4``/``.gif``) or, for ``.png``, the last frame; whole or not at all."""
+    """Write a video (``.mp4``/``.gif``) or, for ``.png``, the last frame, through
+    :func:`mjpoincare.result.write_bytes` (whole or not at all; a device, FIFO or symlink's target is written, never
+    replaced): encoded in a temporary folder first."""
+    import tempfile
+
     import mediapy
 
-    target = Path(path)
-    target.parent.mkdir(parents=True, exist_ok=True)
-    tmp = target.with_name(f".{target.stem}.tmp{target.suffix}")
-    try:
-        if target.suffix.lower() == ".png":
+    from mjpoincare.result import write_bytes
+
+    suffix = Path(path).suffix.lower()
+    with tempfile.TemporaryDirectory() as folder:
+        tmp = Path(folder) / f"media{suffix}"
+        if suffix == ".png":
             mediapy.write_image(tmp, frames[-1])
         else:
             import imageio_ffmpeg
 
             mediapy.set_ffmpeg(imageio_ffmpeg.get_ffmpeg_exe())
             mediapy.write_video(tmp, frames, fps=fps)
-        os.replace(tmp, target)
-    finally:
-        tmp.unlink(missing_ok=True)
+        write_bytes(tmp.read_bytes(), path)

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import json
 import os
+import secrets
+import stat
 import sys
 import tempfile
 from dataclasses import dataclass, field
@@ -103,15 +105,33 @@ def format_value(value: Any, *, from_json: bool = False) -> str:
     return str(value)
 
 
+def _in_place(target: Path) -> bool:
+    """Whether ``target`` (symlinks followed) exists and is not a regular file or a folder: a device, FIFO or
+    terminal, which an output is written into as it is, never replaced."""
+    try:
+        mode = target.stat().st_mode
+    except OSError:
+        return False
+    return not (stat.S_ISREG(mode) or stat.S_ISDIR(mode))
+
+
 def check_output_path(path: str | None, option: str, *, directory: bool = False) -> None:
-    """Refuse an output path that cannot be written, before any simulation: the nearest existing folder on the way
-    to ``path`` (``path`` itself when ``directory``) must be a directory that takes a new file. ``None`` and ``-``
-    (stdout) pass. Raises :class:`ParameterError` naming ``option``."""
+    """Refuse an output path that cannot be written, before any simulation. A symlink is followed (the link stays, its
+    target is written). A device, FIFO or terminal that exists is written in place (never replaced) and must be
+    writable; a socket is refused. Otherwise the nearest existing folder on the way to ``path`` (``path`` itself when
+    ``directory``) must be a directory that takes a new file: missing folders are created when the output is written.
+    ``None`` and ``-`` (stdout) pass. Raises :class:`ParameterError` naming ``option``."""
     if path is None or path == "-":
         return
-    target = Path(path)
+    target = Path(os.path.realpath(path))
     if not directory and target.is_dir():
         raise ParameterError(f"{option} {path} is a directory, not a file")
+    if not directory and _in_place(target):
+        if stat.S_ISSOCK(target.stat().st_mode):
+            raise ParameterError(f"{option} {path} is a socket, not a file")
+        if not os.access(target, os.W_OK):
+            raise ParameterError(f"{option} {path} cannot be written: no write permission")
+        return
     folder = target if directory else target.parent
     while not folder.exists() and folder != folder.parent:
         folder = folder.parent
@@ -124,26 +144,58 @@ def check_output_path(path: str | None, option: str, *, directory: bool = False)
         raise ParameterError(f"{option} {path} cannot be written: {err.strerror or err} in {folder}") from None
 
 
+def distinct_outputs(**paths: str | None) -> None:
+    """Refuse two outputs given one path (``--json out.json --report out.json``), before any simulation: options by
+    keyword (``json="a.json"``, ``report="a.json"``); ``None`` and ``-`` are not compared. Symlinks are followed."""
+    seen: dict[str, str] = {}
+    for option, path in paths.items():
+        if path is None or path == "-":
+            continue
+        real = os.path.realpath(path)
+        flag = "--" + option.replace("_", "-")
+        if real in seen:
+            raise ParameterError(f"{seen[real]} and {flag} are both {path}: give each output its own path")
+        seen[real] = flag
+
+
 def write_json(payload: Any, path: str) -> None:
-    """Write ``payload`` as JSON to ``path`` whole or not at all (temp file + rename); ``-`` is stdout."""
+    """Write ``payload`` as JSON to ``path`` (:func:`write_bytes`); ``-`` is stdout."""
     write_text(json.dumps(payload, indent=2, allow_nan=False) + "\n", path)
 
 
 def write_text(text: str, path: str) -> None:
-    """Write ``text`` to ``path`` whole or not at all (temp file + rename); ``-`` is stdout."""
+    """Write ``text`` to ``path`` (:func:`write_bytes`); ``-`` is stdout."""
     if path == "-":
         sys.stdout.write(text)
         sys.stdout.flush()
         return
-    target = Path(path)
+    write_bytes(text.encode(), path)
+
+
+def write_bytes(data: bytes, path: str) -> None:
+    """Write ``data`` to ``path``. A regular file (or a new one) is written whole or not at all: a temp file beside it,
+    then renamed over it; missing folders are created. A symlink is followed: its target is written and the link
+    stays. A device, FIFO or terminal is written in place, never replaced (``/dev/null``, ``/dev/stdout``); a failed
+    write there raises :class:`ParameterError` naming ``path``."""
+    target = Path(os.path.realpath(path))
+    if _in_place(target):
+        try:
+            with target.open("wb") as handle:
+                handle.write(data)
+        except OSError as err:  # /dev/full; a FIFO whose reader left
+            raise ParameterError(f"cannot write {path}: {err.strerror or err}") from None
+        return
     target.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".tmp")
-    umask = os.umask(0)
-    os.umask(umask)
-    os.chmod(tmp, 0o666 & ~umask)
+    while True:  # os.open with mode 0o666: the caller's umask applies, as to any new file, and is never changed
+        tmp = target.parent / f".{target.name}.{secrets.token_hex(6)}.tmp"
+        try:
+            fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
+            break
+        except FileExistsError:
+            continue
     try:
-        with os.fdopen(fd, "w") as handle:
-            handle.write(text)
+        with os.fdopen(fd, "wb") as handle:
+            handle.write(data)
             handle.flush()
             os.fsync(handle.fileno())
         os.replace(tmp, target)

@@ -41,6 +41,15 @@ def typed_values(name: str, assignments: Mapping[str, Value]) -> dict[str, Value
     return {key: by_name[key].coerce(value) for key, value in assignments.items()}
 
 
+def run_steps(name: str, assignments: Mapping[str, Value], preset: str | None) -> float:
+    """MuJoCo steps of one validation of ``name`` (every trajectory's steps of the scenario's rollout plan,
+    ``scenario.probe``, which builds the model and its starts and steps nothing); bad input raises
+    :class:`ParameterError`."""
+    scenario, _, params, settings = resolve_values(name, assignments, preset)
+    _, batches = scenario.probe(params, settings)
+    return float(sum(states.shape[0] * nstep for states, nstep in batches))
+
+
 def resolve_inputs(name: str, assignments: Mapping[str, Value], preset: str | None
                    ) -> tuple[scenarios.Scenario, str, dict, dict]:
     """:func:`resolve_values`, then the seam self-test: a seam mechanism the scenario uses that fails its self-test on

@@ -17,6 +17,7 @@ import mujoco
 import numpy as np
 from mujoco import rollout as mj_rollout
 
+from mjpoincare.cost import check_chunk
 from mjpoincare.seam import STATE_SPEC, RolloutReport
 
 
@@ -38,6 +39,7 @@ def _native_chunk(pool: mj_rollout.Rollout, model: mujoco.MjModel | list[mujoco.
     returns the raw states (B, n, nstate) and the
     chunk with its first row prepended, where rows from a divergence on (NaN, or MuJoCo's silent reset,
     seen as time not advancing by one step per step) are NaN and the trajectory is flagged in ``report``."""
+    check_chunk(current.shape[0], n, current.shape[1])
     start = time.perf_counter()
     states, sensordata = pool.rollout(model, datas, current, control, nstep=n)
     report.wall_s += time.perf_counter() - start

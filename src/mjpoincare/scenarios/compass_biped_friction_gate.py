@@ -54,11 +54,14 @@ GATE_CASES: tuple[GateCase, ...] = (
                  Watch(check="speed", spread=1.2e-7, why="0.93 of its tolerance: " + _GAIT_C_FIT)]),
     GateCase.of(NAME, "fast", "step_period speed cost_of_transport phase_sequence impact_kind impact_slip stable",
                 gait="i", watched=[
-                    Watch(check="fixed_point", spread=4.5e-5, why="0.61 of its tolerance: " + _SOFT_SLIP),
-                    Watch(check="eigenvalues", spread=1.1e-3, why="0.52 of its tolerance: " + _SOFT_SLIP + "; a "
-                          "difference of a start grows about 6.5-fold per step through the stick-slip contact, so "
-                          "the kernels and the perturbations move the fit by 1e-3"),
-                    Watch(check="step_length", spread=4.4e-5, why="0.51 of its tolerance: " + _SOFT_SLIP)]),
+                    Watch(check="fixed_point", spread=6.5e-5, why="0.60-0.62 of its tolerance over the kernels: "
+                          + _SOFT_SLIP),
+                    Watch(check="eigenvalues", spread=2.7e-3, why="0.45-0.54 of its tolerance over the kernels: "
+                          + _SOFT_SLIP + "; a difference of a start grows about 6.5-fold per step through the "
+                          "stick-slip contact, so the kernels and the perturbations move the fit: OpenBLAS's "
+                          "AVX-512 kernel (SkylakeX) gives 0.01344, Haswell and Zen 0.01561, Prescott 0.01605"),
+                    Watch(check="step_length", spread=6.5e-5, why="0.51-0.52 of its tolerance over the kernels: "
+                          + _SOFT_SLIP)]),
     GateCase.of(NAME, "fast", "phase_sequence impact_kind impact_slip stable", gait="ii", misses=[
         Miss(check=name, measured=measured, spread=spread, tolerance=tolerance, mechanism=_GAIT_II)
         for name, measured, spread, tolerance in (("fixed_point", (0.01958916342, 0.01958916682), 3.4e-9, 5e-3),
