@@ -9,7 +9,7 @@ import math
 import mujoco
 import numpy as np
 
-from mjpoincare.analysis.start_designs import sphere_offsets
+from mjpoincare.analysis.start_designs import design_size, sphere_offsets
 from mjpoincare.analysis.theory import compass_biped_friction as theory
 from mjpoincare.scenarios.compass_biped_runs import standing_qpos
 from mjpoincare.simulate import initial_states
@@ -75,11 +75,13 @@ def impact_border(g: theory.Gait) -> float:
 def initial_section_states(g: theory.Gait, timestep: float) -> np.ndarray:
     """z* and offsets (seed 0) on (theta*, theta1_dot+, theta2_dot+) as compass-biped: theta* by a tenth of
     the size, the rates by the size (x_dot+ kept at z*); for a type-B gait (sticking impact, slip in the stance) the
-    size no larger than :func:`impact_border` (all starts on the fixed point's impact branch); STARTS of them,
+    size no larger than :func:`impact_border` (all starts on the fixed point's impact branch), rounded by
+    :func:`~mjpoincare.analysis.start_designs.design_size`; STARTS of them,
     UNSTABLE_STARTS for an unstable gait."""
     margin = 1.0 - g.spectral_radius
     size = PERTURBATION * (timestep / 2e-5) ** (1.0 / 3.0) * min(1.0, max(1.0 / 3.0, margin / 0.4))
     if g.kind == "B":  # measured: half of Gait B's compass-biped-size starts left the gait
         size = min(size, impact_border(g))
+    size = design_size(size)  # the multipliers and the border carry the kernel's roundoff; the starts do not
     starts = UNSTABLE_STARTS if unstable(g) else STARTS
     return sphere_offsets(g.z, np.array([0.1 * size, size, size, 0.0]), starts)

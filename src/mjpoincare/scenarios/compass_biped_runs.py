@@ -10,7 +10,7 @@ import mujoco
 import numpy as np
 
 from mjpoincare.analysis.adaptive_stopping import FitSettling
-from mjpoincare.analysis.start_designs import sphere_offsets
+from mjpoincare.analysis.start_designs import design_size, sphere_offsets
 from mjpoincare.analysis.theory import compass_biped as theory
 from mjpoincare.analysis.theory import compass_biped_flight as flight
 from mjpoincare.params import Values
@@ -59,10 +59,12 @@ def standing_qpos(leg_length: float, foot_radius: float, q_st: np.ndarray, q_sw:
 
 def initial_section_states(bp: theory.CompassBiped, timestep: float) -> np.ndarray:
     """The fixed point and STARTS offsets from it on the 3-D post-impact section (theta_st by a tenth of the
-    size, keeping both feet on the slope; each rate by the size, rad/s), in random directions (seed 0)."""
+    size, keeping both feet on the slope; each rate by the size, rad/s), in random directions (seed 0); the size
+    rounded by :func:`~mjpoincare.analysis.start_designs.design_size` (the multipliers carry the kernel's roundoff)."""
     x_star = theory.fixed_point(bp)
     margin = 1.0 - float(np.max(np.abs(theory.eigenvalues(bp, x_star))))
-    size = PERTURBATION * min(1.0, (timestep / 2e-5) ** (1.0 / 3.0)) * min(1.0, max(1.0 / 3.0, margin / 0.4))
+    size = design_size(PERTURBATION * min(1.0, (timestep / 2e-5) ** (1.0 / 3.0))
+                       * min(1.0, max(1.0 / 3.0, margin / 0.4)))
     out = sphere_offsets(x_star, np.array([0.1 * size, 0.0, size, size]), STARTS)
     out[:, 1] = 2.0 * bp.slope - out[:, 0]
     return out
