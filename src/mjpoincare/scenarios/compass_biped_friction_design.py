@@ -18,6 +18,11 @@ STEPS = 8  # heel strikes per trajectory, at most (a stable gait's batch stops e
 STARTS = 16  # perturbed starts around the fixed point (plus the fixed point itself)
 PERTURBATION = 0.03  # as compass-biped: size x (timestep / 20 us)^(1/3), shrunk as |lambda|max -> 1
 SETTLE = 3  # steps of the unperturbed trajectory skipped before per-step averages
+#: Periods a run lasts past its last heel strike: a start on the post-impact section crosses legs-parallel about half
+#: a period after each strike, so a run of (steps + 0.5) periods ended at a crossing, and which trajectories had their
+#: last sample depended on the fraction of a step their gait gained or lost; 0.75 ends between the crossing and the
+#: next strike.
+HORIZON_TAIL = 0.75
 #: Unstable gaits (|lambda|max > 1): the map is fitted from the first UNSTABLE_STEPS steps only, from more starts
 #: and a quadratic fit (why: docs/scenarios/compass-biped-friction.md, "Tolerances and start design")
 UNSTABLE_STEPS = 2
