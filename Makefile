@@ -2,7 +2,7 @@
 #   make validate   creates .venv-core, installs mjpoincare alone (its core dependencies) from the lock, runs the default
 #                   validation and prints the table
 #   make test       creates .venv, installs mjpoincare with every extra and its dev tools from the lock, runs ruff and
-#                   pytest (the other targets below use that .venv too)
+#                   pytest in TEST_WORKERS (2) pytest-xdist workers (the other targets below use that .venv too)
 # The lock (requirements/lock.txt) pins every dependency for every Python >= 3.10 and platform (uv's universal
 # resolution); pip installs through it as constraints, so CI and a new user get the versions the suite was tested on.
 #   make lock         regenerate requirements/lock.txt from pyproject.toml
@@ -52,6 +52,8 @@ MAPS ?= 0
 SCALING ?=
 WORKERS ?= 1
 RELEASE_WORKERS ?= 2
+#: pytest-xdist workers of make test; --dist loadgroup keeps each gate case's tests (and its cached run) on one.
+TEST_WORKERS ?= 2
 PRESET ?= fast
 TUNE_SCENARIOS ?= rimless-wheel rimless-wheel-friction slotted-skate rimless-wheel-3d compass-biped compass-biped-friction
 TUNE_TRIALS ?= 16
@@ -81,7 +83,7 @@ validate: $(CORE_STAMP)
 
 test: $(STAMP)
 	$(BIN)/ruff check src analysis models tests docs/scripts noxfile.py
-	$(BIN)/python -m pytest -q
+	$(BIN)/python -m pytest -q -n $(TEST_WORKERS) --dist loadgroup
 	$(BIN)/nox -s oldest
 
 test-latest:
