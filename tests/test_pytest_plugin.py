@@ -17,6 +17,20 @@ def nodes(scenario: str) -> re.Pattern[str]:
     return re.compile(rf"^mjpoincare::{re.escape(scenario)}::(\w+) (PASSED|FAILED)", re.MULTILINE)
 
 
+#: A conftest that records each scenario a process validates (one line per run, in runs.txt) and then crashes it.
+COUNTING_CRASH = """
+    import os
+    import mjpoincare.api
+
+    def crash(scenario, *args, **kwargs):
+        with open(os.path.join(os.path.dirname(__file__), "runs.txt"), "a") as log:
+            log.write(scenario + "\\n")
+        raise RuntimeError(f"simulated crash in {scenario}")
+
+    mjpoincare.api.validate = crash
+"""
+
+
 @pytest.fixture
 def pytester(pytester: pytest.Pytester, monkeypatch: pytest.MonkeyPatch) -> pytest.Pytester:
     """pytester with plugin autoloading on (as in a user's CI job) and the CI env vars off (stable summary)."""
@@ -80,20 +94,15 @@ def test_bad_input_is_a_one_line_usage_error(pytester: pytest.Pytester, args: li
     assert "collected" not in result.stdout.str()
 
 
-def test_a_crash_fails_one_item_and_the_run_goes_on(pytester: pytest.Pytester) -> None:
-    pytester.makeconftest("""
-        import mjpoincare.api
-
-        def crash(scenario, *args, **kwargs):
-            raise RuntimeError(f"simulated crash in {scenario}")
-
-        mjpoincare.api.validate = crash
-    """)
+def test_a_crash_fails_the_scenarios_items_and_the_run_goes_on(pytester: pytest.Pytester) -> None:
+    pytester.makeconftest(COUNTING_CRASH)
     pytester.makepyfile(test_project="def test_project():\n    assert True\n")
     result = run(pytester, "--mjpoincare", "rimless-wheel", "-rf")
     assert result.ret == pytest.ExitCode.TESTS_FAILED
-    result.assert_outcomes(passed=1, failed=1)
-    result.stdout.fnmatch_lines(["FAILED mjpoincare::rimless-wheel::validate - RuntimeError: simulated crash*"])
+    outcomes = result.parseoutcomes()
+    assert outcomes["passed"] == 1 and outcomes["failed"] >= 2, outcomes
+    result.stdout.fnmatch_lines(["FAILED mjpoincare::rimless-wheel::stable - RuntimeError: simulated crash*"])
+    assert (pytester.path / "runs.txt").read_text().split() == ["rimless-wheel"]  # run once for all its items
     assert "runtest" not in result.stdout.str()  # the run's own traceback, not pytest's runner frames
 
 
@@ -133,3 +142,45 @@ def test_a_baseline_catches_a_timestep_one_percent_off_that_every_tolerance_pass
     assert failed, out
     assert re.search(rf"rimless-wheel\[fast\]::{failed[0]}: error \S+ -> \S+: changed \S+, \S+ x its resolution",
                      out), out
+
+
+def test_collect_only_simulates_nothing(pytester: pytest.Pytester) -> None:
+    """The items are the declared checks and ``stable``: collected without a run (the validation would crash)."""
+    from mjpoincare import scenarios
+    from mjpoincare.validation import resolve_values
+
+    pytester.makeconftest(COUNTING_CRASH)
+    result = run(pytester, "--collect-only", "-q", "--mjpoincare", "rimless-wheel")
+    assert result.ret == pytest.ExitCode.OK, result.stdout.str()
+    scenario, _, params, settings = resolve_values("rimless-wheel", {}, None)
+    expected = [f"mjpoincare::rimless-wheel::{name}" for name in (*scenario.checks_for(params, settings), "stable")]
+    assert [line for line in result.stdout.lines if line.startswith("mjpoincare::")] == expected
+    assert not (pytester.path / "runs.txt").exists()
+    assert "rimless-wheel" in scenarios.REGISTRY
+
+
+def test_ini_options_are_read_and_checked(pytester: pytest.Pytester) -> None:
+    """``mjpoincare``, ``mjpoincare_preset`` and ``mjpoincare_set`` from pytest.ini: the scenario is collected, and a
+    bad value there is the same one-line usage error as on the command line."""
+    pytester.makeconftest(COUNTING_CRASH)
+    pytester.makeini("[pytest]\nmjpoincare = rimless-wheel\nmjpoincare_preset = fast\n")
+    collected = run(pytester, "--collect-only", "-q")
+    assert collected.ret == pytest.ExitCode.OK, collected.stdout.str()
+    assert "mjpoincare::rimless-wheel::stable" in collected.stdout.str()
+    assert "preset=fast" in run(pytester, "--collect-only").stdout.str()
+    pytester.makeini("[pytest]\nmjpoincare = rimless-wheel\nmjpoincare_set = timestep=1\n")
+    refused = run(pytester)
+    assert refused.ret == pytest.ExitCode.USAGE_ERROR
+    assert "timestep must be in (0, 0.05] (got 1)" in refused.stderr.str()
+
+
+def test_under_xdist_loadscope_each_scenario_runs_once(pytester: pytest.Pytester) -> None:
+    """With ``-n 2 --dist loadscope`` each scenario's items share a worker, so each scenario is validated once; every
+    item of a crashed run fails with the crash."""
+    pytester.makeconftest(COUNTING_CRASH)
+    result = run(pytester, "-n", "2", "--dist", "loadscope", "--mjpoincare", "rimless-wheel,compass-biped", "-rf")
+    assert result.ret == pytest.ExitCode.TESTS_FAILED
+    runs = (pytester.path / "runs.txt").read_text().split()
+    assert sorted(runs) == ["compass-biped", "rimless-wheel"], runs
+    failed = [line for line in result.stdout.lines if line.startswith("FAILED mjpoincare::")]
+    assert failed and all(" - RuntimeError: simul" in line for line in failed)

@@ -32,12 +32,21 @@ in ``pytest_collection_modifyitems`` skip the collect reports (wrong count) and 
 in that same hook; a ``pytest_collect_directory`` collector is only reached for directories on the collection
 path, so ``pytest tests/test_x.py --mjpoincare ...`` would silently drop the checks.
 
-When the simulation runs: the check names are only known after a run, so each scenario is validated once, at
-collection time, when its collector is expanded (lazily, in order); the result is cached on the config and its
-items only read it. Consequences: ``--collect-only`` and a ``-k`` that keeps one check still run the whole
-scenario, and under pytest-xdist every worker runs every scenario (run these checks without ``-n``). A run that
-raises (a crash, not a failed check) gives one failing item ``mjpoincare::<scenario>::validate`` with the
-traceback, so the other scenarios and the project's tests still run.
+When the simulation runs: never at collection. The items are the checks the scenario declares at the requested
+parameters and settings (:meth:`~mjpoincare.scenarios.base.Scenario.checks_for`, checked inputs only) and
+``stable``; the scenario is validated when its first item runs, once per process, the result cached on the config.
+So ``--collect-only`` simulates nothing, a ``-k`` that deselects every check of a scenario skips its run, and under
+pytest-xdist ``--dist loadscope`` sends each scenario's items (the scope ``mjpoincare::<scenario>`` of their node
+ids) to one worker, which runs the scenario once; with plain ``-n``, xdist's ``load`` spreads the items and each
+worker that gets one runs the scenario again (the header says so). (``--dist loadgroup`` with ``xdist_group`` marks
+would not do: pytest-xdist 3.8 renames the node ids through an attribute pytest 9.2 no longer reads, so its groups
+are ignored.) A check the run reports but does not declare, and a baseline complaint
+about a check the run lacks, fail the ``stable`` item, naming it. A run that raises (a crash, not a failed check)
+fails each of its items with the traceback, so the other scenarios and the project's tests still run.
+
+Settings in ``pytest.ini``, ``pyproject.toml`` (``[tool.pytest.ini_options]``) or ``tox.ini``, each used where its
+option is not given on the command line: ``mjpoincare`` (scenario names, comma- or space-separated),
+``mjpoincare_preset``, ``mjpoincare_set`` (``NAME=VALUE`` items, space-separated) and ``mjpoincare_seed``.
 """
 
 from __future__ import annotations
@@ -96,6 +105,12 @@ def pytest_addoption(parser: pytest.Parser) -> None:
                     help="also fail a check whose error moved beyond its resolution from this baseline's")
     group.addoption("--mjpoincare-update-baseline", action="store_true", default=False,
                     help="record the runs into --mjpoincare-baseline instead (resolution measured by re-running)")
+    parser.addini("mjpoincare", "scenarios to validate when --mjpoincare is not given (comma- or space-separated)",
+                  type="args", default=[])
+    parser.addini("mjpoincare_preset", "simulator preset when --mjpoincare-preset is not given", default="")
+    parser.addini("mjpoincare_set", "NAME=VALUE settings (space-separated) when no --mjpoincare-set is given",
+                  type="args", default=[])
+    parser.addini("mjpoincare_seed", "seed when --mjpoincare-seed is not given", default="")
 
 
 def pytest_configure(config: pytest.Config) -> None:
@@ -112,10 +127,16 @@ def pytest_configure(config: pytest.Config) -> None:
 
 def _parse_request(config: pytest.Config) -> Request | None:
     """The checked request, None without ``--mjpoincare``; raises :class:`pytest.UsageError` on bad input."""
-    given: list[str] = config.getoption("mjpoincare")
-    preset: str | None = config.getoption("mjpoincare_preset")
-    sets: list[str] = config.getoption("mjpoincare_set")
+    given: list[str] = config.getoption("mjpoincare") or list(config.getini("mjpoincare"))
+    preset: str | None = config.getoption("mjpoincare_preset") or str(config.getini("mjpoincare_preset")) or None
+    sets: list[str] = config.getoption("mjpoincare_set") or list(config.getini("mjpoincare_set"))
     seed: int | None = config.getoption("mjpoincare_seed")
+    if seed is None and str(config.getini("mjpoincare_seed")).strip():
+        text = str(config.getini("mjpoincare_seed")).strip()
+        try:
+            seed = int(text)
+        except ValueError:
+            raise pytest.UsageError(f"mjpoincare_seed (ini) must be an integer >= 0 (got {text!r})") from None
     baseline: str | None = config.getoption("mjpoincare_baseline")
     update: bool = config.getoption("mjpoincare_update_baseline")
     if not given:
@@ -163,10 +184,17 @@ def _parse_request(config: pytest.Config) -> Request | None:
     return Request(names, preset, 0 if seed is None else seed, assignments, baseline, update)
 
 
-def pytest_report_header(config: pytest.Config) -> str | None:
-    """The request in the session header."""
+def pytest_report_header(config: pytest.Config) -> list[str] | None:
+    """The request in the session header; under pytest-xdist without ``--dist loadgroup``, that each worker runs
+    every scenario it has an item of."""
     request = config.stash.get(_REQUEST, None)
-    return None if request is None else request.describe()
+    if request is None:
+        return None
+    lines = [request.describe()]
+    if getattr(config.option, "dist", "no") not in ("no", "loadscope"):
+        lines.append(f"mjpoincare: --dist {config.option.dist} spreads a scenario's checks over the workers, and "
+                     "each worker runs the scenario again; --dist loadscope runs each scenario once")
+    return lines
 
 
 @pytest.hookimpl(wrapper=True)
@@ -242,16 +270,16 @@ def pytest_sessionfinish(session: pytest.Session) -> None:
 
 
 class ScenarioCollector(pytest.Collector):
-    """One scenario: validated when collected (check names exist only after a run), one item per check."""
+    """One scenario: an item per check it declares at the requested inputs, and ``stable``; nothing is simulated."""
 
     def collect(self) -> list[pytest.Item]:
-        """Run (or reuse) the validation: a :class:`CheckItem` per check, or one :class:`RunErrorItem`."""
-        result = _result(self.config, self.name)
-        if isinstance(result, Exception):
-            return [RunErrorItem.from_parent(self, name="validate")]
-        names = [check.name for check in result.checks]
-        names += [name for name in self.config.stash[_CHANGES].get(self.name, {}) if name not in names]
-        return [CheckItem.from_parent(self, name=name) for name in names]
+        """A :class:`CheckItem` per declared check, then ``stable`` (the scenario runs when the first one does)."""
+        from mjpoincare.validation import resolve_values
+
+        request = self.config.stash[_REQUEST]
+        scenario, _, params, settings = resolve_values(self.name, request.assignments, request.preset)
+        self.declared = tuple(dict.fromkeys([*scenario.checks_for(params, settings), "stable"]))
+        return [CheckItem.from_parent(self, name=name) for name in self.declared]
 
 
 class _MjpoincareItem(pytest.Item):
@@ -276,25 +304,6 @@ class ScenarioCrashed(Exception):
     """A scenario's validation raised (its ``__cause__``) instead of returning a result."""
 
 
-class RunErrorItem(_MjpoincareItem):
-    """Stands for a scenario whose run raised: fails with that exception and its traceback."""
-
-    def runtest(self) -> None:
-        """Fail with the exception the validation raised at collection time."""
-        error = _result(self.config, self.scenario)
-        assert isinstance(error, Exception)
-        raise ScenarioCrashed(f"validation raised {type(error).__name__}: {error}") from error
-
-    def repr_failure(self, excinfo: pytest.ExceptionInfo[BaseException], style: Any = None) -> Any:
-        """The original exception with its own traceback (from the run, not from pytest's runner)."""
-        error = excinfo.value.__cause__ if isinstance(excinfo.value, ScenarioCrashed) else None
-        if error is None:
-            return super().repr_failure(excinfo, style)
-        tbstyle = self.config.getoption("tbstyle", "auto")
-        return pytest.ExceptionInfo.from_exception(error).getrepr(
-            style="long" if tbstyle == "auto" else tbstyle, showlocals=bool(self.config.getoption("showlocals")))
-
-
 class CheckFailed(AssertionError):
     """A check's error is not finite or exceeds its tolerance."""
 
@@ -307,19 +316,36 @@ class BaselineChanged(AssertionError):
     """A check's error moved beyond its resolution from the baseline's, or one of the two lacks the check."""
 
 
+class UndeclaredCheck(AssertionError):
+    """The run reported a check its scenario does not declare at these inputs (the declaration is stale)."""
+
+
 class CheckItem(_MjpoincareItem):
-    """One check of a scenario's cached result: passes when the check passed and, against a baseline, did not move
-    beyond its resolution."""
+    """One check of a scenario's cached result (the scenario runs at the first of its items): passes when the check
+    passed and, against a baseline, did not move beyond its resolution."""
 
     def runtest(self) -> None:
-        """Read the check from the cached result; raise :class:`CheckFailed` if it failed, then
-        :class:`BaselineChanged` if it moved from the baseline."""
+        """Read the check from the cached result; raise :class:`ScenarioCrashed` if the run raised,
+        :class:`CheckFailed` if the check failed, then :class:`BaselineChanged` if it moved from the baseline; the
+        ``stable`` item also fails on a reported check no item stands for (:class:`UndeclaredCheck`) and on a
+        baseline complaint about a check the run lacks."""
         result = _result(self.config, self.scenario)
-        assert not isinstance(result, Exception)
-        change = self.config.stash[_CHANGES].get(self.scenario, {}).get(self.name)
+        if isinstance(result, Exception):
+            raise ScenarioCrashed(f"validation raised {type(result).__name__}: {result}") from result
+        changes = self.config.stash[_CHANGES].get(self.scenario, {})
+        change = changes.get(self.name)
         check = next((c for c in result.checks if c.name == self.name), None)
         if check is None:
-            raise BaselineChanged(change)
+            raise BaselineChanged(change or f"{self.scenario} reported no check {self.name}")
+        if self.name == "stable":
+            siblings = set(getattr(self.parent, "declared", ()))
+            stray = [c.name for c in result.checks if c.name not in siblings]
+            if stray:
+                raise UndeclaredCheck(f"{self.scenario} reported checks it does not declare at these inputs: "
+                                      f"{', '.join(stray)}")
+            others = [text for name, text in changes.items() if name not in siblings]
+            if others:
+                raise BaselineChanged("; ".join(others))
         self.user_properties.extend([("analytic", _fmt(check.analytic)), ("simulated", _fmt(check.simulated)),
                                      ("error", f"{_fmt(check.error)} {check.kind}"),
                                      ("tolerance", _fmt(check.tolerance)), ("unit", check.unit)])
@@ -329,9 +355,14 @@ class CheckItem(_MjpoincareItem):
             raise BaselineChanged(change)
 
     def repr_failure(self, excinfo: pytest.ExceptionInfo[BaseException], style: Any = None) -> Any:
-        """A failed check as its values, tolerance and reason, a baseline change as its one line (no traceback);
-        other errors as usual."""
-        if isinstance(excinfo.value, BaselineChanged):
+        """A failed check as its values, tolerance and reason, a baseline change as its one line (no traceback), a
+        crashed run as its own exception and traceback; other errors as usual."""
+        error = excinfo.value.__cause__ if isinstance(excinfo.value, ScenarioCrashed) else None
+        if error is not None:
+            tbstyle = self.config.getoption("tbstyle", "auto")
+            return pytest.ExceptionInfo.from_exception(error).getrepr(
+                style="long" if tbstyle == "auto" else tbstyle, showlocals=bool(self.config.getoption("showlocals")))
+        if isinstance(excinfo.value, (BaselineChanged, UndeclaredCheck)):
             return CheckFailureRepr((str(excinfo.value),), _Crash(str(excinfo.value)))
         if not isinstance(excinfo.value, CheckFailed):
             return super().repr_failure(excinfo, style)
