@@ -40,7 +40,7 @@ LAYER_OF: dict[str, str] = {
     "mjpoincare.backends": "engines", "mjpoincare.peers": "engines",
     "mjpoincare.simulate": "simulation", "mjpoincare.seam_check": "simulation",
     "mjpoincare.scenarios": "scenarios",
-    "mjpoincare.scenarios.__init__": "registry", "mjpoincare.inputs": "registry",
+    "mjpoincare.scenarios.__init__": "registry", "mjpoincare.inputs": "registry", "mjpoincare.plugin": "registry",
     "mjpoincare.validation": "commands", "mjpoincare.peer_compare": "commands", "mjpoincare.sweep": "commands",
     "mjpoincare.converge": "commands", "mjpoincare.extrapolate": "commands", "mjpoincare.bench": "commands",
     "mjpoincare.stress": "commands", "mjpoincare.tune": "commands", "mjpoincare.tune_pages": "commands",

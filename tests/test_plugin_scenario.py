@@ -102,3 +102,28 @@ def test_without_the_plugin_on_the_path_nothing_sees_it() -> None:
     assert refused.returncode == 2 and f"unknown scenario {NAME!r}" in refused.stderr, refused.stderr
     sources = [*ROOT.glob("src/**/*.py"), *ROOT.glob("analysis/**/*.py"), ROOT / "pyproject.toml"]
     assert not [str(f) for f in sources if "toy_ball" in f.read_text()]
+
+
+def test_the_toy_imports_only_the_public_plugin_module() -> None:
+    """The toy's every import of this package is from :mod:`mjpoincare.plugin`, and each name it takes is there."""
+    import ast
+
+    from mjpoincare import plugin
+
+    tree = ast.parse((PLUGIN / "toy_ball.py").read_text())
+    ours = [(node.module, [alias.name for alias in node.names]) for node in ast.walk(tree)
+            if isinstance(node, ast.ImportFrom) and (node.module or "").startswith("mjpoincare")]
+    ours += [(alias.name, []) for node in ast.walk(tree) if isinstance(node, ast.Import) for alias in node.names
+             if alias.name.startswith("mjpoincare")]
+    assert ours and all(module == "mjpoincare.plugin" for module, _ in ours), ours
+    assert {name for _, names in ours for name in names} <= set(plugin.__all__)
+
+
+def test_every_public_plugin_name_resolves_and_is_documented() -> None:
+    from mjpoincare import plugin
+
+    assert plugin.__all__ == sorted(plugin.__all__, key=lambda n: (n[0].islower(), n))
+    for name in plugin.__all__:
+        assert getattr(plugin, name) is not None, name
+        assert f":func:`{name}`" in plugin.__doc__ or f":class:`{name}`" in plugin.__doc__ or (
+            f":data:`{name}`" in plugin.__doc__), f"{name} is exported but not described in the module docstring"

@@ -28,17 +28,35 @@ import time
 
 import mujoco
 import numpy as np
-from mjpoincare.analysis import checks
-from mjpoincare.analysis.returnmap import fit_return_map, sample_pairs
-from mjpoincare.analysis.sections import Crossings, level_crossings
 from scipy.integrate import solve_ivp
 
-from mjpoincare import settings as sim_settings
-from mjpoincare.params import Param, Values
-from mjpoincare.scenarios.base import CoveragePoint, Evaluation, Scenario, Tolerances, at_preset
-from mjpoincare.scenarios.gate_cases import GateCase
-from mjpoincare.seam import Chunk
-from mjpoincare.simulate import initial_states, plain_clip, rollout_batch
+from mjpoincare.plugin import (
+    Chunk,
+    CoveragePoint,
+    Crossings,
+    Dimension,
+    Evaluation,
+    GateCase,
+    Param,
+    Scenario,
+    Tolerances,
+    Values,
+    absolute,
+    apply_options,
+    apply_unskip,
+    at_preset,
+    fit_return_map,
+    initial_states,
+    level_crossings,
+    plain_clip,
+    relative,
+    rollout_batch,
+    rollout_options,
+    sample_pairs,
+    search_space,
+    solimp,
+    solref,
+)
 
 MJCF = """<mujoco model="toy_ball"><worldbody>
   <light pos="0 -1 3" dir="0 0.3 -1"/><geom name="floor" type="plane" size="0 0 0.1" rgba="0.3 0.5 0.7 1"/>
@@ -79,12 +97,12 @@ def build(p: Values, s: Values) -> mujoco.MjModel:
     """The ball with ``p``'s radius and gravity; the settings' options and contact softness (on both geoms: MuJoCo
     mixes the two geoms' solref and solimp)."""
     spec = mujoco.MjSpec.from_string(MJCF)
-    sim_settings.apply_options(spec, s)
+    apply_options(spec, s)
     spec.option.gravity = [0.0, 0.0, -float(p["gravity"])]
     spec.geom("ball").size = [float(p["radius"]), 0.0, 0.0]
     for geom in spec.geoms:
-        geom.solref, geom.solimp = sim_settings.solref(s), sim_settings.solimp(s)
-    sim_settings.apply_unskip(spec, s)
+        geom.solref, geom.solimp = solref(s), solimp(s)
+    apply_unskip(spec, s)
     return spec.compile()
 
 
@@ -118,7 +136,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     zeta, g = float(s["solref_dampratio"]), float(p["gravity"])
     e, tol = restitution(zeta), at_preset(TOLERANCES, BOUNCING_BALL.name, preset)
     model, rec, n = build(p, s), _Recorder(float(p["radius"])), len(STARTS)
-    report = rollout_batch(model, *batch(model, p, s), rec, **sim_settings.rollout_options(s))
+    report = rollout_batch(model, *batch(model, p, s), rec, **rollout_options(s))
     ratio, speed, flight = [], [], []
     for down, up, t_down, t_up in zip(rec.down.sequences(n), rec.up.sequences(n), rec.down.times(n),
                                       rec.up.times(n), strict=True):
@@ -139,10 +157,10 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
         ("restitution", "rebound / impact speed where the lowest point crosses the plane (unilateral spring-damper)"),
         ("eigenvalue", "slope of the apex return map h_k -> h_k+1, e^2"),
         ("flight_period", "flight time per unit rebound speed, 2/g (least squares through 0 over every flight)"))}
-    out = [checks.relative("restitution", e, float(np.median(ratio)) if ratio else math.nan, tol["restitution"], "",
+    out = [relative("restitution", e, float(np.median(ratio)) if ratio else math.nan, tol["restitution"], "",
                            why["restitution"]),
-           checks.absolute("eigenvalue", e**2, eigenvalue, tol["eigenvalue"], "", why["eigenvalue"]),
-           checks.relative("flight_period", 2.0 / g, float(t @ v / (v @ v)) if len(v) else math.nan,
+           absolute("eigenvalue", e**2, eigenvalue, tol["eigenvalue"], "", why["eigenvalue"]),
+           relative("flight_period", 2.0 / g, float(t @ v / (v @ v)) if len(v) else math.nan,
                            tol["flight_period"], "s/(m/s)", why["flight_period"])]
     return Evaluation(out, report, extras)
 
@@ -186,5 +204,5 @@ BOUNCING_BALL = Scenario(
     coverage=(CoveragePoint("defaults", {}, "drop 1 m: impacts at 4.4 m/s down to 1.4 m/s"),
               CoveragePoint("low drop", {"drop_height": "0.25"}, "down to 0.7 m/s: the largest release-depth offset"),
               CoveragePoint("high drop", {"drop_height": "2"}, "up to 6.3 m/s: the deepest penetration")),
-    search_space=sim_settings.search_space("timestep", "integrator", extra=(  # a contact lasts 0.3 tau: 3-120 steps
-        sim_settings.Dimension("solref_timeconst", 10.0, 400.0, log=True, per_timestep=True),)))
+    search_space=search_space("timestep", "integrator", extra=(  # a contact lasts 0.3 tau: 3-120 steps
+        Dimension("solref_timeconst", 10.0, 400.0, log=True, per_timestep=True),)))

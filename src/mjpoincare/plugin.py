@@ -1,0 +1,93 @@
+"""The extension point for system authors: everything a scenario plugin imports, from one module.
+
+A plugin is a distribution that declares a :class:`Scenario` under the entry point group ``mjpoincare.scenarios``
+(docs/adding-a-scenario.md walks through one). It imports from here only; these names are the stable API, and the
+modules they live in are not (a plugin that imports them there keeps working while they stay, but no promise is
+made). What each group is for:
+
+- **the scenario and its records**: :class:`Scenario` (one model, its parameters, presets, analytic reference and
+  tolerances, declared once), :class:`Param` and :data:`Values` (a scenario's parameters and their checked values),
+  :class:`Tolerances` and :func:`at_preset`, :class:`Evaluation` (what ``evaluate`` returns),
+  :class:`ReturnMapPlot`, :class:`StressCase`, :class:`CoveragePoint`, and the gate's :class:`GateCase`,
+  :class:`Watch` and :class:`Miss`;
+- **checks**: :class:`Check` and its constructors :func:`relative`, :func:`absolute`, :func:`fraction` and
+  :func:`categorical`;
+- **the return map**: :func:`sample_pairs` (section samples to (x_k, x_k+1) pairs) and :func:`fit_return_map`
+  (polynomial fit, fixed point, multipliers and their bootstrap spread, as :class:`ReturnMapFit`);
+- **sections**: :func:`level_crossings` (a signal's crossings of a level, interpolated within a step, as
+  :class:`Crossings`);
+- **rollouts**: :func:`initial_states` (full-physics states from qpos and qvel, ``(B, nstate)``),
+  :func:`rollout_batch` (a batch through ``mujoco.rollout`` in chunks, each handed to a consumer as a
+  :class:`Chunk` of ``(B, steps + 1, ...)`` arrays), :func:`event_rollout` (the same with a controller that
+  switches contacts and actuators between chunks), :func:`plain_clip` (one trajectory's states for a video);
+- **simulator settings**: :func:`apply_options`, :func:`apply_unskip`, :func:`solref`, :func:`solimp` (a model
+  built from a spec with the run's settings), :func:`rollout_options` (the keyword arguments a rollout takes from
+  them), :func:`search_space` and :class:`Dimension` (what ``mjpoincare tune`` searches);
+- **errors**: :class:`ParameterError`, raised by ``check_params`` for a refused input (exit 2, one line).
+"""
+
+from __future__ import annotations
+
+from mjpoincare.analysis.checks import Check, absolute, categorical, fraction, relative
+from mjpoincare.analysis.returnmap import ReturnMapFit, fit_return_map, sample_pairs
+from mjpoincare.analysis.sections import Crossings, level_crossings
+from mjpoincare.params import Param, ParameterError, Values
+from mjpoincare.scenarios.base import (
+    CoveragePoint,
+    Evaluation,
+    ReturnMapPlot,
+    Scenario,
+    StressCase,
+    Tolerances,
+    at_preset,
+)
+from mjpoincare.scenarios.gate_cases import GateCase, Miss, Watch
+from mjpoincare.seam import Chunk
+from mjpoincare.settings import (
+    Dimension,
+    apply_options,
+    apply_unskip,
+    rollout_options,
+    search_space,
+    solimp,
+    solref,
+)
+from mjpoincare.simulate import event_rollout, initial_states, plain_clip, rollout_batch
+
+__all__ = [
+    "Check",
+    "Chunk",
+    "CoveragePoint",
+    "Crossings",
+    "Dimension",
+    "Evaluation",
+    "GateCase",
+    "Miss",
+    "Param",
+    "ParameterError",
+    "ReturnMapFit",
+    "ReturnMapPlot",
+    "Scenario",
+    "StressCase",
+    "Tolerances",
+    "Values",
+    "Watch",
+    "absolute",
+    "apply_options",
+    "apply_unskip",
+    "at_preset",
+    "categorical",
+    "event_rollout",
+    "fit_return_map",
+    "fraction",
+    "initial_states",
+    "level_crossings",
+    "plain_clip",
+    "relative",
+    "rollout_batch",
+    "rollout_options",
+    "sample_pairs",
+    "search_space",
+    "solimp",
+    "solref",
+]
