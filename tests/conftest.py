@@ -13,6 +13,7 @@ import tempfile
 from collections.abc import Iterator
 from importlib import metadata
 from pathlib import Path
+from typing import Any
 
 import pytest
 from packaging.requirements import Requirement
@@ -125,34 +126,38 @@ def _in_tmp_dir(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[Pat
 KERNEL_GROUP = "gate-kernel-sensitive"
 
 
-def _gate_case_label(item: pytest.Item) -> str | None:
-    """The label of the gate case a test is parametrized by (its ``case`` argument), if any."""
-    from mjpoincare.scenarios.gate_cases import GateCase
-
-    case = getattr(item, "callspec", None) and item.callspec.params.get("case")
-    return case.label if isinstance(case, GateCase) else None
-
-
-class _GateGroups:
-    """Under pytest-xdist with ``--dist loadgroup``, the tests of one gate case share a worker, and so its run
-    (:func:`mjpoincare.gate.run_case` caches a run per process): each case is its own group, but the kernel-sensitive
-    cases, which the second-kernel test runs in its own process to compare, are one group with that test. A plugin of
-    its own because a conftest holds one implementation of a hook, and this one must run first, before xdist names
-    the groups (the conftest's orders the items, last); without xdist the marks do nothing."""
-
-    @pytest.hookimpl(tryfirst=True)
-    def pytest_collection_modifyitems(self, items: list[pytest.Item]) -> None:
-        sensitive = set(kernel_sensitive_cases())
-        for item in items:
-            label = _gate_case_label(item)
-            if item.nodeid == KERNEL_TEST or label in sensitive:
-                item.add_marker(pytest.mark.xdist_group(KERNEL_GROUP))
-            elif label is not None:
-                item.add_marker(pytest.mark.xdist_group(f"gate-{label}"))
+def gate_group(nodeid: str, labels: list[str], sensitive: set[str]) -> str | None:
+    """The xdist group of a test by its node id: :data:`KERNEL_GROUP` for the second-kernel test and the tests of a
+    kernel-sensitive gate case, ``gate-<label>`` for the tests of another gate case (its label opens the test's
+    parameter id), None for any other test. ``labels``: the gate cases' labels, longest first."""
+    if nodeid == KERNEL_TEST:
+        return KERNEL_GROUP
+    label = next((label for label in labels if f"[{label}" in nodeid), None)
+    if label is None:
+        return None
+    return KERNEL_GROUP if label in sensitive else f"gate-{label}"
 
 
-def pytest_configure(config: pytest.Config) -> None:
-    config.pluginmanager.register(_GateGroups(), "mjpoincare-gate-groups")
+def pytest_xdist_make_scheduler(config: pytest.Config, log: Any) -> Any:
+    """Under ``--dist loadgroup``, the tests of one gate case share a worker, and so its run
+    (:func:`mjpoincare.gate.run_case` caches a run per process); the kernel-sensitive cases, which the second-kernel
+    test runs in its own process to compare, are one group with that test. The groups are read from the node ids
+    (:func:`gate_group`): pytest-xdist 3.8 names the groups of ``xdist_group`` marks by renaming node ids through an
+    attribute pytest 9.2 no longer reads, so marks would be ignored. Without xdist this hook is never called."""
+    if config.getvalue("dist") != "loadgroup":
+        return None
+    from xdist.scheduler import LoadGroupScheduling
+
+    from mjpoincare import gate
+
+    labels = sorted((c.label for c in gate.cases()), key=len, reverse=True)
+    sensitive = set(kernel_sensitive_cases())
+
+    class GateCaseScheduling(LoadGroupScheduling):
+        def _split_scope(self, nodeid: str) -> str:
+            return gate_group(nodeid, labels, sensitive) or nodeid
+
+    return GateCaseScheduling(config, log)
 
 
 @pytest.hookimpl(trylast=True)

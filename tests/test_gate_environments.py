@@ -145,3 +145,17 @@ def test_a_planted_kernel_dependence_beyond_its_spread_fails_the_second_kernel_r
     assert len(lines) == 1 and lines[0].startswith(f"{PLANTED_CASE}::heading:") and "moved 1e-06" in lines[0], lines
     assert math.isclose(there[(PLANTED_CASE, "heading")] - _errors_here([PLANTED_CASE])[(PLANTED_CASE, "heading")],
                         1e-6, rel_tol=1e-6)
+
+
+def test_xdist_groups_follow_the_gate_case_in_the_node_id() -> None:
+    """Under ``--dist loadgroup`` (conftest's scheduler) a gate case's tests share a group, the kernel-sensitive
+    cases' one with the second-kernel test; a label that prefixes another never takes the other's tests."""
+    from conftest import KERNEL_GROUP, KERNEL_TEST, gate_group
+
+    labels = sorted(["w[fast]", "w[fast,mu=0.24]", "w-3d[fast]"], key=len, reverse=True)
+    sensitive = {"w-3d[fast]"}
+    assert gate_group("tests/test_gate.py::test_gated_check[w[fast]::eigenvalue]", labels, sensitive) == "gate-w[fast]"
+    assert gate_group("tests/test_baseline.py::test_x[w[fast,mu=0.24]]", labels, sensitive) == "gate-w[fast,mu=0.24]"
+    assert gate_group("tests/test_gate.py::test_gated_check[w-3d[fast]::stable]", labels, sensitive) == KERNEL_GROUP
+    assert gate_group(KERNEL_TEST, labels, sensitive) == KERNEL_GROUP
+    assert gate_group("tests/test_tables.py::test_rows", labels, sensitive) is None
