@@ -16,6 +16,7 @@ import pytest
 
 import mjpoincare
 from mjpoincare.cli import main
+from mjpoincare.result import RESULTS_SCHEMA
 
 
 def test_bad_values_raise_one_exception_type_naming_the_bound() -> None:
@@ -44,8 +45,10 @@ def test_typed_values_and_the_result_record(capsys: pytest.CaptureFixture[str]) 
     assert result.passed, result.table()
     code = main(["validate", "rimless-wheel-friction", "--set", "spokes=10", "--set", "mu=0.3", "--set",
                  "timestep=2e-4", "--set", "solref_timeconst=4e-4", "--json", "-"])
-    payload = json.loads(capsys.readouterr().out)
+    document = json.loads(capsys.readouterr().out)
     assert code == 0
+    assert document["schema"] == RESULTS_SCHEMA and document["mjpoincare"] == mjpoincare.__version__
+    [payload] = document["results"]
     mine = result.to_dict()
     for volatile in ("timing",):  # wall-clock times differ between two runs
         mine.pop(volatile), payload.pop(volatile)

@@ -37,7 +37,7 @@ def test_skate_extrapolates_first_order_checks(tmp_path: Path) -> None:
     euler = ["--set=integrator=euler", "--set=timestep=5e-4", "--set=solref_timeconst=1e-3", "--set=solref_dampratio=1",
              "--set=tolerance=1e-14"]
     code = main(["validate", "slotted-skate", *euler, "--extrapolate", "--json", str(target)])
-    payload = json.loads(target.read_text())
+    [payload] = json.loads(target.read_text())["results"]
     assert code == (0 if payload["passed"] else 1)  # the checks' verdicts are the gate's to assert
     entry = payload["extrapolated"]
     sigma4 = [c for c in entry["components"] if c["component"].startswith("sigma4")]

@@ -36,7 +36,7 @@ LAYER_OF: dict[str, str] = {
     "mjpoincare.params": "core", "mjpoincare.settings": "core", "mjpoincare.result": "core",
     "mjpoincare.seam": "core", "mjpoincare.parallel": "core", "mjpoincare.progress": "core",
     "mjpoincare.mjlog": "core", "mjpoincare.mjcompat": "core", "mjpoincare.mjcf_loader": "core",
-    "mjpoincare.stamp": "core", "mjpoincare.cost": "core",
+    "mjpoincare.stamp": "core", "mjpoincare.cost": "core", "mjpoincare.version": "core",
     "mjpoincare.backends": "engines", "mjpoincare.peers": "engines",
     "mjpoincare.simulate": "simulation", "mjpoincare.seam_check": "simulation",
     "mjpoincare.scenarios": "scenarios",

@@ -111,7 +111,7 @@ def test_compass_gait_matches_theory(assignments: dict[str, str]) -> None:
 @pytest.mark.usefixtures("needs_drake")
 def test_validate_json_carries_drake_values(capsys: pytest.CaptureFixture[str]) -> None:
     main(["validate", "rimless-wheel", "--peer", "drake", "--json", "-"])
-    payload = json.loads(capsys.readouterr().out)
+    [payload] = json.loads(capsys.readouterr().out)["results"]
     peer = payload["peer"]
     assert peer["name"] == "drake" and peer["version"] == drake.version() and peer["accuracy"] == ACCURACY
     assert set(peer["checks"]) == {"omega_post_impact", "eigenvalue", "impact_coefficient", "step_period"}

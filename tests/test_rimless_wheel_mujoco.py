@@ -81,7 +81,7 @@ def test_json_to_stdout_is_clean(capsys: pytest.CaptureFixture[str]) -> None:
     settings = {**PRESET_BEFORE_SEARCH, "timestep": "2e-4"}
     code = main(["validate", "rimless-wheel", "--preset", "accurate", "--set", "spokes=6", "--set", "slope=0.22",
                  *(f"--set={k}={v}" for k, v in settings.items()), "--json", "-"])
-    payload = json.loads(capsys.readouterr().out)
+    [payload] = json.loads(capsys.readouterr().out)["results"]
     assert payload["params"]["spokes"] == 6 and payload["params"]["slope"] == 0.22
     failed = {c["name"] for c in payload["checks"] if not c["passed"]}
     assert failed >= {"omega_post_impact", "impact_coefficient", "step_period"}, failed
@@ -95,7 +95,7 @@ def test_json_file_written_whole_and_the_exit_code_agrees_with_it(tmp_path: Path
     that the exit code has a failure among passes to report."""
     target = tmp_path / "out" / "result.json"
     code = main(["validate", *(f"--set={k}={v}" for k, v in COARSE.items()), "--json", str(target)])
-    payload = json.loads(target.read_text())
+    payload = json.loads(target.read_text())["results"]
     assert [r["scenario"] for r in payload] == list(scenarios.DEFAULT_SCENARIOS)
     assert len(payload) >= 4  # every system: planar and 3D wheel, biped, skate
     assert code == (0 if all(r["passed"] for r in payload) else 1)

@@ -7,9 +7,9 @@ only) imports without MuJoCo; ``__version__`` is the installed distribution's ve
 
 from __future__ import annotations
 
-from importlib.metadata import PackageNotFoundError
-from importlib.metadata import version as _distribution_version
 from typing import TYPE_CHECKING, Any
+
+from mjpoincare.version import VERSION as __version__
 
 if TYPE_CHECKING:
     from mjpoincare.api import validate
@@ -18,11 +18,6 @@ if TYPE_CHECKING:
 
 _LAZY = {"validate": "mjpoincare.api", "Result": "mjpoincare.result", "ParameterError": "mjpoincare.params"}
 __all__ = ["ParameterError", "Result", "__version__", "validate"]
-
-try:
-    __version__ = _distribution_version("mjpoincare")
-except PackageNotFoundError:  # a source tree on sys.path, not installed
-    __version__ = "0+unknown"
 
 
 def __getattr__(name: str) -> Any:

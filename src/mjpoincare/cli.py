@@ -47,7 +47,7 @@ def _cmd_validate(args: argparse.Namespace) -> int:
     no_gl = _select_still_backend() if args.report else None  # before MuJoCo is imported
     from mjpoincare import scenarios
     from mjpoincare.api import validate
-    from mjpoincare.result import check_output_path, distinct_outputs, write_json
+    from mjpoincare.result import check_output_path, distinct_outputs, results_document, write_json
     from mjpoincare.validation import peer_of, resolve_inputs, typed_values
 
     names = args.scenario or list(scenarios.DEFAULT_SCENARIOS)
@@ -97,8 +97,7 @@ def _cmd_validate(args: argparse.Namespace) -> int:
                 print(table(result.extras["extrapolated"]))
             print()
     if args.json:
-        payload = results[0].to_dict() if len(results) == 1 else [r.to_dict() for r in results]
-        write_json(payload, args.json)
+        write_json(results_document(results), args.json)
     changed = _compare_or_record_baseline(args, results, assignments) if args.baseline else []
     if args.report:
         from mjpoincare.report import write_index, write_report

@@ -15,6 +15,7 @@ from typing import Any
 from mjpoincare.analysis.checks import Check, jsonable
 from mjpoincare.analysis.tables import text_table
 from mjpoincare.params import ParameterError
+from mjpoincare.version import VERSION
 
 
 @dataclass
@@ -75,6 +76,19 @@ class Result:
             lines.append(f"DIVERGED trajectories: {self.diverged}")
         lines.extend(f"mujoco warning: {w}" for w in self.warnings)
         return "\n".join(lines)
+
+
+#: The version of the ``validate --json`` document's shape (:func:`results_document`); it changes when a reader
+#: written for the old shape would misread the new one.
+RESULTS_SCHEMA = 2
+
+
+def results_document(results: list[Result]) -> dict[str, Any]:
+    """``validate --json``'s document, one shape for one scenario or many: ``schema`` (:data:`RESULTS_SCHEMA`),
+    ``mjpoincare`` (the package's version), ``mujoco`` (MuJoCo's) and ``results``, each run's
+    :meth:`Result.to_dict` in the order they ran."""
+    return {"schema": RESULTS_SCHEMA, "mjpoincare": VERSION,
+            "mujoco": results[0].mujoco_version if results else None, "results": [r.to_dict() for r in results]}
 
 
 def format_value(value: Any, *, from_json: bool = False) -> str:
