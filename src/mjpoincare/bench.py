@@ -180,7 +180,7 @@ def format_table(rows: list[dict[str, Any]], accuracy: tuple[str, ...], raw: dic
                  f"{raw['pipeline_steps_per_s']:.3g} steps/s = {100 * raw['pipeline_fraction']:.0f} % of it")
     metrics = [k for k in reference[0] if k not in ("rtol", "wall_s")]
     lines.append("\n" + markdown_table(
-        ("solve_ivp reference (DOP853), same fit", "wall s", *metrics),
+        ("solve_ivp reference (the scenario's own method and events), same fit", "wall s", *metrics),
         [(f"rtol={ref['rtol']:g}", f"{ref['wall_s']:.2f}", *(f"{ref[k]:.2e}" for k in metrics)) for ref in reference]))
     return "\n".join(lines)
 

@@ -122,10 +122,13 @@ def largest_timesteps(rows: list[dict[str, Any]], base_dt: float) -> tuple[float
 
 
 def soak_summary(name: str, impacts: int) -> dict[str, Any]:
-    """``impacts`` impacts from the fixed point (fast preset): drift and distance from the analytic value."""
+    """``impacts`` impacts from the fixed point (fast preset): drift and distance from the analytic value; a soak not
+    run is ``{"skipped": why}`` (the scenario defines none, or ``impacts`` is 0)."""
     scenario = scenarios.get(name)
-    if scenario.soak is None or impacts <= 0:
-        return {}
+    if scenario.soak is None:
+        return {"skipped": f"{name} defines no soak (no limit cycle of impacts to repeat: Scenario.soak is None)"}
+    if impacts <= 0:
+        return {"skipped": "--soak 0 asked for none"}
     _, _, params, settings = resolve_inputs(name, {}, "fast")
     start = time.perf_counter()
     soak = scenario.soak(params, settings, impacts)
@@ -185,7 +188,9 @@ def table(report: dict[str, Any]) -> str:
     lines.append(markdown_table(("case", "verdict", "first check error / tol", "failed checks", "max penetration (mm)",
                                  "max KE (J)", "wall (s)"), rows))
     s = report["soak"]
-    if s:
+    if "skipped" in s:
+        lines.append(f"soak: skipped, {s['skipped']}")
+    else:
         lines.append(f"soak: {s['impacts_seen']} impacts ({s['label']}), analytic {s['analytic']:.6g}, first tenth "
                      f"{s['first_tenth_mean']:.6g}, last tenth {s['last_tenth_mean']:.6g}: drift {s['drift']:.2e}, "
                      f"relative error {s['relative_error_last_tenth']:.2e}; {s['diverged']} diverged, "
