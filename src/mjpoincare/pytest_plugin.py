@@ -40,8 +40,8 @@ pytest-xdist ``--dist loadscope`` sends each scenario's items (the scope ``mjpoi
 ids) to one worker, which runs the scenario once; with plain ``-n``, xdist's ``load`` spreads the items and each
 worker that gets one runs the scenario again (the header says so). (``--dist loadgroup`` with ``xdist_group`` marks
 would not do: pytest-xdist 3.8 renames the node ids through an attribute pytest 9.2 no longer reads, so its groups
-are ignored.) A check the run reports but does not declare, and a baseline complaint
-about a check the run lacks, fail the ``stable`` item, naming it. A run that raises (a crash, not a failed check)
+are ignored.) A check the run reports but does not declare, and a baseline complaint about a check the run lacks,
+fail the ``stable`` item, naming it. A run that raises (a crash, not a failed check)
 fails each of its items with the traceback, so the other scenarios and the project's tests still run.
 
 Settings in ``pytest.ini``, ``pyproject.toml`` (``[tool.pytest.ini_options]``) or ``tox.ini``, each used where its
@@ -185,7 +185,7 @@ def _parse_request(config: pytest.Config) -> Request | None:
 
 
 def pytest_report_header(config: pytest.Config) -> list[str] | None:
-    """The request in the session header; under pytest-xdist without ``--dist loadgroup``, that each worker runs
+    """The request in the session header; under pytest-xdist without ``--dist loadscope``, that each worker runs
     every scenario it has an item of."""
     request = config.stash.get(_REQUEST, None)
     if request is None:
