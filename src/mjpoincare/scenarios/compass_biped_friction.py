@@ -60,9 +60,9 @@ from mjpoincare.scenarios.base import (
 from mjpoincare.scenarios.compass_biped_controller import FrictionGaitController
 from mjpoincare.scenarios.compass_biped_friction_design import (
     FIT_DEGREE,
-    HORIZON_TAIL,
     SETTLE,
     design,
+    horizon,
     initial_section_states,
     post_impact_states,
     unstable,
@@ -224,7 +224,7 @@ def _run(params: Values, settings: Values, model: mujoco.MjModel, starts: np.nda
     controller = FrictionGaitController(model, g, len(starts), radius, _torques(params), pd, (ENABLE_AHEAD,
                                                                                               ENABLE_CLEAR))
     chunk = max(10, round(CHUNK_SECONDS / model.opt.timestep))
-    nstep = math.ceil((steps + HORIZON_TAIL) * g.record.period / model.opt.timestep)
+    nstep = horizon(g, steps, model.opt.timestep)
     kept = KeptRows(controller) if wrap else None
     report = event_rollout(model, post_impact_states(model, g.biped, starts, radius),
                            nstep, kept if kept is not None else controller, **rollout_options(settings),
@@ -334,7 +334,7 @@ def probe(params: Values, settings: Values) -> tuple[mujoco.MjModel, list[tuple[
     model = build(params, settings)
     starts = post_impact_states(model, g.biped, initial_section_states(g, model.opt.timestep),
                                 float(settings["foot_radius"]))
-    return model, [(starts, math.ceil((design(g)[0] + HORIZON_TAIL) * g.record.period / model.opt.timestep))]
+    return model, [(starts, horizon(g, design(g)[0], model.opt.timestep))]
 
 
 def reference_bench(params: Values, rtol: float) -> dict[str, float]:

@@ -46,6 +46,11 @@ def post_impact_states(model: mujoco.MjModel, bp: theory.FrictionBiped, z: np.nd
     return initial_states(model, qpos, qvel)
 
 
+def horizon(g: theory.Gait, steps: int, timestep: float) -> int:
+    """Physics steps of a run of ``steps`` heel strikes and its :data:`HORIZON_TAIL`."""
+    return math.ceil((steps + HORIZON_TAIL) * g.record.period / timestep)
+
+
 def unstable(g: theory.Gait) -> bool:
     """|lambda|max >= 1: fitted over UNSTABLE_STEPS steps only."""
     return g.spectral_radius >= 1.0
