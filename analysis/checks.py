@@ -33,11 +33,13 @@ class Check:
         return math.isfinite(self.error) and self.error <= self.tolerance
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dict: complex numbers as ``[re, im]``, non-finite numbers as ``None``."""
+        """JSON-ready dict: complex numbers as ``[re, im]`` (``complex`` says the values are complex, so that a
+        reader tells an eigenvalue ``[re, im]`` from a vector of two reals), non-finite numbers as ``None``."""
         return {
             "name": self.name,
             "analytic": jsonable(self.analytic),
             "simulated": jsonable(self.simulated),
+            "complex": is_complex(self.analytic) or is_complex(self.simulated),
             "error": jsonable(self.error),
             "error_kind": self.kind,
             "tolerance": self.tolerance,
@@ -45,6 +47,15 @@ class Check:
             "passed": self.passed,
             "why": self.why,
         }
+
+
+def is_complex(value: Any) -> bool:
+    """Whether ``value`` (a number, an array or a nested list) holds complex numbers."""
+    if isinstance(value, str):
+        return False
+    if isinstance(value, list | tuple):
+        return any(is_complex(v) for v in value)
+    return bool(np.iscomplexobj(value))
 
 
 def jsonable(value: Any) -> Any:

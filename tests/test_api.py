@@ -56,6 +56,18 @@ def test_typed_values_and_the_result_record(capsys: pytest.CaptureFixture[str]) 
 
 
 @pytest.mark.mujoco
+def test_the_readmes_api_example_runs_as_written_and_passes(capsys: pytest.CaptureFixture[str]) -> None:
+    """The README's Python API block, executed as it is written: its run passes, and its table is printed."""
+    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text()
+    [block] = [b for b in re.findall(r"```python\n(.*?)```", readme, re.S) if "mjpoincare.validate(" in b]
+    namespace: dict[str, object] = {}
+    exec(compile(block, "README.md", "exec"), namespace)  # the README's own example
+    result = namespace["result"]
+    assert isinstance(result, mjpoincare.Result) and result.passed, result.table()
+    assert "verdict" in capsys.readouterr().out
+
+
+@pytest.mark.mujoco
 def test_threads_give_the_serial_results_and_leave_cwd_and_stdout_alone(capfd: pytest.CaptureFixture[str]) -> None:
     """Two validations in two threads of one process: the same checks as serial runs, while the caller's working
     directory never changes and its prints (on file descriptor 1) still arrive. The runs take a coarse step (contact

@@ -53,6 +53,18 @@ def test_render_frames_are_sized_not_blank_and_change(tmp_path: Path) -> None:
     assert np.abs(frames[0].astype(int) - frames[-1].astype(int)).mean() > 1  # the wheel moved
 
 
+def test_a_chosen_backend_that_fails_names_the_one_that_works(tmp_path: Path) -> None:
+    """A ``MUJOCO_GL`` that cannot open a context here (a name MuJoCo does not know stands in for a missing OSMesa)
+    is refused in one line naming the backend that does work, not with "no off-screen backend works"."""
+    env = {**os.environ, "MUJOCO_GL": "no-such-gl"}
+    out = subprocess.run([sys.executable, "-m", "mjpoincare.cli", "render", "rimless-wheel", "-o", "w.png"],
+                         cwd=tmp_path, env=env, capture_output=True, text=True, timeout=300)
+    assert out.returncode == 2
+    assert out.stderr.count("\n") == 1 and "Traceback" not in out.stderr
+    assert re.search(r"MUJOCO_GL=no-such-gl does not work here, but MUJOCO_GL=(egl|osmesa) does", out.stderr)
+    assert not list(tmp_path.iterdir())
+
+
 def _cli(*args: str, cwd: Path) -> subprocess.CompletedProcess[str]:
     """The CLI in a fresh process: the OpenGL backend is chosen before MuJoCo is first imported."""
     env = {k: v for k, v in os.environ.items() if k != "MUJOCO_GL"}
@@ -159,6 +171,20 @@ def test_index_lists_every_scenario_and_verdict(tmp_path: Path) -> None:
         chips = re.findall(r"<span class='v (pass|fail)'[^>]*>([^<]+)</span>", cells)
         assert chips == [("pass" if c["passed"] else "fail", c["name"]) for c in result["checks"]]
     assert "1 of 2 scenarios FAILED" in page
+
+
+def test_complex_values_are_shown_as_complex_numbers(tmp_path: Path) -> None:
+    """An eigenvalue check's values ([re, im] pairs in the JSON) read as a+bj on the page, not as a list of reals;
+    a real vector of two stays two reals."""
+    from mjpoincare.analysis.checks import absolute
+
+    check = absolute("eigenvalue", complex(0.25, -0.5), complex(0.2501, -0.4999), 1e-3, "", "synthetic").to_dict()
+    vector = {**check, "name": "fixed_point", "analytic": [0.25, -0.5], "simulated": [0.25, -0.5], "complex": False}
+    result = {**_result("biped", {}), "checks": [check, vector]}
+    page = write_report(result, str(tmp_path)).read_text()
+    assert check["complex"] is True
+    assert "<td>0.25-0.5j</td><td>0.2501-0.4999j</td>" in page
+    assert "<td>0.25, -0.5</td><td>0.25, -0.5</td>" in page
 
 
 def test_still_is_embedded_or_its_absence_said(tmp_path: Path) -> None:

@@ -14,7 +14,7 @@ from conftest import require_module
 
 from mjpoincare.cli import main
 from mjpoincare.params import ParameterError, parse_values
-from mjpoincare.sweep import crossing
+from mjpoincare.sweep import crossing, verdict
 
 #: Coarse steps for the sweeps, which test the command rather than accuracy (a tenth to a third of a validation's time
 #: at the fast preset; every check passes there): the wheel's contact time constant, and the skate's peg's, at 2 steps.
@@ -35,6 +35,11 @@ def test_crossing_interpolates_and_extrapolates() -> None:
     assert math.isnan(crossing([0.0, 1.0], [-0.5, -0.5]))
 
 
+def test_verdict_names_the_failed_checks() -> None:
+    assert verdict({"passed": True, "failed": []}) == "PASS"
+    assert verdict({"passed": False, "failed": ["eigenvalue", "stable"]}) == "FAIL (eigenvalue, stable)"
+
+
 @pytest.mark.mujoco
 def test_wheel_sweep_over_slope(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     out = tmp_path / "sweep.json"
@@ -44,7 +49,10 @@ def test_wheel_sweep_over_slope(tmp_path: Path, capsys: pytest.CaptureFixture[st
     assert code == (0 if all(r["passed"] for r in rows) else 1)  # each row's verdict is the gate's to assert
     assert [r["slope"] for r in rows] == [0.08, 0.12]
     assert all(abs(r["fitted_lowest"] - 0.5) < 0.02 for r in rows)  # beta^2 = 0.5 for 8 spokes at any slope
-    assert "lowest Re" in capsys.readouterr().out
+    table = capsys.readouterr().out
+    assert "lowest Re" in table and "| verdict" in table
+    assert [line.rstrip(" |").rsplit("| ", 1)[-1].split()[0] for line in table.splitlines()[2:4]] == [
+        "PASS" if r["passed"] else "FAIL" for r in rows]  # each row's verdict, the exit code's reason
     assert main(["sweep", "rimless-wheel", "--param", "slope", "--values", "0.08,0.5"]) == 2  # checked first
 
 

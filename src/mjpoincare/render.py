@@ -32,16 +32,28 @@ class RenderError(RuntimeError):
 
 
 def select_gl_backend() -> str:
-    """Set ``MUJOCO_GL`` (if unset) to a backend that works; must run before ``import mujoco``."""
+    """Set ``MUJOCO_GL`` (if unset) to a backend that works; must run before ``import mujoco``.
+
+    A ``MUJOCO_GL`` the user set is kept when it works; when it does not, the error names the backends that do work
+    here (so ``osmesa`` without OSMesa says to use ``egl`` rather than that nothing works)."""
     chosen = os.environ.get("MUJOCO_GL")
-    for backend in [chosen] if chosen else BACKENDS:
-        env = {**os.environ, "MUJOCO_GL": backend}
-        probe = subprocess.run([sys.executable, "-c", _PROBE], env=env, capture_output=True, timeout=120)
-        if probe.returncode == 0:
-            os.environ["MUJOCO_GL"] = backend
-            return backend
+    if chosen and _works(chosen):
+        return chosen
+    working = [b for b in BACKENDS if b != chosen and _works(b)]
+    if not chosen and working:
+        os.environ["MUJOCO_GL"] = working[0]
+        return working[0]
+    if chosen and working:
+        raise RenderError(f"MUJOCO_GL={chosen} does not work here, but MUJOCO_GL={working[0]} does: set "
+                          f"MUJOCO_GL={working[0]} or unset MUJOCO_GL")
     where = f"MUJOCO_GL={chosen} does not work" if chosen else "neither MUJOCO_GL=egl nor osmesa works"
     raise RenderError(f"{where}; {INSTALL_HINT}")
+
+
+def _works(backend: str) -> bool:
+    """A child process with ``MUJOCO_GL=backend`` opens a context and renders one frame."""
+    env = {**os.environ, "MUJOCO_GL": backend}
+    return subprocess.run([sys.executable, "-c", _PROBE], env=env, capture_output=True, timeout=120).returncode == 0
 
 
 def parse_size(text: str) -> tuple[int, int]:

@@ -15,12 +15,15 @@ import base64
 import html
 import io
 import json
+import math
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
+from matplotlib.patches import Patch
 from matplotlib.ticker import MaxNLocator
 
 from mjpoincare.result import write_text
@@ -176,8 +179,9 @@ def _frame(ax: Axes, value: complex, cloud: np.ndarray, exact: np.ndarray) -> No
 
 
 def basin_figure(table: list[dict[str, Any]], bands: list[list[Any]]) -> str:
-    """Simulated end states over the analytic regions of attraction (shaded bands)."""
-    fig = Figure(figsize=(8, 2.2))
+    """Simulated end states over the analytic regions of attraction (shaded bands), with a legend of the outcomes'
+    colours (band: analytic, marker: MuJoCo) and of the hollow marker (a start not judged)."""
+    fig = Figure(figsize=(8, 2.6))
     ax = fig.subplots()
     for lo, hi, outcome in bands:
         ax.axvspan(lo, hi, color=COLORS[outcome], alpha=0.15)
@@ -185,9 +189,13 @@ def basin_figure(table: list[dict[str, Any]], bands: list[list[Any]]) -> str:
         marker = "o" if row["judged"] else "s"
         ax.plot(row["omega0"], 0, marker, color=COLORS.get(row["simulated"], "k"), ms=8, mfc="none"
                 if not row["judged"] else COLORS.get(row["simulated"], "k"))
+    outcomes = list(dict.fromkeys([*(b[2] for b in bands), *(r["simulated"] for r in table)]))
+    handles = [Patch(color=COLORS.get(o, "k"), alpha=0.5, label=o) for o in outcomes]
+    handles.append(Line2D([], [], marker="s", ls="", color="k", mfc="none", label="not judged"))
+    ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.45), ncol=len(handles), fontsize=7,
+              frameon=False)
     ax.set_yticks([])
-    ax.set_xlabel("initial post-impact speed (rad/s); shading: analytic basin, marker: MuJoCo end state "
-                  "(hollow = not judged)", fontsize=8)
+    ax.set_xlabel("initial post-impact speed (rad/s); shading: analytic basin, marker: MuJoCo end state", fontsize=8)
     fig.tight_layout()
     return _png(fig)
 
@@ -246,8 +254,9 @@ def write_report(result: dict[str, Any], directory: str, still: bytes | str | No
     out = Path(directory)
     name = result["scenario"]
     rows = "".join(
-        f"<tr class={'pass' if c['passed'] else 'fail'}><td>{html.escape(c['name'])}</td><td>{_cell(c['analytic'])}"
-        f"</td><td>{_cell(c['simulated'])}</td><td>{_cell(c['error'])}</td><td>{c['tolerance']:.3g}</td>"
+        f"<tr class={'pass' if c['passed'] else 'fail'}><td>{html.escape(c['name'])}</td>"
+        f"<td>{_cell(c['analytic'], c.get('complex', False))}</td><td>{_cell(c['simulated'], c.get('complex', False))}"
+        f"</td><td>{_cell(c['error'])}</td><td>{c['tolerance']:.3g}</td>"
         f"<td>{'PASS' if c['passed'] else 'FAIL'}</td><td class=why>{html.escape(c['why'])}</td></tr>"
         for c in result["checks"])
     figures = "".join(f"<h2>{html.escape(t)}</h2><img alt='{html.escape(t)}' src='data:image/png;base64,{b}'>"
@@ -294,9 +303,15 @@ def write_index(results: list[dict[str, Any]], directory: str) -> Path:
     return target
 
 
-def _cell(value: Any) -> str:
+def _cell(value: Any, complex_values: bool = False) -> str:
+    """A check's value as table text; with ``complex_values``, each ``[re, im]`` pair (how the JSON writes a complex
+    number) as ``re+imj``."""
+    if complex_values and isinstance(value, list) and len(value) == 2 and all(
+            v is None or isinstance(v, int | float) for v in value):
+        re_, im = (math.nan if v is None else float(v) for v in value)
+        return html.escape(f"{re_:.6g}{im:+.6g}j")
     if isinstance(value, list):
-        return html.escape(", ".join(_cell(v) for v in value))
+        return html.escape(", ".join(_cell(v, complex_values) for v in value))
     if isinstance(value, float):
         return f"{value:.6g}"
     return html.escape(str(value))

@@ -64,7 +64,7 @@ class Result:
         head = (f"{self.scenario}  preset={self.preset}  {engine}  "
                 + " ".join(f"{k}={v}" for k, v in self.params.items()))
         rows = [(c.name, format_value(c.analytic), format_value(c.simulated),
-                 f"{format_value(c.error)} {c.kind[:3]}", f"{c.tolerance:.3g}", "PASS" if c.passed else "FAIL")
+                 f"{format_value(c.error)} {c.kind}", f"{c.tolerance:.3g}", "PASS" if c.passed else "FAIL")
                 for c in self.checks]
         lines = [head, text_table(("check", "analytic", "simulated", "error", "tolerance", "verdict"), rows)]
         t = self.timing

@@ -67,6 +67,7 @@ def sweep_point(name: str, param: str, value: str, assignments: Mapping[str, str
     analytic = result.get("analytic", {}).get("eigenvalues")
     return {param: float(value), "value": value, "passed": result["passed"],
             "errors": {c["name"]: c["error"] for c in result["checks"]},
+            "failed": [c["name"] for c in result["checks"] if not c["passed"]],
             "fitted_lowest": _lowest(result["fit"]["eigenvalues"]) if "fit" in result else math.nan,
             "analytic_lowest": _lowest(analytic) if analytic is not None else math.nan,
             "fitted_max_modulus": _largest_modulus(result["fit"]["eigenvalues"]) if "fit" in result else math.nan,
@@ -93,9 +94,9 @@ def run_sweep(name: str, param: str, values: list[str], assignments: Mapping[str
     wall = time.perf_counter() - start
     names = list(dict.fromkeys(n for r in rows for n in r["errors"]))  # rows may carry different checks
     lines = [markdown_table(
-        (param, *(f"{n} error" for n in names), "lowest Re λ fitted", "analytic"),
+        (param, *(f"{n} error" for n in names), "lowest Re λ fitted", "analytic", "verdict"),
         [(f"{r[param]:g}", *("—" if r["errors"].get(n) is None else f"{r['errors'][n]:.2e}" for n in names),
-          f"{r['fitted_lowest']:.4f}", f"{r['analytic_lowest']:.4f}") for r in rows])]
+          f"{r['fitted_lowest']:.4f}", f"{r['analytic_lowest']:.4f}", verdict(r)) for r in rows])]
     busy = sum(r["wall_s"] for r in rows if r["value"] in todo)
     lines.append(f"\n{len(todo)} points run ({len(points.keys) - len(todo)} resumed) in {wall:.1f} s wall with "
                  f"{engine} engine, {workers} worker(s); {busy:.1f} s of validation")
@@ -120,6 +121,14 @@ def run_sweep(name: str, param: str, values: list[str], assignments: Mapping[str
     if json_path:
         write_json(jsonable(payload), json_path)
     return 0 if all(r["passed"] for r in rows) else 1
+
+
+def verdict(row: Mapping[str, Any]) -> str:
+    """A sweep row's verdict: PASS, or FAIL with the checks that failed (the exit code is 1 when any row fails)."""
+    if row["passed"]:
+        return "PASS"
+    failed = row.get("failed", [])
+    return f"FAIL ({', '.join(failed)})" if failed else "FAIL"
 
 
 def _null_as_nan(row: dict[str, Any]) -> dict[str, Any]:
