@@ -168,4 +168,4 @@ def test_a_check_that_disappears_fails_the_api_and_the_cli(monkeypatch: pytest.M
     code = main(["validate", "rimless-wheel", "--set", "timestep=8e-4", "--set", "solref_timeconst=1.6e-3"])
     out = capsys.readouterr().out
     assert code == 1
-    assert re.search(r"^eigenvalue\s.*\bmis\s.*FAIL$", out, re.M), out
+    assert re.search(r"^eigenvalue\s.*\bmissing\s.*FAIL$", out, re.M), out

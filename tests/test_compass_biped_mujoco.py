@@ -42,11 +42,11 @@ def test_switched_off_swing_foot_dips_as_the_exact_swing() -> None:
     # every swing the run walked (the batch stops once its fit settles), the last one after the last heel strike
     assert len(below) == len(exact) and cb.STOPPING.min_samples <= len(below) <= cb.STEPS + 1
     assert max(abs(m - e) for m, e in zip(below, exact, strict=True)) <= r_over_l * swing["exact_depth"]
-    reported = result.extras["reported"]["swing_foot_depth"]
-    assert reported["unit"] == "m" and reported["value"] >= max(swing["depth"])  # perturbed starts included
+    reported = result.reported["swing_foot_depth"]
+    assert reported.unit == "m" and reported.value >= max(swing["depth"])  # perturbed starts included
     assert "swing_foot_depth" not in {c.name for c in result.checks}
     assert "reported swing_foot_depth: " in result.table()
-    assert result.to_dict()["reported"]["swing_foot_depth"]["value"] == reported["value"]
+    assert result.to_dict()["reported"]["swing_foot_depth"]["value"] == reported.value
 
 
 def test_constant_torques_move_the_gait_as_the_theory_says() -> None:
@@ -54,7 +54,7 @@ def test_constant_torques_move_the_gait_as_the_theory_says() -> None:
     give matches the exact actuated model (fast preset tolerances)."""
     result = gate.run_case(gate.case("compass-biped[fast,tau_ankle=0.5,tau_hip=0.2]"))
     passive = theory.fixed_point(theory.CompassBiped())
-    assert abs(result.extras["analytic"]["fixed_point"][2] - passive[2]) > 0.01  # the torques matter
+    assert abs(result.analytic.values["fixed_point"][2] - passive[2]) > 0.01  # the torques matter
 
 
 @pytest.mark.parametrize(

@@ -11,6 +11,10 @@ The layers, lowest first (a module may import its own layer and those below, nev
 - ``commands``: validate, sweep, converge, bench, stress, tune, releases, gate, the report pages;
 - ``face``: what a user touches (the CLI, the Python API, the pytest plugin, the environments).
 
+Two seams more: no command or face imports one system's scenario module (they find systems through the registry),
+and no scenario imports an engine's module (it steps through ``simulate``, which opens an engine with
+``backends.open_batch``).
+
 Every import counts, a late one inside a function too: a late import dodges a cycle at import time, not the
 dependency. The model is Drake's ``BUILD`` dependencies and dm_control's domain modules (which import only
 ``base``, ``common`` and ``utils``).
@@ -37,6 +41,7 @@ LAYER_OF: dict[str, str] = {
     "mjpoincare.seam": "core", "mjpoincare.parallel": "core", "mjpoincare.progress": "core",
     "mjpoincare.mjlog": "core", "mjpoincare.mjcompat": "core", "mjpoincare.mjcf_loader": "core",
     "mjpoincare.stamp": "core", "mjpoincare.cost": "core", "mjpoincare.version": "core",
+    "mjpoincare.outputs": "core",
     "mjpoincare.backends": "engines", "mjpoincare.peers": "engines",
     "mjpoincare.simulate": "simulation", "mjpoincare.seam_check": "simulation",
     "mjpoincare.scenarios": "scenarios",
@@ -175,6 +180,31 @@ def test_no_import_cycles() -> None:
     assert cycles(graph(SOURCES)) == []
 
 
+#: The scenarios layer's framework modules, which a command may import (the records, the gate's case records, the
+#: registry); every other module of ``mjpoincare.scenarios`` is one system's.
+SCENARIO_FRAMEWORK = ("mjpoincare.scenarios.base", "mjpoincare.scenarios.gate_cases", "mjpoincare.scenarios.__init__")
+
+
+def seam_reaches(edges: Mapping[str, Mapping[str, int]]) -> list[str]:
+    """Imports past the seams, as ``module:line -> module``: a command or a face importing one system's scenario
+    module (it must find systems through the registry), and a scenario importing an engine's module (it must step
+    through :func:`mjpoincare.simulate.rollout_batch` / ``event_rollout``, which open an engine with
+    :func:`mjpoincare.backends.open_batch`)."""
+    found = []
+    for name, targets in sorted(edges.items()):
+        for target, line in sorted(targets.items()):
+            command = layer(name) in ("commands", "face") and layer(target) == "scenarios" and (
+                target not in SCENARIO_FRAMEWORK)
+            engine = layer(name) == "scenarios" and target.startswith("mjpoincare.backends")
+            if command or engine:
+                found.append(f"{name}:{line} -> {target}")
+    return found
+
+
+def test_no_command_names_a_scenario_and_no_scenario_names_an_engine() -> None:
+    assert seam_reaches(graph(SOURCES)) == []
+
+
 def test_analysis_knows_no_simulator() -> None:
     """The analysis layer imports neither MuJoCo nor dm_control (it works on arrays and formulas only)."""
     offenders = []
@@ -206,3 +236,18 @@ def test_a_planted_upward_import_is_found(planted: dict[str, Path]) -> None:
 def test_a_planted_cycle_is_found(planted: dict[str, Path]) -> None:
     """The planted import closes a cycle: the CLI reaches the parameter module through the registry."""
     assert any({"mjpoincare.params", "mjpoincare.cli"} <= set(c) for c in cycles(graph(planted)))
+
+
+def test_a_planted_reach_past_the_seams_is_found(planted: dict[str, Path]) -> None:
+    """A command that imports one system's module, and a scenario that imports an engine, are both reported."""
+    sweep = planted["mjpoincare"] / "sweep.py"
+    sweep.write_text(sweep.read_text() + "\n\ndef _planted() -> None:\n"
+                     "    from mjpoincare.scenarios import rimless_wheel  # noqa\n")
+    wheel = planted["mjpoincare"] / "scenarios" / "rimless_wheel.py"
+    wheel.write_text(wheel.read_text() + "\n\ndef _planted() -> None:\n"
+                     "    from mjpoincare.backends import mujoco_c  # noqa\n")
+    reaches = seam_reaches(graph(planted))
+    assert any(r.startswith("mjpoincare.sweep:") and r.endswith("-> mjpoincare.scenarios.rimless_wheel")
+               for r in reaches), reaches
+    assert any(r.startswith("mjpoincare.scenarios.rimless_wheel:") and r.endswith("-> mjpoincare.backends.mujoco_c")
+               for r in reaches), reaches

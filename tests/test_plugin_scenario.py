@@ -127,3 +127,53 @@ def test_every_public_plugin_name_resolves_and_is_documented() -> None:
         assert getattr(plugin, name) is not None, name
         assert f":func:`{name}`" in plugin.__doc__ or f":class:`{name}`" in plugin.__doc__ or (
             f":data:`{name}`" in plugin.__doc__), f"{name} is exported but not described in the module docstring"
+
+
+def test_sweep_on_the_plugin_shows_its_analytic_eigenvalue() -> None:
+    """The toy's analytic values and fit are fields of its Evaluation, so the generic sweep's columns are finite: the
+    apex map's multiplier e^2 beside the fitted one, and a verdict per row."""
+    run = _mjpoincare("sweep", NAME, "--param", "drop_height", "--values", "0.8,1.0")
+    assert run.returncode == 0, run.stdout + run.stderr
+    rows = [line.strip("|").split("|") for line in run.stdout.splitlines() if re.match(r"^\| (0\.8|1) \|", line)]
+    assert len(rows) == 2
+    for row in rows:
+        fitted, analytic, verdict = (cell.strip() for cell in row[-3:])
+        assert float(analytic) == pytest.approx(0.553654, abs=5e-5)  # e^2 at zeta = 0.1 (4 digits printed)
+        assert abs(float(fitted) - float(analytic)) < 0.015 and verdict == "PASS"
+
+
+def test_a_parameter_against_a_setting_is_refused_before_any_simulation(tmp_path: Path) -> None:
+    """The toy's ``check_inputs`` sees the parameters and the settings together: a radius under twice the ball's
+    deepest penetration at that contact softness is refused in one line, exit 2, before any rollout, nothing written."""
+    code = ("import sys\n"
+            "from mjpoincare.backends import mujoco_c\n"
+            "def refuse(*a, **k):\n"
+            "    raise SystemExit('simulated before checking the inputs')\n"
+            "mujoco_c._native_chunk = refuse\n"
+            "from mjpoincare.cli import main\n"
+            "sys.exit(main(sys.argv[1:]))\n")
+    out = tmp_path / "out.json"
+    run = _run([sys.executable, "-c", code, "validate", NAME, "--set", "radius=0.005", "--json", str(out)])
+    assert run.returncode == 2, run.stdout + run.stderr
+    assert run.stderr.count("\n") == 1 and "radius=0.005 m must be at least twice" in run.stderr
+    assert "solref_timeconst=0.01" in run.stderr and not out.exists()
+    stiffer = _mjpoincare("validate", NAME, "--set", "radius=0.005", "--set", "solref_timeconst=0.002")
+    assert stiffer.returncode in (0, 1) and "restitution" in stiffer.stdout  # a stiffer contact: accepted, run
+
+
+def test_a_plugin_model_gets_the_shared_looks(tmp_path: Path) -> None:
+    """The toy's own MJCF file includes ``common/looks.xml`` through the public ``load_spec``: its model has the
+    gradient sky and the floor's checker material, and a still of it shows the sky (not black) above the floor."""
+    code = ("import mujoco, toy_ball\n"
+            "m = toy_ball.build({'drop_height': 1.0, 'radius': 0.05, 'gravity': 9.81}, "
+            "{**__import__('mjpoincare.settings', fromlist=['DEFAULTS']).DEFAULTS})\n"
+            "sky = [i for i in range(m.ntex) if m.tex_type[i] == mujoco.mjtTexture.mjTEXTURE_SKYBOX]\n"
+            "print(len(sky), m.mat('grid').id == m.geom('floor').matid[0])\n")
+    model = _run([sys.executable, "-c", code])
+    assert model.returncode == 0 and model.stdout.split() == ["1", "True"], model.stdout + model.stderr
+    still = _mjpoincare("render", NAME, "-o", str(tmp_path / "still.png"), "--seconds", "0.1", "--size", "64x48")
+    assert still.returncode == 0, still.stderr
+    import mediapy
+
+    sky = mediapy.read_image(str(tmp_path / "still.png"))[:4].reshape(-1, 3).mean(axis=0)
+    assert sky.min() > 40, sky  # the gradient sky's top (a missing skybox renders black)

@@ -57,22 +57,22 @@ def test_fast_preset_checks(mode: str, request: pytest.FixtureRequest) -> None:
 
 def test_ideal_mode_isolates_the_integration(ideal: dict) -> None:
     """Exact guard and impact law: the impacts land on theta = pi/n and the planar cycle stays on eqs 12-14."""
-    assert ideal["max_guard_error"] < 1e-9
+    assert ideal["extras"]["max_guard_error"] < 1e-9
     by_name = {c["name"]: c for c in ideal["checks"]}
     assert by_name["planar_bank"]["error"] < 1e-9  # a vertical wheel plane stays vertical (no impact adds bank)
     assert "integration of the stance only" in by_name["planar_bank"]["why"]  # the check says what it tests
-    assert abs(ideal["heading_drift"]["per_100_impacts_fit"]) < 1e-3
+    assert abs(ideal["extras"]["heading_drift"]["per_100_impacts_fit"]) < 1e-3
 
 
 def test_contact_mode_reports_heading_drift(contact: dict) -> None:
     """The heading is neutral: its drift is reported (per 100 impacts), never compared with the start heading. The
     soft impact biases it away from straight downhill (measured at the fast preset: fit 5.5e-3 rad per 100 impacts;
     planar runs 0, 1.8e-3, 3.1e-3 at psi = 0, 0.314, 0.5, while the ideal mode's impacts give ~1e-9)."""
-    drift = contact["heading_drift"]
+    drift = contact["extras"]["heading_drift"]
     reported = contact["reported"]["heading_drift_per_100_impacts"]  # also printed under the check table
     assert reported["value"] == pytest.approx(drift["per_100_impacts_fit"]) and reported["unit"] == "rad"
     assert drift["per_100_impacts_fit"] > 1e-3
-    planar = contact["heading_drift_per_100_impacts_planar"]
+    planar = contact["extras"]["heading_drift_per_100_impacts_planar"]
     assert set(planar) == {"0", "0.314159", "0.5"}
     assert planar["0"] == pytest.approx(0.0, abs=1e-9)  # symmetric
     assert 0 < planar["0.314159"] < planar["0.5"]

@@ -40,7 +40,7 @@ def test_default_type_b(type_b: dict) -> None:
     assert {"gait_type", "midstance_rate", "eigenvalue", "impact_kind", "phase_sequence", "slip_onset",
             "stable"} <= set(checks)
     assert type_b["analytic"]["gait"] == "B"
-    assert all(s["simulated"] == s["reference"] == "B" for s in type_b["starts"])
+    assert all(s["simulated"] == s["reference"] == "B" for s in type_b["extras"]["starts"])
     json.dumps(type_b, allow_nan=False)
 
 
@@ -65,10 +65,10 @@ def test_type_d_plus_flight_is_reported() -> None:
     checks = _checks(result)
     assert not result["passed"]
     assert not checks["gait_type"]["passed"]
-    assert {s["simulated"] for s in result["starts"]} == {"detached"}
-    assert {s["reference"] for s in result["starts"]} == {"D+"}
+    assert {s["simulated"] for s in result["extras"]["starts"]} == {"detached"}
+    assert {s["reference"] for s in result["extras"]["starts"]} == {"D+"}
     assert checks["midstance_rate"]["passed"]
-    assert any(step["kind"] == "D+" for step in result["steps"])
+    assert any(step["kind"] == "D+" for step in result["extras"]["steps"])
 
 
 @pytest.mark.parametrize(("assignments", "name"), [

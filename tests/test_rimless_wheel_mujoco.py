@@ -96,7 +96,7 @@ def test_json_file_written_whole_and_the_exit_code_agrees_with_it(tmp_path: Path
     target = tmp_path / "out" / "result.json"
     code = main(["validate", *(f"--set={k}={v}" for k, v in COARSE.items()), "--json", str(target)])
     payload = json.loads(target.read_text())["results"]
-    assert [r["scenario"] for r in payload] == list(scenarios.DEFAULT_SCENARIOS)
+    assert [r["scenario"] for r in payload] == list(scenarios.default_scenarios())
     assert len(payload) >= 4  # every system: planar and 3D wheel, biped, skate
     assert code == (0 if all(r["passed"] for r in payload) else 1)
     assert [p.name for p in target.parent.iterdir()] == ["result.json"]

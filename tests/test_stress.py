@@ -29,7 +29,7 @@ def test_largest_timesteps_stop_at_the_first_failure() -> None:
 
 
 def test_every_scenario_declares_edges_that_must_be_refused() -> None:
-    for name in scenarios.DEFAULT_SCENARIOS:
+    for name in scenarios.default_scenarios():
         cases = scenarios.get(name).stress_cases
         assert any(c.expect == "refused" for c in cases), name
         assert any(c.expect == "run" for c in cases), name

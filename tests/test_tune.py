@@ -60,7 +60,7 @@ def test_every_preset_is_a_point_of_its_search_space(name: str) -> None:
         if preset not in tune.TARGETS:
             continue
         settings = tune.suggest_settings(optuna.trial.FixedTrial(tune.preset_params(scenario, preset)),
-                                         scenario.search_space)
+                                         scenario.search_dimensions)
         full = {**tune.sim_settings.DEFAULTS, **scenario.presets[preset]}
         for key, value in settings.items():
             expected = full[key]

@@ -22,7 +22,7 @@ def validate(scenario: str, preset: str | None = None, seed: int = 0, *, peer: s
         preset: simulator preset (``"fast"``, ``"accurate"``, ...); None is the scenario's default.
         seed: seed of the experiment design's random parts (same seed, same result on any thread count).
         peer: an outside simulator (``"drake"``, for rimless-wheel and compass-biped; the extra
-            ``mjpoincare[peers]``) whose value of each check the result's ``extras["peer"]`` carries.
+            ``mjpoincare[peers]``) whose value of each check the result's ``peer`` carries.
         **values: physical parameters and simulator settings, typed (``spokes=8``, ``timestep=2e-4``,
             ``integrator="rk4"``): text for a number (``spokes="8"``) is refused, as is a bool.
 

@@ -31,6 +31,7 @@ from mjpoincare.analysis.tables import markdown_table
 from mjpoincare.params import Value
 from mjpoincare.peers.compare import bench_block
 from mjpoincare.result import write_json
+from mjpoincare.scenarios.base import Foot
 from mjpoincare.validation import resolve_inputs, run_validation
 
 #: (label, setting overrides): timestep refinement per integrator with the contact time constant kept at
@@ -97,12 +98,25 @@ def pareto_front(walls: list[float], errors: list[float]) -> list[bool]:
     return flags
 
 
+def foot_row(config: tuple[str, dict[str, Value]], foot: Foot | None) -> tuple[str, dict[str, Value]] | None:
+    """A sweep row as the scenario runs it: the large-foot row at its foot's largest searched radius, or dropped
+    when the model has no feet; every other row as it is."""
+    label, overrides = config
+    if "foot_radius" not in overrides:
+        return config
+    if foot is None:
+        return None
+    return label.replace(f"r={float(overrides['foot_radius']) * 1e3:g}mm", f"r={foot.high * 1e3:g}mm"), {
+        **overrides, "foot_radius": foot.high}
+
+
 def run_bench(name: str, assignments: Mapping[str, str], output: str, json_path: str | None,
               quick: bool = False) -> int:
     """Run the sweep, print the table, write the PNG (and JSON); exit 0, or 2 on bad input."""
     scenario = scenarios.get(name)
     resolve_inputs(name, assignments, None)  # bad input fails before any run
-    configs = [c for c in SWEEP if not quick or c[0] in QUICK]
+    configs = [foot_row(c, scenario.foot) for c in SWEEP if not quick or c[0] in QUICK]
+    configs = [c for c in configs if c is not None]
     rows: list[dict[str, Any]] = []
     accuracy = scenario.accuracy_checks
     with progress.bar(len(configs), f"bench {name}", unit="config") as bar:

@@ -32,7 +32,10 @@ def _cmd_list(_: argparse.Namespace) -> int:
     for scenario in scenarios.REGISTRY.values():
         print(f"{scenario.name}: {scenario.summary}")
         print(f"  source: {scenario.source}")
-        print(f"  presets: {', '.join(scenario.presets)} (default {scenario.default_preset})")
+        print(f"  presets: {', '.join(scenario.presets)} (default {scenario.default_preset})"
+              + ("; in the default validation" if scenario.default else ""))
+        print(f"  foot_radius: {scenario.foot.meaning} (searched {scenario.foot.low:g}-{scenario.foot.high:g} m)"
+              if scenario.foot else "  foot_radius: not used (the model has no foot spheres)")
         for p in scenario.params:
             print(f"  {p.name} = {p.default}  ({p.doc}; {p.range_text()})")
         if scenario.region_map:
@@ -50,7 +53,7 @@ def _cmd_validate(args: argparse.Namespace) -> int:
     from mjpoincare.result import check_output_path, distinct_outputs, results_document, write_json
     from mjpoincare.validation import peer_of, resolve_inputs, typed_values
 
-    names = args.scenario or list(scenarios.DEFAULT_SCENARIOS)
+    names = args.scenario or list(scenarios.default_scenarios())
     assignments = parse_assignments(args.set)
     check_output_path(args.json, "--json")  # before the inputs: resolving them self-tests the seam (a tiny rollout)
     check_output_path(args.report, "--report", directory=True)
@@ -82,19 +85,19 @@ def _cmd_validate(args: argparse.Namespace) -> int:
         from mjpoincare.extrapolate import extrapolate
 
         for result in results:
-            result.extras["extrapolated"] = extrapolate(result.scenario, assignments, args.preset, args.seed,
-                                                        result.checks, result.timing["wall_s"])
+            result.extrapolated = extrapolate(result.scenario, assignments, args.preset, args.seed,
+                                              result.checks, result.timing["wall_s"])
     if args.json != "-":
         for result in results:
             print(result.table())
-            if "peer" in result.extras:
+            if result.peer is not None:
                 from mjpoincare.peers.compare import format_peer
 
-                print(format_peer(result.extras["peer"]))
-            if "extrapolated" in result.extras:
+                print(format_peer(result.peer))
+            if result.extrapolated is not None:
                 from mjpoincare.extrapolate import table
 
-                print(table(result.extras["extrapolated"]))
+                print(table(result.extrapolated))
             print()
     if args.json:
         write_json(results_document(results), args.json)

@@ -88,7 +88,9 @@ def check_request(name: str, assignments: Mapping[str, str], preset: str | None,
         raise ParameterError(f"--points must be in [3, {MAX_POINTS}] (got {points})")
     if not 1.0 < ratio <= MAX_RATIO:
         raise ParameterError(f"--ratio must be in (1, {MAX_RATIO:g}] (got {ratio})")
-    _, _, _, start = resolve_inputs(name, assignments, preset)
+    scenario, _, _, start = resolve_inputs(name, assignments, preset)
+    if "foot_radius" in axes and scenario.foot is None:
+        raise ParameterError(f"--axis foot_radius: {name} has no foot spheres (its model does not read foot_radius)")
     plan = ladders(start, axes, points, ratio)
     for axis, rungs in plan.items():
         for overrides in rungs:

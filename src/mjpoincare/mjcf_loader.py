@@ -3,11 +3,13 @@
 
 from __future__ import annotations
 
+import os
 from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager
 from contextvars import ContextVar
 from importlib import resources
 from importlib.abc import Traversable
+from pathlib import Path
 
 import mujoco
 
@@ -27,12 +29,23 @@ def model_file(filename: str) -> Traversable:
     return resources.files(MODELS_PACKAGE) / filename
 
 
-def load_spec(filename: str) -> mujoco.MjSpec:
-    """Parse the shipped model ``filename`` with the files it includes (:data:`INCLUDES`: a string has no folder to
-    resolve ``<include file=...>`` from); a missing or malformed file raises :class:`ParameterError`."""
-    source = model_file(filename)
+def load_spec(filename: str | os.PathLike[str]) -> mujoco.MjSpec:
+    """Parse an MJCF model with the shared files it may include (:data:`INCLUDES`: ``<include
+    file="common/looks.xml"/>`` gives the sky, the floor's material and the headlight every built-in has).
+
+    Args:
+        filename: a built-in's model, by its name in the package's models (``"rimless_wheel_2d.xml"``), or a
+            plugin's own model file, by its path (a :class:`pathlib.Path`, or a string naming an existing file with
+            a folder in it, e.g. ``Path(__file__).with_name("toy.xml")``).
+
+    Returns:
+        the parsed spec; a missing or malformed file raises :class:`ParameterError` (one line naming it).
+    """
+    own = isinstance(filename, os.PathLike) or os.path.dirname(filename) != ""
+    source: Traversable | Path = Path(filename) if own else model_file(str(filename))
     if not source.is_file():
-        raise ParameterError(f"model file {filename} not found in {MODELS_PACKAGE}")
+        where = "" if own else f" in {MODELS_PACKAGE}"
+        raise ParameterError(f"model file {filename} not found{where}")
     include = {name: model_file(name).read_bytes() for name in INCLUDES}
     try:
         return mujoco.MjSpec.from_string(source.read_text(), include=include)

@@ -7,9 +7,13 @@ made). What each group is for:
 
 - **the scenario and its records**: :class:`Scenario` (one model, its parameters, presets, analytic reference and
   tolerances, declared once), :class:`Param` and :data:`Values` (a scenario's parameters and their checked values),
-  :class:`Tolerances` and :func:`at_preset`, :class:`Evaluation` (what ``evaluate`` returns),
-  :class:`ReturnMapPlot`, :class:`StressCase`, :class:`CoveragePoint`, and the gate's :class:`GateCase`,
-  :class:`Watch` and :class:`Miss`;
+  :class:`Tolerances` and :func:`at_preset`, :class:`Evaluation` (what ``evaluate`` returns), :class:`StressCase`,
+  :class:`CoveragePoint`, and the gate's :class:`GateCase`, :class:`Watch` and :class:`Miss`;
+- **what a run reports beside its checks** (fields of :class:`Evaluation`, read by the commands):
+  :class:`AnalyticValues` (the theory's eigenvalues: ``sweep``'s analytic column), :class:`FitSummary` (the fitted
+  map: ``sweep``'s fitted column, the report's eigenvalue plot), :class:`ReturnMapPlot`,
+  :class:`SectionConvergence` and :class:`BasinMap` (the report's figures), :class:`Reported` (a figure shown under
+  the table, not judged); anything else goes into ``Evaluation.extras``, nested under ``extras`` in the JSON;
 - **checks**: :class:`Check` and its constructors :func:`relative`, :func:`absolute`, :func:`fraction` and
   :func:`categorical`;
 - **the return map**: :func:`sample_pairs` (section samples to (x_k, x_k+1) pairs) and :func:`fit_return_map`
@@ -20,6 +24,9 @@ made). What each group is for:
   :func:`rollout_batch` (a batch through ``mujoco.rollout`` in chunks, each handed to a consumer as a
   :class:`Chunk` of ``(B, steps + 1, ...)`` arrays), :func:`event_rollout` (the same with a controller that
   switches contacts and actuators between chunks), :func:`plain_clip` (one trajectory's states for a video);
+- **the model**: :func:`load_spec` (a plugin's own MJCF file, by its path, with the shared looks its
+  ``<include file="common/looks.xml"/>`` asks for) and :func:`compile_spec` (the spec compiled with the run's
+  ``unskip`` setting, a compile error as one line; the gate's planted changes reach models compiled here);
 - **simulator settings**: :func:`apply_options`, :func:`apply_unskip`, :func:`solref`, :func:`solimp` (a model
   built from a spec with the run's settings), :func:`rollout_options` (the keyword arguments a rollout takes from
   them), :func:`search_space` and :class:`Dimension` (what ``mjpoincare tune`` searches);
@@ -31,11 +38,19 @@ from __future__ import annotations
 from mjpoincare.analysis.checks import Check, absolute, categorical, fraction, relative
 from mjpoincare.analysis.returnmap import ReturnMapFit, fit_return_map, sample_pairs
 from mjpoincare.analysis.sections import Crossings, level_crossings
+from mjpoincare.mjcf_loader import compile_spec, load_spec
+from mjpoincare.outputs import (
+    AnalyticValues,
+    BasinMap,
+    FitSummary,
+    Reported,
+    ReturnMapPlot,
+    SectionConvergence,
+)
 from mjpoincare.params import Param, ParameterError, Values
 from mjpoincare.scenarios.base import (
     CoveragePoint,
     Evaluation,
-    ReturnMapPlot,
     Scenario,
     StressCase,
     Tolerances,
@@ -55,19 +70,24 @@ from mjpoincare.settings import (
 from mjpoincare.simulate import event_rollout, initial_states, plain_clip, rollout_batch
 
 __all__ = [
+    "AnalyticValues",
+    "BasinMap",
     "Check",
     "Chunk",
     "CoveragePoint",
     "Crossings",
     "Dimension",
     "Evaluation",
+    "FitSummary",
     "GateCase",
     "Miss",
     "Param",
     "ParameterError",
+    "Reported",
     "ReturnMapFit",
     "ReturnMapPlot",
     "Scenario",
+    "SectionConvergence",
     "StressCase",
     "Tolerances",
     "Values",
@@ -77,11 +97,13 @@ __all__ = [
     "apply_unskip",
     "at_preset",
     "categorical",
+    "compile_spec",
     "event_rollout",
     "fit_return_map",
     "fraction",
     "initial_states",
     "level_crossings",
+    "load_spec",
     "plain_clip",
     "relative",
     "rollout_batch",

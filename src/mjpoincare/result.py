@@ -14,13 +14,25 @@ from typing import Any
 
 from mjpoincare.analysis.checks import Check, jsonable
 from mjpoincare.analysis.tables import text_table
+from mjpoincare.outputs import (
+    AnalyticValues,
+    BasinMap,
+    FitSummary,
+    Reported,
+    ReturnMapPlot,
+    SectionConvergence,
+)
 from mjpoincare.params import ParameterError
 from mjpoincare.version import VERSION
 
 
 @dataclass
 class Result:
-    """Everything a run reports. ``passed`` is True only if every check passed."""
+    """Everything a run reports. ``passed`` is True only if every check passed.
+
+    The typed outputs (``analytic`` to ``extrapolated``) are what the commands read; ``extras`` is the scenario's
+    free-form data, kept apart (the JSON nests it under ``extras``) so that none of it overwrites a field.
+    """
 
     scenario: str
     preset: str
@@ -33,6 +45,18 @@ class Result:
     warnings: list[str]
     diverged: list[int]
     extras: dict[str, Any] = field(default_factory=dict)
+    analytic: AnalyticValues | None = None
+    fit: FitSummary | None = None
+    return_map: ReturnMapPlot | None = None
+    section_convergence: SectionConvergence | None = None
+    basins: BasinMap | None = None
+    reported: dict[str, Reported] = field(default_factory=dict)
+    #: MuJoCo's contact diagnostics (``--set diagnostics=1``): deepest penetration and kinetic energies.
+    diagnostics: dict[str, float] | None = None
+    #: ``--peer``: the outside simulator's value of each check (:func:`mjpoincare.peers.compare.compare`).
+    peer: dict[str, Any] | None = None
+    #: ``--extrapolate``: the Richardson values of the checks (:func:`mjpoincare.extrapolate.extrapolate`).
+    extrapolated: dict[str, Any] | None = None
 
     @property
     def passed(self) -> bool:
@@ -40,8 +64,10 @@ class Result:
         return all(c.passed for c in self.checks)
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dict (vectors as lists, complex numbers as ``[re, im]``)."""
-        return jsonable({
+        """JSON-ready dict (vectors as lists, complex numbers as ``[re, im]``): the run's fields, each typed output
+        it has under its own key (``basins`` as ``basins`` and ``basin_bands``), and ``extras``
+        (docs/result-json.md)."""
+        out: dict[str, Any] = {
             "scenario": self.scenario,
             "preset": self.preset,
             "seed": self.seed,
@@ -53,8 +79,19 @@ class Result:
             "timing": self.timing,
             "warnings": self.warnings,
             "diverged_trajectories": self.diverged,
-            **self.extras,
-        })
+        }
+        for name in ("analytic", "fit", "return_map", "section_convergence"):
+            if (value := getattr(self, name)) is not None:
+                out[name] = value.to_dict()
+        if self.basins is not None:
+            out["basins"], out["basin_bands"] = list(self.basins.table), list(self.basins.bands)
+        if self.reported:
+            out["reported"] = {name: item.to_dict() for name, item in self.reported.items()}
+        for name in ("diagnostics", "peer", "extrapolated"):
+            if (value := getattr(self, name)) is not None:
+                out[name] = value
+        out["extras"] = self.extras
+        return jsonable(out)
 
     def table(self) -> str:
         """The check table a person reads: analytic, simulated, error, tolerance, verdict."""
@@ -70,8 +107,8 @@ class Result:
         t = self.timing
         lines.append(f"wall {t['wall_s']:.2f} s, {t['steps']:.3g} steps, {t['steps_per_s']:.3g} steps/s "
                      f"(MuJoCo alone {t['rollout_steps_per_s']:.3g} steps/s)")
-        for name, item in self.extras.get("reported", {}).items():  # figures a check table shows but does not judge
-            lines.append(f"reported {name}: {format_value(float(item['value']))} {item['unit']} ({item['note']})")
+        for name, item in self.reported.items():  # figures a check table shows but does not judge
+            lines.append(f"reported {name}: {format_value(float(item.value))} {item.unit} ({item.note})")
         if self.diverged:
             lines.append(f"DIVERGED trajectories: {self.diverged}")
         lines.extend(f"mujoco warning: {w}" for w in self.warnings)
@@ -80,7 +117,7 @@ class Result:
 
 #: The version of the ``validate --json`` document's shape (:func:`results_document`); it changes when a reader
 #: written for the old shape would misread the new one.
-RESULTS_SCHEMA = 2
+RESULTS_SCHEMA = 3
 
 
 def results_document(results: list[Result]) -> dict[str, Any]:

@@ -50,8 +50,8 @@ SETTINGS: tuple[Param, ...] = (
     Param("solimp_dmin", 0.99, "solimp d0: impedance at zero penetration", float, 0.0, 1.0, True, True),
     Param("solimp_dmax", 0.999, "solimp d_width: impedance at full width", float, 0.0, 1.0, True, True),
     Param("solimp_width", 1e-4, "solimp width, m", float, 0.0, 1.0, low_open=True),
-    Param("foot_radius", 5e-4, "radius of the point-foot spheres, m (bias ~ +0.7 r/l)", float, 0.0, 0.05,
-          low_open=True),
+    Param("foot_radius", 5e-4, "radius of the spheres that stand for a model's point feet, m (what they are in each "
+          "scenario, and whether it has any: mjpoincare list)", float, 0.0, 0.05, low_open=True),
     Param("iterations", 100, "constraint solver iterations (20 at tolerance 1e-8 gave wrong impacts)", int, 1, 10000),
     Param("tolerance", 1e-10, "constraint solver tolerance", float, 0.0, 1.0),
     Param("noslip_iterations", 0, "noslip post-processing iterations", int, 0, 1000),

@@ -85,7 +85,7 @@ def run_case(name: str, case: StressCase) -> dict[str, Any]:
     scenario = scenarios.get(name)
     by_name = {c.name: c for c in result.checks}
     first = by_name.get(scenario.accuracy_checks[0])
-    diag = result.extras.get("diagnostics", {})
+    diag = result.diagnostics or {}
     lost = [n for n in scenario.accuracy_checks if n in by_name and not np.all(np.isfinite(by_name[n].simulated))]
     if result.diverged:
         verdict = "diverged"
@@ -200,7 +200,7 @@ def table(report: dict[str, Any]) -> str:
 
 def run_stress(names: Sequence[str], json_path: str | None, *, soak: int, workers: int) -> int:
     """Stress each scenario; print the tables; exit 0 unless a case crashed or an expectation failed."""
-    names = list(names) or list(scenarios.DEFAULT_SCENARIOS)
+    names = list(names) or list(scenarios.default_scenarios())
     for name in names:
         scenarios.get(name)
     reports = [stress_scenario(name, soak=soak, workers=workers) for name in names]

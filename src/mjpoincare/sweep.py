@@ -28,6 +28,8 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from mjpoincare.analysis.checks import jsonable
 from mjpoincare.analysis.tables import markdown_table
 from mjpoincare.parallel import ResumableRows, check_engine, point_assignments
@@ -37,15 +39,14 @@ from mjpoincare.scenarios.base import ParamSweep, RegionMap
 from mjpoincare.validation import resolve_inputs, run_validation
 
 
-def _lowest(values: Sequence[Any]) -> float:
-    """Real part of the eigenvalue with the smallest real part (eigenvalues as [re, im] pairs or numbers)."""
-    reals = [v[0] if isinstance(v, list) else float(v) for v in values]
-    return min(reals)
+def _lowest(values: Sequence[complex] | np.ndarray | None) -> float:
+    """Real part of the eigenvalue with the smallest real part (NaN: no eigenvalues)."""
+    return math.nan if values is None or not len(values) else float(np.min(np.real(np.asarray(values, complex))))
 
 
-def _largest_modulus(values: Sequence[Any]) -> float:
-    """|lambda|max of eigenvalues given as [re, im] pairs or numbers."""
-    return max(math.hypot(*v) if isinstance(v, list) else abs(float(v)) for v in values)
+def _largest_modulus(values: Sequence[complex] | np.ndarray | None) -> float:
+    """|lambda|max of the eigenvalues (NaN: no eigenvalues)."""
+    return math.nan if values is None or not len(values) else float(np.max(np.abs(np.asarray(values, complex))))
 
 
 def crossing(xs: Sequence[float], ys: Sequence[float], level: float = -1.0) -> float:
@@ -63,16 +64,15 @@ def sweep_point(name: str, param: str, value: str, assignments: Mapping[str, str
                 ) -> dict[str, Any]:
     """One sweep row: the validation at ``param = value`` reduced to errors, eigenvalues and wall time
     (a top-level function so that worker processes and Dask can run it)."""
-    result = run_validation(name, {**assignments, param: value}, preset).to_dict()
-    analytic = result.get("analytic", {}).get("eigenvalues")
-    return {param: float(value), "value": value, "passed": result["passed"],
-            "errors": {c["name"]: c["error"] for c in result["checks"]},
-            "failed": [c["name"] for c in result["checks"] if not c["passed"]],
-            "fitted_lowest": _lowest(result["fit"]["eigenvalues"]) if "fit" in result else math.nan,
-            "analytic_lowest": _lowest(analytic) if analytic is not None else math.nan,
-            "fitted_max_modulus": _largest_modulus(result["fit"]["eigenvalues"]) if "fit" in result else math.nan,
-            "analytic_max_modulus": _largest_modulus(analytic) if analytic is not None else math.nan,
-            "wall_s": result["timing"]["wall_s"]}
+    result = run_validation(name, {**assignments, param: value}, preset)
+    fitted = None if result.fit is None else result.fit.eigenvalues
+    analytic = None if result.analytic is None else result.analytic.eigenvalues
+    return {param: float(value), "value": value, "passed": result.passed,
+            "errors": {c.name: jsonable(c.error) for c in result.checks},
+            "failed": [c.name for c in result.checks if not c.passed],
+            "fitted_lowest": _lowest(fitted), "analytic_lowest": _lowest(analytic),
+            "fitted_max_modulus": _largest_modulus(fitted), "analytic_max_modulus": _largest_modulus(analytic),
+            "wall_s": result.timing["wall_s"]}
 
 
 def run_sweep(name: str, param: str, values: list[str], assignments: Mapping[str, str], preset: str | None,

@@ -163,7 +163,7 @@ def target_space(scenario: scenarios.Scenario, target: str) -> tuple[sim_setting
     """The scenario's search space with the timestep range narrowed to the target's (:data:`TARGET_TIMESTEPS`)."""
     low, high = TARGET_TIMESTEPS[target]
     return tuple(replace(d, low=max(d.low, low), high=min(d.high, high)) if d.name == "timestep" else d
-                 for d in scenario.search_space)
+                 for d in scenario.search_dimensions)
 
 
 def _param_name(dim: sim_settings.Dimension) -> str:
@@ -189,7 +189,7 @@ def preset_params(scenario: scenarios.Scenario, preset: str) -> dict[str, Value]
     timestep range)."""
     full = {**sim_settings.DEFAULTS, **scenario.presets[preset]}
     params: dict[str, Value] = {}
-    for dim in scenario.search_space:
+    for dim in scenario.search_dimensions:
         value = full[dim.name]
         params[_param_name(dim)] = float(value) / float(full["timestep"]) if dim.per_timestep else value
     return params
@@ -280,7 +280,7 @@ def _finished(study: Any) -> int:
 
 def enqueued_params(scenario: scenarios.Scenario, assignments: Mapping[str, str]) -> dict[str, Value]:
     """``--enqueue``'s settings as trial parameters (checked as settings; the settings it leaves out are sampled)."""
-    space = {d.name: d for d in scenario.search_space}
+    space = {d.name: d for d in scenario.search_dimensions}
     outside = set(assignments) - set(space)
     if outside:
         raise ParameterError(f"--enqueue: {', '.join(sorted(outside))} not searched for {scenario.name} "

@@ -28,6 +28,8 @@ def resolve_values(name: str, assignments: Mapping[str, Value], preset: str | No
     settings = resolve(sim_settings.SETTINGS, {**sim_settings.DEFAULTS, **overrides}, assignments)
     backends.check_backend(settings)
     scenario.check_params(params)
+    if scenario.check_inputs is not None:
+        scenario.check_inputs(params, settings)
     return scenario, preset_name, params, settings
 
 
@@ -91,7 +93,7 @@ def missing_checks(declared: Iterable[str], reported: Iterable[Check]) -> list[C
 def run_validation(name: str, assignments: Mapping[str, Value] | None = None, preset: str | None = None,
                    seed: int = 0, peer: str | None = None) -> Result:
     """Validate scenario ``name`` with ``--set``-style ``assignments`` under ``preset``; with ``peer``, add that
-    simulator's value of each check (:func:`mjpoincare.peers.compare.compare`) as ``extras["peer"]``.
+    simulator's value of each check (:func:`mjpoincare.peers.compare.compare`) as the result's ``peer``.
 
     The result's checks: the scenario's, in the order it reports them, then a failing one for each check it declares
     at these inputs and did not report (:func:`missing_checks`), then ``stable``."""
@@ -107,13 +109,15 @@ def run_validation(name: str, assignments: Mapping[str, Value] | None = None, pr
     timing = {"wall_s": wall, "rollout_wall_s": report.wall_s, "steps": float(report.steps),
               "steps_per_s": report.steps / wall, "rollout_steps_per_s": report.steps_per_s,
               "compile_s": report.compile_s, "batch_steps": float(report.batch_steps)}
-    extras = dict(evaluation.extras)
+    diagnostics = None
     if int(settings["diagnostics"]) and report.sensor_min.size >= len(sim_settings.DIAGNOSTIC_SENSORS):
-        extras["diagnostics"] = {"max_penetration_m": max(0.0, -float(report.sensor_min[0])),
-                                 "max_kinetic_energy_J": float(report.sensor_max[1]),
-                                 "initial_kinetic_energy_J": float(report.sensor_first[1])}
-    if outside is not None:
-        extras["peer"] = compare(outside, params, checks)
+        diagnostics = {"max_penetration_m": max(0.0, -float(report.sensor_min[0])),
+                       "max_kinetic_energy_J": float(report.sensor_max[1]),
+                       "initial_kinetic_energy_J": float(report.sensor_first[1])}
     return Result(scenario=scenario.name, preset=preset_name, seed=seed, params=params,
                   settings=sim_settings.as_json(settings), mujoco_version=mujoco.__version__, checks=checks,
-                  timing=timing, warnings=report.warnings, diverged=diverged, extras=extras)
+                  timing=timing, warnings=report.warnings, diverged=diverged, extras=dict(evaluation.extras),
+                  analytic=evaluation.analytic, fit=evaluation.fit, return_map=evaluation.return_map,
+                  section_convergence=evaluation.section_convergence, basins=evaluation.basins,
+                  reported=dict(evaluation.reported), diagnostics=diagnostics,
+                  peer=None if outside is None else compare(outside, params, checks))

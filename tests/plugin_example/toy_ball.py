@@ -25,29 +25,34 @@ from __future__ import annotations
 
 import math
 import time
+from pathlib import Path
 
 import mujoco
 import numpy as np
 from scipy.integrate import solve_ivp
 
 from mjpoincare.plugin import (
+    AnalyticValues,
     Chunk,
     CoveragePoint,
     Crossings,
     Dimension,
     Evaluation,
+    FitSummary,
     GateCase,
     Param,
+    ParameterError,
     Scenario,
     Tolerances,
     Values,
     absolute,
     apply_options,
-    apply_unskip,
     at_preset,
+    compile_spec,
     fit_return_map,
     initial_states,
     level_crossings,
+    load_spec,
     plain_clip,
     relative,
     rollout_batch,
@@ -58,11 +63,8 @@ from mjpoincare.plugin import (
     solref,
 )
 
-MJCF = """<mujoco model="toy_ball"><worldbody>
-  <light pos="0 -1 3" dir="0 0.3 -1"/><geom name="floor" type="plane" size="0 0 0.1" rgba="0.3 0.5 0.7 1"/>
-  <body name="ball"><joint name="z" type="slide" axis="0 0 1"/>
-    <geom name="ball" type="sphere" size="0.05" mass="1" condim="1" rgba="0.9 0.3 0.2 1"/></body>
-</worldbody></mujoco>"""
+#: The model: a file beside this module, which includes the shared looks (sky, floor material, headlight).
+MJCF = Path(__file__).with_name("toy_ball.xml")
 PARAMS = (Param("drop_height", 1.0, "the highest start's drop, m (the others down to half)", float, 0.0, 100.0, True),
           Param("radius", 0.05, "ball radius, m (the reference does not depend on it)", float, 0.0, 1.0, True),
           Param("gravity", 9.81, "gravity, m/s^2", float, 0.0, 1e3, True))
@@ -93,17 +95,29 @@ def restitution(zeta: float) -> float:
     return math.exp(-zeta * phase)
 
 
+def check_inputs(p: Values, s: Values) -> None:
+    """The closed forms take the contact as a spring-damper in the penetration of a sphere: the deepest penetration,
+    about v / omega (the fastest impact v = sqrt(2 g drop_height), MuJoCo's contact frequency omega = 1 / (timeconst
+    dampratio)), must stay under half the radius; a parameter (the radius, the drop) against a setting (the contact's
+    softness), refused before any simulation."""
+    depth = math.sqrt(2.0 * float(p["gravity"]) * float(p["drop_height"])) * float(s["solref_timeconst"]) * float(
+        s["solref_dampratio"])
+    if depth > 0.5 * float(p["radius"]):
+        raise ParameterError(f"radius={p['radius']:g} m must be at least twice the ball's deepest penetration, "
+                             f"{depth:.3g} m at solref_timeconst={s['solref_timeconst']:g} s and drop_height="
+                             f"{p['drop_height']:g} m")
+
+
 def build(p: Values, s: Values) -> mujoco.MjModel:
     """The ball with ``p``'s radius and gravity; the settings' options and contact softness (on both geoms: MuJoCo
     mixes the two geoms' solref and solimp)."""
-    spec = mujoco.MjSpec.from_string(MJCF)
+    spec = load_spec(MJCF)
     apply_options(spec, s)
     spec.option.gravity = [0.0, 0.0, -float(p["gravity"])]
     spec.geom("ball").size = [float(p["radius"]), 0.0, 0.0]
     for geom in spec.geoms:
         geom.solref, geom.solimp = solref(s), solimp(s)
-    apply_unskip(spec, s)
-    return spec.compile()
+    return compile_spec(spec, s)
 
 
 def batch(model: mujoco.MjModel, p: Values, s: Values) -> tuple[np.ndarray, int]:
@@ -145,12 +159,14 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
         speed += list(up[: m - 1, 0])
         flight += list(t_down[1:m] - t_up[: m - 1])
     v, t = np.array(speed), np.array(flight)
-    extras: dict[str, object] = {"analytic": {
+    analytic = AnalyticValues(eigenvalues=[e**2], values={  # the apex map's multiplier: sweep's analytic column
         "restitution": e, "contact_s": -float(s["solref_timeconst"]) * math.log(e),
-        "bilateral": math.exp(-math.pi * zeta / math.sqrt(1 - zeta**2)) if zeta < 1 else 0.0}}
+        "bilateral": math.exp(-math.pi * zeta / math.sqrt(1 - zeta**2)) if zeta < 1 else 0.0})
+    extras: dict[str, object] = {}
+    summary = None
     try:
         fit = fit_return_map(*sample_pairs([a[:IMPACTS] for a in rec.apex.sequences(n)]), degree=1, seed=seed)
-        eigenvalue, extras["fit"] = float(fit.eigenvalues[0].real), fit.to_dict()
+        eigenvalue, summary = float(fit.eigenvalues[0].real), FitSummary.of(fit)
     except ValueError as err:  # too few apexes: a diverged run
         eigenvalue, extras["fit_error"] = math.nan, str(err)
     why = {name: f"{text}; {tol.reasons[name]}; {tol.why}" for name, text in (
@@ -162,7 +178,7 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
            absolute("eigenvalue", e**2, eigenvalue, tol["eigenvalue"], "", why["eigenvalue"]),
            relative("flight_period", 2.0 / g, float(t @ v / (v @ v)) if len(v) else math.nan,
                            tol["flight_period"], "s/(m/s)", why["flight_period"])]
-    return Evaluation(out, report, extras)
+    return Evaluation(out, report, extras, analytic=analytic, fit=summary)
 
 
 def probe(p: Values, s: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
@@ -197,7 +213,8 @@ _ALL = "restitution eigenvalue flight_period stable"
 BOUNCING_BALL = Scenario(
     name="bouncing-ball", summary="toy plugin: a ball bouncing on a plane: MuJoCo's restitution, apex map, flights",
     source="MuJoCo docs, Computation 'Soft contact model' and Modeling 'Solver parameters' (solref, solimp)",
-    params=PARAMS, presets=PRESETS, check_params=lambda p: None, build=build, evaluate=evaluate,  # nothing couples p
+    params=PARAMS, presets=PRESETS, check_params=lambda p: None, check_inputs=check_inputs,
+    build=build, evaluate=evaluate,
     accuracy_checks=("restitution", "eigenvalue", "flight_period"), probe=probe, reference_bench=reference_bench,
     clip=clip, track_body="ball", camera_distance=2.0, mechanisms=("rollout",), tolerances=TOLERANCES,
     gate_cases=(GateCase.of("bouncing-ball", "fast", _ALL), GateCase.of("bouncing-ball", "accurate", _ALL)),

@@ -45,6 +45,9 @@ class Peer:
         bench_metrics: bench metric -> the check whose value it compares (as the solve_ivp reference rows).
         bench_model: the peer's model, as the bench rows' header names it.
         agreement_cases: ``--set``-style parameter sets of the agreement table (the defaults and others).
+        model_shift: ``(params, values) -> str``: the agreement table's line on how much of the peer's difference from
+            the checks' analytic values its model's difference explains, from the peer's ``values`` at ``params``
+            (None: no such line).
     """
 
     name: str
@@ -59,3 +62,4 @@ class Peer:
     bench_metrics: Mapping[str, str]
     bench_model: str
     agreement_cases: tuple[Mapping[str, str], ...] = ({},)
+    model_shift: Callable[[Values, dict[str, tuple[Any, Any]]], str] | None = None

@@ -315,10 +315,12 @@ def compass_gait(bp: compass_theory.CompassBiped, guess: ArrayLike | None = None
 
 def peer(*, check_params: Callable[[Values], None], values: Callable[[Values, float], PeerValues],
          model_note: Callable[[Values], str], bench_accuracies: tuple[float, ...], bench_metrics: dict[str, str],
-         bench_model: str, agreement_cases: tuple[dict[str, str], ...]) -> Peer:
+         bench_model: str, agreement_cases: tuple[dict[str, str], ...],
+         model_shift: Callable[[Values, dict[str, tuple[Any, Any]]], str] | None = None) -> Peer:
     """Drake as a scenario's :class:`~mjpoincare.peers.Peer`: the scenario's mapping of its parameters onto Drake's
     model (the arguments, as the record's fields) with Drake's name, version, scheme, install line and reference
     accuracy."""
     return Peer(name=NAME, version=version, scheme=SCHEME, install=INSTALL, reference_accuracy=REFERENCE_ACCURACY,
                 check_params=check_params, values=values, model_note=model_note, bench_accuracies=bench_accuracies,
-                bench_metrics=bench_metrics, bench_model=bench_model, agreement_cases=agreement_cases)
+                bench_metrics=bench_metrics, bench_model=bench_model, agreement_cases=agreement_cases,
+                model_shift=model_shift)

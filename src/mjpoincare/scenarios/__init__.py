@@ -16,10 +16,6 @@ from mjpoincare.scenarios.base import Evaluation, Scenario
 
 #: The entry-point group a distribution declares its scenarios in: ``name = "module:attribute"`` of a Scenario.
 GROUP = "mjpoincare.scenarios"
-#: What ``mjpoincare validate`` runs when no scenario is named: the main job (the biped with friction, at 10 s, is
-#: left to its own command).
-DEFAULT_SCENARIOS: tuple[str, ...] = ("rimless-wheel", "compass-biped", "slotted-skate", "rimless-wheel-3d",
-                                     "rimless-wheel-friction")
 
 
 class Registry(MutableMapping[str, Scenario]):
@@ -78,6 +74,12 @@ class Registry(MutableMapping[str, Scenario]):
 REGISTRY = Registry(GROUP)
 
 
+def default_scenarios() -> tuple[str, ...]:
+    """What ``mjpoincare validate`` runs when no scenario is named (the main job): every registered scenario whose
+    :attr:`Scenario.default` is set, a plugin's included, in the registry's order (by name)."""
+    return tuple(name for name in REGISTRY if REGISTRY[name].default)
+
+
 def get(name: str) -> Scenario:
     """The scenario called ``name``; unknown names raise :class:`ParameterError` listing the known ones."""
     if name not in REGISTRY:
@@ -85,4 +87,4 @@ def get(name: str) -> Scenario:
     return REGISTRY[name]
 
 
-__all__ = ["DEFAULT_SCENARIOS", "GROUP", "REGISTRY", "Evaluation", "Scenario", "get"]
+__all__ = ["GROUP", "REGISTRY", "Evaluation", "Scenario", "default_scenarios", "get"]

@@ -11,13 +11,21 @@ preset without tolerances is an error, never a fallback.
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, Protocol, TypeVar
 
 import mujoco
 import numpy as np
 
 from mjpoincare.analysis.checks import Check
+from mjpoincare.outputs import (
+    AnalyticValues,
+    BasinMap,
+    FitSummary,
+    Reported,
+    ReturnMapPlot,
+    SectionConvergence,
+)
 from mjpoincare.params import Param, ParameterError, Values
 from mjpoincare.peers import Peer
 from mjpoincare.scenarios.gate_cases import GateCase
@@ -87,40 +95,48 @@ class JointIndex:
         return cls(qpos=int(joint.qposadr[0]), dof=int(joint.dofadr[0]))
 
 
-@dataclass(frozen=True)
-class ReturnMapPlot:
-    """The report's empirical return map (``extras["return_map"]``): section samples x_k -> x_k+1 of one coordinate,
-    the analytic map over their range, and the analytic eigenvalues of the linearised map at the fixed point.
-
-    Attributes:
-        label: the plotted section coordinate with its unit (the report's x-axis label).
-        x: the coordinate at crossing k of each sample pair.
-        x_next: the same coordinate at crossing k+1.
-        analytic_x: grid over the samples' range on which the analytic map is drawn.
-        analytic_y: the analytic map on ``analytic_x`` (NaN where the scenario has no closed form of the 1-D map).
-        analytic_eigenvalues: the analytic multipliers, shown against the fitted ones in the complex plane.
-    """
-
-    label: str
-    x: np.ndarray
-    x_next: np.ndarray
-    analytic_x: np.ndarray
-    analytic_y: np.ndarray
-    analytic_eigenvalues: Sequence[complex] | np.ndarray
-
-    def to_dict(self) -> dict[str, Any]:
-        """The extras entry the JSON result and :func:`mjpoincare.report.write_report` read (values as given)."""
-        return {"label": self.label, "x": self.x, "x_next": self.x_next, "analytic_x": self.analytic_x,
-                "analytic_y": self.analytic_y, "analytic_eigenvalues": self.analytic_eigenvalues}
-
-
 @dataclass
 class Evaluation:
-    """A scenario's run: its checks, what the rollouts did, and extra data for reports."""
+    """A scenario's run: its checks, what the rollouts did, the typed outputs the commands read, and free-form extras.
+
+    Attributes:
+        checks: the checks, in the order the table shows them.
+        rollout: what the rollouts did (steps, wall time, divergence, MuJoCo's warnings).
+        extras: anything else worth keeping (JSON-ready values), written under the result's ``extras`` key: no
+            command reads it, and no key of it can overwrite a field of the result.
+        analytic: the theory's eigenvalues and values at these parameters (``sweep``'s analytic column).
+        fit: the fitted return map (``sweep``'s fitted column, the report's eigenvalue plot).
+        return_map: the report's return-map figure.
+        section_convergence: the report's panel for a map with no 1-D analytic form.
+        basins: the report's basin figure.
+        reported: figures the table shows under the checks without judging them, by name.
+    """
 
     checks: list[Check]
     rollout: RolloutReport
     extras: dict[str, Any] = field(default_factory=dict)
+    analytic: AnalyticValues | None = None
+    fit: FitSummary | None = None
+    return_map: ReturnMapPlot | None = None
+    section_convergence: SectionConvergence | None = None
+    basins: BasinMap | None = None
+    reported: dict[str, Reported] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        """Refuse, in one line naming the field and its record, an extra under a name that is now a typed field
+        (a plugin written when ``extras["fit"]`` and the like were how the commands found these values)."""
+        for key in sorted(self.extras.keys() & TYPED_EXTRAS.keys()):
+            name, record = TYPED_EXTRAS[key]
+            raise TypeError(f"Evaluation: extras[{key!r}] is now the field {name}= (a mjpoincare.plugin.{record}), "
+                            "not an extra")
+
+
+#: Former extras that are now fields of :class:`Evaluation`: key -> (field, record).
+TYPED_EXTRAS = {"analytic": ("analytic", "AnalyticValues"), "fit": ("fit", "FitSummary"),
+                "return_map": ("return_map", "ReturnMapPlot"),
+                "section_convergence": ("section_convergence", "SectionConvergence"),
+                "basins": ("basins", "BasinMap"), "basin_bands": ("basins", "BasinMap"),
+                "reported": ("reported", "Reported")}
 
 
 @dataclass(frozen=True)
@@ -261,6 +277,22 @@ class ParamSweep:
 
 
 @dataclass(frozen=True)
+class Foot:
+    """What the ``foot_radius`` setting is in a scenario's model.
+
+    Attributes:
+        meaning: the spheres of that radius and what they stand for (``mjpoincare list`` shows it), e.g. the point
+            feet of the paper's model made contact spheres, and the bias they add.
+        low: the smallest radius the preset search tries, m.
+        high: the largest, m; also ``bench``'s "large foot" row.
+    """
+
+    meaning: str
+    low: float = 1e-4
+    high: float = 2e-3
+
+
+@dataclass(frozen=True)
 class Scenario:
     """A validation scenario.
 
@@ -271,6 +303,12 @@ class Scenario:
         params: the physical parameters with defaults and bounds.
         presets: simulator-setting overrides per preset name (``fast``, ``accurate``).
         check_params: cross-parameter validation (raises :class:`ParameterError`).
+        check_inputs: ``(params, settings) -> None``: the parameters and the simulator settings checked together
+            (raises :class:`ParameterError`, one line naming both), before any simulation; None: nothing couples them.
+        default: part of the default validation (``mjpoincare validate`` with no scenario named, the main job).
+        foot: what the ``foot_radius`` setting is in this scenario's model and the preset search's range for it
+            (:class:`Foot`); None: the model has no foot spheres, and ``converge``'s foot axis, ``bench``'s foot row
+            and the search leave ``foot_radius`` out.
         build: ``(params, settings) -> MjModel``.
         evaluate: ``(params, settings, preset, seed) -> Evaluation``; ``preset`` picks the tolerances.
         accuracy_checks: names of the checks whose errors the benchmark plots (first = Pareto axis).
@@ -350,6 +388,9 @@ class Scenario:
     mechanisms_at: Callable[[Values], tuple[str, ...]] | None = None
     checks: tuple[str, ...] = ()
     checks_at: Callable[[Values, Values], tuple[str, ...]] | None = None
+    check_inputs: Callable[[Values, Values], None] | None = None
+    default: bool = False
+    foot: Foot | None = None
 
     def mechanisms_for(self, params: Values) -> tuple[str, ...]:
         """The seam mechanisms a run at ``params`` uses: ``mechanisms_at(params)``, or all of ``mechanisms``."""
@@ -359,6 +400,19 @@ class Scenario:
         """The checks a run at ``params`` and ``settings`` reports (checked inputs): ``checks_at(params,
         settings)``, or ``checks``."""
         return self.checks if self.checks_at is None else self.checks_at(params, settings)
+
+    @property
+    def search_dimensions(self) -> tuple[Dimension, ...]:
+        """:attr:`search_space` with ``foot_radius`` over the scenario's own range (:attr:`foot`), or without it
+        when the model has no feet."""
+        out = []
+        for dim in self.search_space:
+            if dim.name == "foot_radius":
+                if self.foot is None:
+                    continue
+                dim = replace(dim, low=self.foot.low, high=self.foot.high)
+            out.append(dim)
+        return tuple(out)
 
     @property
     def tolerance_tables(self) -> list[ToleranceTable]:

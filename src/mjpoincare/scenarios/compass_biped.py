@@ -35,10 +35,14 @@ from mjpoincare.analysis.theory import compass_biped as theory
 from mjpoincare.mjcf_loader import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios.base import (
+    AnalyticValues,
     CoveragePoint,
     Evaluation,
+    FitSummary,
+    Reported,
     ReturnMapPlot,
     Scenario,
+    SectionConvergence,
     Soak,
     StressCase,
     Tolerances,
@@ -48,6 +52,7 @@ from mjpoincare.scenarios.base import (
 from mjpoincare.scenarios.compass_biped_controller import GaitController
 from mjpoincare.scenarios.compass_biped_drake import drake_peer
 from mjpoincare.scenarios.compass_biped_runs import (
+    BIPED_FOOT,
     CHUNK_SECONDS,
     RELEASE_FALL_STEPS,
     STEPS,
@@ -228,24 +233,23 @@ def evaluate(params: Values, settings: Values, preset: str, seed: int) -> Evalua
                             "deeper dip: the foot was released steps early, or kept falling after the heel strike, "
                             "whose impact law (003 eqs 4.15-4.17) has it lift off unloaded"))
     exact_depth = -theory.lowest_swing_height(bp, x_star)
-    extras["reported"] = {"swing_foot_depth": swing_foot_report(controller.swing_low, exact_depth)}
+    reported = {"swing_foot_depth": Reported(**swing_foot_report(controller.swing_low, exact_depth))}
     extras["swing_foot"] = swing_foot_detail(bp, controller.swing_low[0], controller.samples[0],
                                              float(settings["foot_radius"]), exact_depth)
-    extras["fit"] = fit.to_dict()
     extras["adaptive_stopping"] = None if settle is None else settle.to_dict()
     extras["trailing_foot"] = {"analytic_liftoff_velocity": theory.step(bp, x_star).liftoff_velocity,
                                "measured_vertical_speed_20ms": float(np.mean(controller.release_speed))
                                if controller.release_speed else math.nan, "releases": len(controller.release_depth)}
     y_star_th = theory.legs_parallel_state(bp, x_star)[0]
-    extras["analytic"] = {"fixed_point": x_star, "eigenvalues": lam, "legs_parallel_fixed_point": y_star_th,
-                          "step": _step_summary(bp, x_star)}
+    analytic = AnalyticValues(eigenvalues=lam, values={"fixed_point": x_star, "legs_parallel_fixed_point": y_star_th,
+                                                       "step": _step_summary(bp, x_star)})
     grid = np.linspace(float(x[:, 0].min()), float(x[:, 0].max()), 2)
-    extras["return_map"] = ReturnMapPlot(label="legs-parallel angle theta (rad)", x=x[:, 0], x_next=x_next[:, 0],
-                                         analytic_x=grid, analytic_y=np.full_like(grid, np.nan),
-                                         analytic_eigenvalues=lam).to_dict()
-    extras["section_convergence"] = {"labels": ["theta (rad)", "dtheta_st (rad/s)", "dtheta_sw (rad/s)"],
-                                     "fixed_point": y_star_th, "sequences": sequences}
-    return Evaluation(out, report, extras)
+    plot = ReturnMapPlot(label="legs-parallel angle theta (rad)", x=x[:, 0], x_next=x_next[:, 0], analytic_x=grid,
+                         analytic_y=np.full_like(grid, np.nan), analytic_eigenvalues=lam)
+    convergence = SectionConvergence(labels=["theta (rad)", "dtheta_st (rad/s)", "dtheta_sw (rad/s)"],
+                                     fixed_point=y_star_th, sequences=sequences)
+    return Evaluation(out, report, extras, analytic=analytic, fit=FitSummary.of(fit), return_map=plot,
+                      section_convergence=convergence, reported=reported)
 
 
 
@@ -380,4 +384,5 @@ COMPASS_BIPED = Scenario(
     peers=(drake_peer(biped),),
     coverage=COVERAGE,
     search_space=search_space("timestep", "solref_timeconst", "solref_dampratio", "integrator", "foot_radius"),
+    default=True, foot=BIPED_FOOT,
 )

@@ -48,10 +48,14 @@ from mjpoincare.analysis.theory import compass_biped_friction as theory
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios import compass_biped as cb
 from mjpoincare.scenarios.base import (
+    AnalyticValues,
     CoveragePoint,
     Evaluation,
+    FitSummary,
+    Reported,
     ReturnMapPlot,
     Scenario,
+    SectionConvergence,
     StressCase,
     Tolerances,
     Values,
@@ -69,6 +73,7 @@ from mjpoincare.scenarios.compass_biped_friction_design import (
 )
 from mjpoincare.scenarios.compass_biped_friction_gate import GATE_CASES
 from mjpoincare.scenarios.compass_biped_friction_stance import stance_checks
+from mjpoincare.scenarios.compass_biped_runs import BIPED_FOOT
 from mjpoincare.seam import RolloutReport
 from mjpoincare.settings import rollout_options
 from mjpoincare.simulate import KeptRows, event_rollout
@@ -314,18 +319,17 @@ def evaluate(params: Values, settings: Values, preset: str, seed: int) -> Evalua
     stances = stance_rows(np.concatenate(c.rows0), [t for t, _ in c.strikes[0]], g.biped,
                           float(settings["foot_radius"]))[settle:]
     out += stance_checks(g, name, stances, model.opt.timestep, float(settings["solref_timeconst"]), tol, extras)
-    extras["fit"] = fit.to_dict()
     if settling is not None:
         extras["adaptive_stopping"] = settling.to_dict()
-    extras["reported"] = {"swing_foot_depth": swing_foot_report(c.swing_low, -g.record.min_swing_height)}
-    extras["analytic"] = {"z": g.z, "eigenvalues": g.eigenvalues, "legs_parallel": y_star_th}
+    reported = {"swing_foot_depth": Reported(**swing_foot_report(c.swing_low, -g.record.min_swing_height))}
+    analytic = AnalyticValues(eigenvalues=g.eigenvalues, values={"z": g.z, "legs_parallel": y_star_th})
     grid = np.linspace(float(x[:, 0].min()), float(x[:, 0].max()), 2)
-    extras["return_map"] = ReturnMapPlot(label="legs-parallel angle theta1 (rad)", x=x[:, 0], x_next=x_next[:, 0],
-                                         analytic_x=grid, analytic_y=np.full_like(grid, np.nan),
-                                         analytic_eigenvalues=lam).to_dict()
-    extras["section_convergence"] = {"labels": ["theta1 (rad)", "theta1_dot (rad/s)", "-theta2_dot (rad/s)"],
-                                     "fixed_point": y_star_th, "sequences": sequences}
-    return Evaluation(out, report, extras)
+    plot = ReturnMapPlot(label="legs-parallel angle theta1 (rad)", x=x[:, 0], x_next=x_next[:, 0], analytic_x=grid,
+                         analytic_y=np.full_like(grid, np.nan), analytic_eigenvalues=lam)
+    convergence = SectionConvergence(labels=["theta1 (rad)", "theta1_dot (rad/s)", "-theta2_dot (rad/s)"],
+                                     fixed_point=y_star_th, sequences=sequences)
+    return Evaluation(out, report, extras, analytic=analytic, fit=FitSummary.of(fit), return_map=plot,
+                      section_convergence=convergence, reported=reported)
 
 
 def probe(params: Values, settings: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
@@ -411,4 +415,5 @@ COMPASS_BIPED_FRICTION = Scenario(
     tolerances=TOLERANCES,
     gate_cases=GATE_CASES,
     coverage=COVERAGE,
+    foot=BIPED_FOOT,
 )

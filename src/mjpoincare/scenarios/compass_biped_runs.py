@@ -14,11 +14,15 @@ from mjpoincare.analysis.start_designs import design_size, sphere_offsets
 from mjpoincare.analysis.theory import compass_biped as theory
 from mjpoincare.analysis.theory import compass_biped_flight as flight
 from mjpoincare.params import Values
+from mjpoincare.scenarios.base import Foot
 from mjpoincare.scenarios.compass_biped_controller import GaitController
 from mjpoincare.seam import RolloutReport
 from mjpoincare.settings import rollout_options
 from mjpoincare.simulate import event_rollout, initial_states
 
+#: ``foot_radius`` in the bipeds' models (passive, actuated, with friction).
+BIPED_FOOT = Foot(meaning="spheres at the leg tips, standing for the point feet (lowest point at the leg's length); "
+                          "the controller switches their contacts at each heel strike")
 STEPS = 10  # heel strikes per trajectory, at most (adaptive stopping ends the batch earlier: STOPPING)
 #: Initial offsets from the fixed point on the 3-D post-impact section: STARTS random directions (fixed seed), of
 #: size PERTURBATION, x (timestep / 20 us)^(1/3) below 20 us, shrunk to a third as |lambda|max -> 1 (how the size

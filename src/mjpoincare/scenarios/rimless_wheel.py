@@ -30,8 +30,11 @@ from mjpoincare.analysis.theory.rimless_wheel_hybrid import simulate_hybrid
 from mjpoincare.mjcf_loader import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios.base import (
+    AnalyticValues,
+    BasinMap,
     CoveragePoint,
     Evaluation,
+    FitSummary,
     ReturnMapPlot,
     Scenario,
     Soak,
@@ -44,6 +47,7 @@ from mjpoincare.scenarios.gate_cases import GateCase, Watch
 from mjpoincare.scenarios.rimless_wheel_drake import drake_peer
 from mjpoincare.scenarios.rimless_wheel_runs import (
     FIT_STEPS,
+    WHEEL_FOOT,
     Recorder,
     fit_seconds,
     post_impact_samples,
@@ -167,7 +171,7 @@ def build(params: Values, settings: Values) -> mujoco.MjModel:
 
 
 def _fit_checks(w: theory.RimlessWheel, rec: Recorder, batch: int, tol: Tolerances,
-                why: str, seed: int) -> tuple[list[checks.Check], dict[str, object]]:
+                why: str, seed: int) -> tuple[list[checks.Check], FitSummary, ReturnMapPlot, dict[str, object]]:
     gamma, alpha = w.slope, w.alpha
     times = rec.mid.times(batch)
     post = post_impact_samples(w, rec, batch)
@@ -196,12 +200,10 @@ def _fit_checks(w: theory.RimlessWheel, rec: Recorder, batch: int, tol: Toleranc
     plot = ReturnMapPlot(label="post-impact speed omega+ (rad/s)", x=x[:, 0], x_next=x_next[:, 0], analytic_x=grid,
                          analytic_y=np.asarray(theory.return_map(w, grid), float),
                          analytic_eigenvalues=[theory.rolling_multiplier(w)])
-    return out, {"fit": fit.to_dict(), "max_clearance_rolling": float(np.max(rec.max_clearance)),
-                 "return_map": plot.to_dict()}
+    return out, FitSummary.of(fit), plot, {"max_clearance_rolling": float(np.max(rec.max_clearance))}
 
 
-def _basin_checks(w: theory.RimlessWheel, rec: Recorder, omega0: np.ndarray) -> tuple[list[checks.Check],
-                                                                                        dict[str, object]]:
+def _basin_checks(w: theory.RimlessWheel, rec: Recorder, omega0: np.ndarray) -> tuple[list[checks.Check], BasinMap]:
     simulated = tail_outcomes(w, rec)
     predicted = []
     for om in omega0:
@@ -221,7 +223,7 @@ def _basin_checks(w: theory.RimlessWheel, rec: Recorder, omega0: np.ndarray) -> 
         "end state (rolling/standing) from a grid of post-impact speeds vs the regions of attraction "
         "(003 Table 1, eq 3.17-3.18); speeds within 2% of a basin edge or whose analytic run would lift off are "
         "reported, not judged")
-    return [check], {"basins": table, "basin_bands": theory.basin_bands(w)}
+    return [check], BasinMap(table=table, bands=theory.basin_bands(w))
 
 
 def evaluate(params: Values, settings: Values, preset: str, seed: int) -> Evaluation:
@@ -235,26 +237,27 @@ def evaluate(params: Values, settings: Values, preset: str, seed: int) -> Evalua
         STOPPING, degree=FIT_DEGREE, seed=seed, fixed_point_tolerance=tol["omega_post_impact"],
         eigenvalue_tolerance=tol["eigenvalue"], relative=True)
     fit_rec, fit_report = simulate(model, w, fit_speeds, fit_seconds(w), settings, settling=settle)
+    fit: FitSummary | None = None
+    plot: ReturnMapPlot | None = None
     try:
-        fit_checks, extras = _fit_checks(w, fit_rec, len(fit_speeds), tol, why, seed)
+        fit_checks, fit, plot, extras = _fit_checks(w, fit_rec, len(fit_speeds), tol, why, seed)
     except ValueError as err:  # too few samples: a diverged or stalled run
         fit_checks = [checks.relative("omega_post_impact", theory.rolling_fixed_point(w), math.nan,
                                       tol["omega_post_impact"], "rad/s", f"no return map: {err}")]
         extras = {}
     basin_speeds = theory.basin_initial_speeds(w)
     basin_rec, basin_report = simulate(model, w, basin_speeds, BASIN_SECONDS, settings, until_decided=True)
-    basin_checks, basin_extras = _basin_checks(w, basin_rec, basin_speeds)
-    extras.update(basin_extras)
+    basin_checks, basins = _basin_checks(w, basin_rec, basin_speeds)
     extras["adaptive_stopping"] = None if settle is None else settle.to_dict()
-    extras["analytic"] = {
+    analytic = AnalyticValues(eigenvalues=[theory.rolling_multiplier(w)], values={
         "region": theory.region(w), "beta": w.beta, "omega_forward_threshold": theory.forward_threshold(w),
         "existence_bound": theory.existence_bound(w.spokes, w.gyration, w.leg_length),
         "no_flight_bound": theory.no_flight_bound(w.spokes, w.gyration, w.leg_length),
         "required_friction": theory.required_friction(w), "impact_impulse_ratio": theory.impact_impulse_ratio(w),
-        "standing_multiplier": theory.standing_multiplier(w), "eigenvalues": [theory.rolling_multiplier(w)],
-        "effective_gyration": w.gyration, "kappa": w.kappa,
-    }
-    return Evaluation(fit_checks + basin_checks, fit_report.merge(basin_report), extras)
+        "standing_multiplier": theory.standing_multiplier(w), "effective_gyration": w.gyration, "kappa": w.kappa,
+    })
+    return Evaluation(fit_checks + basin_checks, fit_report.merge(basin_report), extras, analytic=analytic, fit=fit,
+                      return_map=plot, basins=basins)
 
 
 def probe(params: Values, settings: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
@@ -382,4 +385,5 @@ RIMLESS_WHEEL = Scenario(
     peers=(drake_peer(wheel),),
     coverage=COVERAGE,
     search_space=search_space("timestep", "solref_timeconst", "solref_dampratio", "integrator", "foot_radius"),
+    default=True, foot=WHEEL_FOOT,
 )

@@ -39,8 +39,12 @@ from mjpoincare.mjcf_loader import compile_spec, load_spec
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios import rimless_wheel_3d_runs as runs
 from mjpoincare.scenarios.base import (
+    AnalyticValues,
     CoveragePoint,
     Evaluation,
+    FitSummary,
+    Reported,
+    ReturnMapPlot,
     Scenario,
     Soak,
     StressCase,
@@ -51,6 +55,7 @@ from mjpoincare.scenarios.base import (
 from mjpoincare.scenarios.gate_cases import GateCase
 from mjpoincare.scenarios.rimless_wheel_3d_checks import fit_checks, planar_checks, return_map_plot
 from mjpoincare.scenarios.rimless_wheel_3d_ideal import IdealImpactController
+from mjpoincare.scenarios.rimless_wheel_runs import WHEEL_FOOT
 from mjpoincare.settings import search_space
 from mjpoincare.simulate import event_clip, plain_clip
 
@@ -216,6 +221,9 @@ def evaluate(params: Values, settings: Values, preset: str, seed: int) -> Evalua
     headings = runs.planar_headings(params)
     report = fit_run.report.merge(planar_run.report)
     extras: dict[str, object] = {}
+    fit: FitSummary | None = None
+    plot: ReturnMapPlot | None = None
+    reported: dict[str, Reported] = {}
     sequences = [runs.nondim(seq, unit) for seq in fit_run.sequences]
     try:
         fitted = fit_map(sequences, w.heading, hybrid.family_tangent(hybrid.midstance_fixed_point, w), seed)
@@ -225,16 +233,16 @@ def evaluate(params: Values, settings: Values, preset: str, seed: int) -> Evalua
                for c in fit_checks(w, None, ref, unit, tol, why)]
     else:
         out = fit_checks(w, fitted, ref, unit, tol, why)
-        extras["fit"] = fitted.fit
+        fit = FitSummary(eigenvalues=fitted.cycle.eigenvalues, record=fitted.fit)
         extras["heading_drift"] = {
             "per_impact_fit": fitted.cycle.drift, "per_100_impacts_fit": 100.0 * fitted.cycle.drift,
             "note": "psi_k+1 - psi_k (rad) of the fitted map's cycle at psi = heading, which drifts along the family "
                     "of planar cycles (A x + b = x + c dx*/dpsi); the heading is neutral, so any bias per impact "
                     "accumulates: reported, never compared with the start heading"}
-        extras["reported"] = {"heading_drift_per_100_impacts": {
-            "value": 100.0 * fitted.cycle.drift, "unit": "rad",
-            "note": "fitted cycle's drift along the neutral heading family; reported, not judged"}}
-        extras["return_map"] = return_map_plot(w, sequences, unit, ref).to_dict()
+        reported["heading_drift_per_100_impacts"] = Reported(
+            value=100.0 * fitted.cycle.drift, unit="rad",
+            note="fitted cycle's drift along the neutral heading family; reported, not judged")
+        plot = return_map_plot(w, sequences, unit, ref)
         try:
             floor: dict[str, object] = dict(runs.reference_bench(params, hybrid.RTOL))
         except RuntimeError as err:  # the exact reference itself left the cycle from these starts: say so
@@ -251,8 +259,8 @@ def evaluate(params: Values, settings: Values, preset: str, seed: int) -> Evalua
         extras["max_clearance"] = max(fit_run.max_clearance, planar_run.max_clearance)
     else:
         extras["max_guard_error"] = max(fit_run.guard_error, planar_run.guard_error)
-    extras["analytic"] = hybrid.analytic_summary(w, ref)
-    return Evaluation(out, report, extras)
+    return Evaluation(out, report, extras, analytic=AnalyticValues.from_values(hybrid.analytic_summary(w, ref)),
+                      fit=fit, return_map=plot, reported=reported)
 
 
 # --- bench, render ----------------------------------------------------------------------------------------------
@@ -369,4 +377,5 @@ RIMLESS_WHEEL_3D = Scenario(
     coverage=COVERAGE,
     search_space=search_space("timestep", "solref_timeconst", "solref_dampratio", "integrator", "foot_radius",
                               "cone", "impratio", "noslip_iterations"),
+    default=True, foot=WHEEL_FOOT,
 )

@@ -8,6 +8,7 @@ inertia is floored (:data:`mjpoincare.scenarios.rimless_wheel.MIN_GYRATION`).
 from __future__ import annotations
 
 from collections.abc import Callable
+from typing import Any
 
 from mjpoincare.analysis.theory import rimless_wheel as theory
 from mjpoincare.params import ParameterError, Values
@@ -56,7 +57,15 @@ def drake_peer(wheel: Callable[[Values], theory.RimlessWheel]) -> Peer:
         return (f"Drake's RimlessWheel has a point-mass hub (kappa = 0); the checks' analytic values use the "
                 f"scenario's floor kappa = {wheel(params).kappa:.3g}")
 
-    return drake.peer(check_params=check_params, values=values, model_note=model_note,
+    def model_shift(params: Values, peer_values: dict[str, tuple[Any, Any]]) -> str:
+        floored = theory.rolling_fixed_point(wheel(params))
+        shift = theory.rolling_fixed_point(point_mass_wheel(params)) - floored
+        drake_omega = peer_values["omega_post_impact"][0]
+        return (f"Drake's omega+ minus the scenario's analytic omega+ (kappa = {wheel(params).kappa:g}) = "
+                f"{drake_omega - floored:.3e} rad/s; the theory's own shift from kappa = {wheel(params).kappa:g} to "
+                f"kappa = 0 (002 eqs 12, 14) = {shift:.3e} rad/s")
+
+    return drake.peer(check_params=check_params, values=values, model_note=model_note, model_shift=model_shift,
                       bench_accuracies=BENCH_ACCURACIES,
                       bench_metrics={"omega_post_impact_error": "omega_post_impact", "eigenvalue_error": "eigenvalue"},
                       bench_model="point-mass hub, kappa = 0", agreement_cases=AGREEMENT_CASES)

@@ -34,8 +34,11 @@ from mjpoincare.analysis.theory import rimless_wheel_friction as theory
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios import rimless_wheel as rw
 from mjpoincare.scenarios.base import (
+    AnalyticValues,
     CoveragePoint,
     Evaluation,
+    FitSummary,
+    Reported,
     ReturnMapPlot,
     Scenario,
     Soak,
@@ -67,6 +70,7 @@ from mjpoincare.scenarios.rimless_wheel_friction_rollout import (
     start_states,
 )
 from mjpoincare.scenarios.rimless_wheel_friction_sweep import MU_SWEEP
+from mjpoincare.scenarios.rimless_wheel_runs import WHEEL_FOOT
 from mjpoincare.settings import search_space
 from mjpoincare.simulate import plain_clip
 
@@ -186,15 +190,18 @@ def evaluate(params: Values, settings: Values, preset: str, seed: int) -> Evalua
         "theta_dot0 offsets, a slipping start) vs the reference's theory.settle from the same start (002 Sec. 3.3); "
         f"error = fraction that differ: simulated {sim_types}, reference {[r.outcome for r in refs]}"))
     extras: dict[str, Any] = {}
+    summary: FitSummary | None = None
+    plot: ReturnMapPlot | None = None
+    reported: dict[str, Reported] = {}
     try:
         fit, x, x_next = phases.fit_midstance_map(steps, np.nonzero(fit_mask)[0], gait.kind, FIT_PAIRS, seed)
         mid_sim, lam_sim = float(fit.fixed_point[0]), float(np.real(fit.eigenvalues[0]))  # 1-D map: real
-        extras["fit"] = fit.to_dict()
+        summary = FitSummary.of(fit)
         grid = np.linspace(float(x.min()), float(x.max()), 40)
-        extras["return_map"] = ReturnMapPlot(
+        plot = ReturnMapPlot(
             label="mid-stance theta_dot (nondimensional)", x=x, x_next=x_next, analytic_x=grid,
             analytic_y=gait.midstance_rate + abs(gait.eigenvalues[0]) * (grid - gait.midstance_rate),
-            analytic_eigenvalues=[complex(e) for e in gait.eigenvalues]).to_dict()
+            analytic_eigenvalues=[complex(e) for e in gait.eigenvalues])
     except ValueError as err:  # too few samples: every start failed or left the gait
         mid_sim = lam_sim = math.nan
         extras["fit_error"] = str(err)
@@ -223,7 +230,7 @@ def evaluate(params: Values, settings: Values, preset: str, seed: int) -> Evalua
         out.append(checks.absolute("sliding_contact_law", 0.0, sliding.residual, tol["sliding_contact_law"], "",
                                    f"{tol.reasons['sliding_contact_law']} ({sliding.rows} sliding rows)"))
         extras["sliding_contact"] = asdict(sliding)
-        extras["reported"] = {"sliding_lift_ratio": sliding.reported()}
+        reported["sliding_lift_ratio"] = Reported(**sliding.reported())
     if gait.kind == "B":
         onset_sim = float(np.nanmedian(steps.onset[main, settled])) if settled.size else math.nan
         out.append(checks.absolute("slip_onset", gait.phase_angles[-1], onset_sim, tol["slip_onset"], "rad",
@@ -239,7 +246,6 @@ def evaluate(params: Values, settings: Values, preset: str, seed: int) -> Evalua
         mu_c, mu_c_sim, extras["force_ratio_profile"] = reference.force_ratio_comparison(w, rows, pooled)
         out.append(checks.relative("critical_friction", mu_c, mu_c_sim, tol["critical_friction"], "",
                                    tol.reasons["critical_friction"]))
-    extras["analytic"] = reference.gait_values(w, gait)
     extras["steps"] = phases.step_report(steps, main, refs[main].kinds, refs[main].mid_rate)
     extras["thresholds"] = {"v_thr": cls.v_thr, "saturation_eps": cls.eps, "impact_window_s": cls.impact_window,
                             "creep": phases.creep(rows, steps)}
@@ -247,7 +253,8 @@ def evaluate(params: Values, settings: Values, preset: str, seed: int) -> Evalua
                          "simulated_velocity_only": phases.outcome(steps, b, velocity_only=True),
                          "reference": r.outcome, "reference_steps": r.settle_steps}
                         for b, (z, t, r) in enumerate(zip(starts, sim_types, refs, strict=True))]
-    return Evaluation(out, report, extras)
+    return Evaluation(out, report, extras, analytic=AnalyticValues.from_values(reference.gait_values(w, gait)),
+                      fit=summary, return_map=plot, reported=reported)
 
 
 # --- probe, reference bench, render clip, soak ----------------------------------------------------------------------
@@ -376,4 +383,5 @@ RIMLESS_WHEEL_FRICTION = Scenario(
     coverage=COVERAGE,
     search_space=search_space("timestep", "solref_timeconst", "solref_dampratio", "integrator", "foot_radius",
                               "cone", "impratio", "noslip_iterations"),
+    default=True, foot=WHEEL_FOOT,
 )

@@ -15,7 +15,7 @@ from mjpoincare.analysis.outcomes import classify_outcomes
 from mjpoincare.analysis.sections import Crossings, level_crossings, wrap_events, wrap_phase
 from mjpoincare.analysis.theory import rimless_wheel as theory
 from mjpoincare.params import Values
-from mjpoincare.scenarios.base import JointIndex
+from mjpoincare.scenarios.base import Foot, JointIndex
 from mjpoincare.seam import Chunk, RolloutReport
 from mjpoincare.settings import rollout_options
 from mjpoincare.simulate import initial_states, rollout_batch
@@ -23,6 +23,9 @@ from mjpoincare.simulate import initial_states, rollout_batch
 #: Forward impacts with no backward motion between or after them that make rolling a settled outcome: the first
 #: of them was followed by a whole step, so its post-impact speed exceeded omega_f, and the return map (increasing,
 #: with omega* its only fixed point) keeps every later one above it (003 Sec. 3.3, Def. 3.20).
+#: ``foot_radius`` in the wheels' models (planar, 3-D, with friction).
+WHEEL_FOOT = Foot(meaning="spheres at the spoke tips, standing for the papers' point feet (lowest point at "
+                          "leg_length): a rounded foot rolls, which biases the impact factor by about +0.7 r/l")
 ROLLING_IMPACTS = 2
 FIT_STEPS = 6  # impacts per fitting trajectory, at most: beta^12 of the initial offset remains (0.016 for n = 8)
 TAIL_SECONDS = 1.0  # final window classified by the basin check

@@ -28,8 +28,10 @@ from mjpoincare.analysis.returnmap import fit_return_map
 from mjpoincare.analysis.theory import slotted_skate as theory
 from mjpoincare.params import Param, ParameterError
 from mjpoincare.scenarios.base import (
+    AnalyticValues,
     CoveragePoint,
     Evaluation,
+    FitSummary,
     Scenario,
     StressCase,
     Tolerances,
@@ -167,6 +169,7 @@ def evaluate(params: Values, settings: Values, preset: str, seed: int) -> Evalua
                 pairs[forward].append((h0 / h_unit, h1 / h_unit))
     out: list[checks.Check] = []
     extras: dict[str, object] = {}
+    forward_fit: FitSummary | None = None
     for forward, label in ((True, "forward"), (False, "backward")):
         ref = theory.sigma4(sk, forward)
         sim = float(np.median(ratios[forward])) if ratios[forward] else math.nan
@@ -181,6 +184,8 @@ def evaluate(params: Values, settings: Values, preset: str, seed: int) -> Evalua
             out.append(checks.absolute(f"sigma4_fit_{label}", ref, lam, tol["sigma4"], "",
                                        "slope of the affine return map H_k -> H_k+1 fitted by least squares"))
             extras[f"fit_{label}"] = fit.to_dict()
+            if forward:
+                forward_fit = FitSummary.of(fit)
             stable_sim, stable_ref = abs(lam) < 1, abs(ref) < 1
             out.append(checks.Check(name=f"stability_{label}", analytic="stable" if stable_ref else "unstable",
                                     simulated="stable" if stable_sim else "unstable",
@@ -204,18 +209,17 @@ def evaluate(params: Values, settings: Values, preset: str, seed: int) -> Evalua
                                 why="impacts before the first reversing stance (B.6-B.7), per start whose reversal "
                                 "falls inside the simulated stances"))
     out.extend(_final_state_checks(params, settings, sk, tol["final_speed"]))
-    if "fit_forward" in extras:  # the generic sweep reads "fit" and analytic "eigenvalues": the forward map
-        extras["fit"] = extras["fit_forward"]
-        lam = float(extras["fit_forward"]["eigenvalues"][0][0])  # type: ignore[index]
+    if forward_fit is not None:  # the result's fit and analytic eigenvalues (the sweep's columns): the forward map
+        lam = float(np.real(forward_fit.eigenvalues[0]))
         if lam > 0 and theory.sigma4(sk, True) > 0:  # (V*/Delta) ln sigma4, V* = 1, vs the sleigh (2.1, 4.1)
             extras["smooth_limit"] = {"discrete_rate_simulated": math.log(lam) / sk.Delta,
                                       "discrete_rate_exact": theory.smooth_limit_rate(sk),
                                       "sleigh_rate": theory.sleigh_rate(sk.L0)}
-    extras["analytic"] = {"stability": theory.stability(sk), "eigenvalues": [theory.sigma4(sk, True)]}
     extras["max_stance_time_error"] = worst["duration"]
     extras["reversals_seen"] = reversals
     extras["impacts"] = sum(len(x) for x in controller.samples)
-    return Evaluation(out, report, extras)
+    analytic = AnalyticValues(eigenvalues=[theory.sigma4(sk, True)], values={"stability": theory.stability(sk)})
+    return Evaluation(out, report, extras, analytic=analytic, fit=forward_fit)
 
 
 def _collisions_before_reversal(sk: theory.SlottedSkate, runs: list[list[tuple[float, ...]]], e_unit: float,
@@ -442,4 +446,5 @@ SLOTTED_SKATE = Scenario(
     coverage=COVERAGE,
     search_space=search_space("timestep", "solref_timeconst", "solref_dampratio", "integrator", "iterations",
                               "tolerance"),
+    default=True,
 )
