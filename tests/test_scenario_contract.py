@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import ast
 import json
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -27,6 +28,8 @@ from mjpoincare.validation import resolve_inputs, resolve_values
 
 CASES = [pytest.param(name, preset, id=f"{name}[{preset}]") for name, s in REGISTRY.items() for preset in s.presets]
 MARGINS = Path(__file__).resolve().parent.parent / "docs" / "results" / "gate" / "margins.json"
+#: Every key of a run's JSON and of a check's, each in the first column of one of its tables.
+RESULT_JSON_DOC = Path(__file__).resolve().parent.parent / "docs" / "result-json.md"
 
 
 def _measured() -> dict[str, list[str]]:
@@ -116,6 +119,10 @@ def test_validation_json_round_trips(name: str, preset: str, tmp_path: Path) -> 
     write_json(payload, str(tmp_path / "result.json"))
     assert json.loads((tmp_path / "result.json").read_text()) == payload
     assert [c["name"] for c in payload["checks"]] == [c.name for c in result.checks]
+    first_cells = re.findall(r"^\| ([^|]+) \|", RESULT_JSON_DOC.read_text(), re.M)
+    keys = {key for cell in first_cells for key in re.findall(r"`([a-z_]+)`", cell)}
+    assert set(payload) <= keys, f"undocumented keys of a run (docs/result-json.md): {set(payload) - keys}"
+    assert {k for c in payload["checks"] for k in c} <= keys
 
 
 @pytest.mark.mujoco
