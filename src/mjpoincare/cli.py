@@ -54,6 +54,9 @@ def _cmd_validate(args: argparse.Namespace) -> int:
     from mjpoincare.validation import peer_of, resolve_inputs, typed_values
 
     names = args.scenario or list(scenarios.default_scenarios())
+    twice = sorted({n for n in names if names.count(n) > 1})
+    if twice:
+        raise ParameterError(f"scenario {', '.join(twice)} is named more than once")
     assignments = parse_assignments(args.set)
     check_output_path(args.json, "--json")  # before the inputs: resolving them self-tests the seam (a tiny rollout)
     check_output_path(args.report, "--report", directory=True)
@@ -162,7 +165,7 @@ def _report_still(name: str, assignments: dict[str, str], preset: str | None) ->
 
 def _cmd_bench(args: argparse.Namespace) -> int:
     from mjpoincare.bench import run_bench, run_skips
-    from mjpoincare.result import check_output_path, distinct_outputs
+    from mjpoincare.result import check_output_path, check_plot_path, distinct_outputs
 
     if args.scaling and not args.param:
         raise ParameterError("bench --scaling needs --param NAME (the swept parameter or setting)")
@@ -180,7 +183,7 @@ def _cmd_bench(args: argparse.Namespace) -> int:
         check_output_path(json_path and json_path.format(scenario=args.scenario), "--json")
         return run_skips(args.scenario, parse_assignments(args.set), json_path)
     check_output_path(args.json and args.json.format(scenario=args.scenario), "--json")
-    check_output_path(args.output.format(scenario=args.scenario), "--output")
+    check_plot_path(args.output.format(scenario=args.scenario), "--output")
     distinct_outputs(json=args.json and args.json.format(scenario=args.scenario),
                      output=args.output.format(scenario=args.scenario))
     _require_viz("bench's plot", "matplotlib")
@@ -190,7 +193,7 @@ def _cmd_bench(args: argparse.Namespace) -> int:
 def _cmd_sweep(args: argparse.Namespace) -> int:
     from mjpoincare import scenarios
     from mjpoincare.params import parse_values
-    from mjpoincare.result import check_output_path, distinct_outputs
+    from mjpoincare.result import check_output_path, check_plot_path, distinct_outputs
     from mjpoincare.sweep import run_own_sweep, run_region_map, run_sweep
 
     scenario = scenarios.get(args.scenario)
@@ -202,13 +205,15 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
             raise ParameterError(f"--grid: {scenario.name} has no region map (scenarios with one: "
                                  f"{', '.join(with_map)})")
         output = (args.output or facet.output).format(scenario=scenario.name)
-        check_output_path(output, "--output")
+        check_plot_path(output, "--output")
         distinct_outputs(json=args.json, output=output)
         _require_viz("sweep --grid", "matplotlib")
         return run_region_map(scenario.name, facet, args.grid, parse_assignments(args.set), args.preset, args.json,
                               output, workers=args.workers)
     if not (args.param and args.values):
         raise ParameterError("sweep needs --param and --values (or --grid)")
+    if args.output:
+        raise ParameterError(f"--output {args.output} is the region map's image: it goes with --grid, not --param")
     values = parse_values(args.values)
     if args.param not in scenario.param_sweeps:
         from mjpoincare.cost import refuse_long
@@ -239,7 +244,7 @@ def _cmd_converge(args: argparse.Namespace) -> int:
     return run_converge(args.scenario, parse_assignments(args.set), args.preset, json_path=args.json,
                         report=args.report, axes=args.axis or DEFAULT_AXES, points=args.points, ratio=args.ratio,
                         seed=args.seed, workers=args.workers, engine=args.engine, scheduler=args.scheduler,
-                        resume=args.resume)
+                        resume=args.resume, allow_long=args.allow_long)
 
 
 def _cmd_stress(args: argparse.Namespace) -> int:
@@ -346,13 +351,13 @@ def _cmd_power(args: argparse.Namespace) -> int:
 
 def _cmd_tune(args: argparse.Namespace) -> int:
     from mjpoincare import scenarios
-    from mjpoincare.result import check_output_path, distinct_outputs, write_json
+    from mjpoincare.result import check_output_path, check_plot_path, distinct_outputs, write_json
     from mjpoincare.stamp import environment
     from mjpoincare.tune import STUDY_DIR, run_study, summary
 
     name = scenarios.get(args.scenario).name
     check_output_path(args.json, "--json")
-    check_output_path(args.plot, "--plot")
+    check_plot_path(args.plot, "--plot")
     distinct_outputs(json=args.json, plot=args.plot, study=args.study)
     if args.plot:
         _require_viz("tune --plot", "matplotlib")
@@ -387,18 +392,24 @@ def _cmd_tune(args: argparse.Namespace) -> int:
 
 
 def _cmd_render(args: argparse.Namespace) -> int:
-    from mjpoincare.render import check_media_path, parse_size, render_frames, select_gl_backend, write_media
+    from mjpoincare.render import (
+        check_clip,
+        check_media_path,
+        parse_size,
+        render_frames,
+        select_gl_backend,
+        write_media,
+    )
 
     output = args.output or f"renders/{args.scenario}.mp4"
     check_media_path(output)
     size = parse_size(args.size)
     assignments = parse_assignments(args.set)
-    if not args.seconds > 0 or not 1 <= args.fps <= 240:
-        raise ParameterError(f"--seconds must be > 0 and --fps in [1, 240] (got {args.seconds}, {args.fps})")
+    check_clip(args.seconds, args.fps, 1.0)
     backend = select_gl_backend()  # before MuJoCo is imported
     from mjpoincare.validation import resolve_inputs
 
-    resolve_inputs(args.scenario, assignments, args.preset)
+    check_clip(args.seconds, args.fps, float(resolve_inputs(args.scenario, assignments, args.preset)[3]["timestep"]))
     from mjpoincare.result import check_output_path
 
     check_output_path(output, "--output")
@@ -490,6 +501,8 @@ def build_parser() -> argparse.ArgumentParser:
     conv.add_argument("scenario", help="scenario name")
     conv.add_argument("--set", action="append", default=[], metavar="NAME=VALUE")
     conv.add_argument("--preset", default=None, help="start values of the ladders (default: the scenario's)")
+    conv.add_argument("--allow-long", action="store_true", help="run even when the ladders' estimated MuJoCo steps "
+                      "exceed 1e9 (refused otherwise, before any simulation)")
     conv.add_argument("--axis", action="append", metavar="AXIS", help="timestep, solref_timeconst, "
                       "solref_dampratio or foot_radius (repeatable; default timestep and solref_timeconst)")
     conv.add_argument("--points", type=int, default=4, help="rungs per ladder (>= 3; 4+ gives the order's "

@@ -36,10 +36,11 @@ import numpy as np
 from mjpoincare.analysis.checks import Check, jsonable
 from mjpoincare.analysis.convergence import ANALYTIC_FLOOR, SANE_ORDER, Verdict, analyze
 from mjpoincare.analysis.tables import markdown_table
+from mjpoincare.cost import refuse_long
 from mjpoincare.parallel import ResumableRows, check_engine, point_assignments
 from mjpoincare.params import ParameterError
 from mjpoincare.result import write_json
-from mjpoincare.validation import resolve_inputs, run_validation
+from mjpoincare.validation import resolve_inputs, run_steps, run_validation
 
 AXES = ("timestep", "solref_timeconst", "solref_dampratio", "foot_radius")
 DEFAULT_AXES = ("timestep", "solref_timeconst")
@@ -79,11 +80,15 @@ def ladders(start: Mapping[str, Any], axes: Sequence[str], points: int, ratio: f
 
 
 def check_request(name: str, assignments: Mapping[str, str], preset: str | None, axes: Sequence[str], points: int,
-                  ratio: float) -> dict[str, list[dict[str, str]]]:
-    """Refuse bad input before any simulation (one line naming the parameter and bound); return the ladders."""
+                  ratio: float, *, allow_long: bool = False) -> dict[str, list[dict[str, str]]]:
+    """Refuse bad input before any simulation (one line naming the parameter and bound), and ladders whose runs add
+    up to more than :data:`~mjpoincare.cost.LONG_STEPS` MuJoCo steps unless ``allow_long``; return the ladders."""
     bad_axes = [a for a in axes if a not in AXES]
     if bad_axes:
         raise ParameterError(f"--axis must be one of {', '.join(AXES)} (got {', '.join(bad_axes)})")
+    twice = sorted({a for a in axes if list(axes).count(a) > 1})
+    if twice:
+        raise ParameterError(f"--axis {', '.join(twice)} is given more than once")
     if not 3 <= points <= MAX_POINTS:
         raise ParameterError(f"--points must be in [3, {MAX_POINTS}] (got {points})")
     if not 1.0 < ratio <= MAX_RATIO:
@@ -101,6 +106,9 @@ def check_request(name: str, assignments: Mapping[str, str], preset: str | None,
                     f"--axis {axis}: solref_timeconst {settings['solref_timeconst']:.3g} s is below "
                     f"{MIN_TIMECONST_STEPS:g} x timestep {settings['timestep']:.3g} s at a rung (MuJoCo clamps it); "
                     "start from a larger solref_timeconst")
+    runs = {rung_key(o): o for rungs in plan.values() for o in rungs}
+    steps = sum(run_steps(name, {**assignments, **o}, preset) for o in runs.values())
+    refuse_long(steps, f"converge {name} ({len(runs)} runs)", allow=allow_long)
     return plan
 
 
@@ -196,19 +204,19 @@ def _analyse_axis(axis: str, rungs: list[dict[str, str]], rows: Mapping[str, dic
 def converge(name: str, assignments: Mapping[str, str], preset: str | None = None, *,
              axes: Sequence[str] = DEFAULT_AXES, points: int = 4, ratio: float = 2.0, seed: int = 0,
              json_path: str | None = None, workers: int = 1, engine: str = "local", scheduler: str | None = None,
-             resume: bool = False) -> dict[str, Any]:
+             resume: bool = False, allow_long: bool = False) -> dict[str, Any]:
     """Run the ladders (skipping rungs the ``json_path`` file holds when ``resume``) and analyse every axis.
 
     Returns the JSON payload: the header, ``rows`` (every rung, failed ones included), ``ladders`` (axis -> rung
     keys), ``analysis`` (axis -> component -> :class:`~mjpoincare.analysis.convergence.Convergence` fields and the
     verdict), ``not_applicable`` and the timing.
     """
-    check_engine(workers, engine)
+    check_engine(workers, engine, scheduler)
     if seed < 0:
         raise ParameterError(f"--seed must be an integer >= 0 (got {seed})")
     # every rung runs the full experiment design, so that rungs differ in the refined setting alone
     assignments = {"adaptive_stopping": "0", **assignments}
-    plan = check_request(name, assignments, preset, axes, points, ratio)
+    plan = check_request(name, assignments, preset, axes, points, ratio, allow_long=allow_long)
     _, preset, _, start_settings = resolve_inputs(name, assignments, preset)
     header = {"command": "converge", "scenario": name, "assignments": dict(assignments), "preset": preset,
               "seed": seed, "ratio": ratio}

@@ -38,13 +38,14 @@ def available_memory() -> int:
     return os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
 
 
-def refuse_long(steps: float, what: str, *, allow: bool) -> None:
+def refuse_long(steps: float, what: str, *, allow: bool, remedy: str = "raise timestep, or give --allow-long"
+                ) -> None:
     """Refuse ``what`` (e.g. ``"validate rimless-wheel"``) of ``steps`` steps beyond :data:`LONG_STEPS` unless
-    ``allow`` (``--allow-long``), in one line with the estimate."""
+    ``allow`` (``--allow-long``), in one line with the estimate and ``remedy``."""
     if steps > LONG_STEPS and not allow:
         hours = steps / 3e5 / 3600
         raise ParameterError(f"{what} would take {steps:.3g} MuJoCo steps (about {hours:.3g} h at 3e5 steps/s), "
-                             f"more than {LONG_STEPS:.0e}: raise timestep, or give --allow-long")
+                             f"more than {LONG_STEPS:.0e}: {remedy}")
 
 
 def check_chunk(batch: int, nstep: int, nstate: int) -> None:

@@ -49,17 +49,20 @@ def start_method() -> str:
     return "fork" if sys.platform.startswith("linux") and not threaded else "spawn"
 
 
-def check_engine(workers: int, engine: str) -> None:
-    """Refuse a worker count below 1 or an unknown engine."""
+def check_engine(workers: int, engine: str, scheduler: str | None = None) -> None:
+    """Refuse a worker count below 1, an unknown engine, or a scheduler for an engine that has none."""
     if workers < 1 or engine not in ENGINES:
         raise ParameterError(f"--workers must be >= 1 and --engine one of {', '.join(ENGINES)} "
                              f"(got {workers}, {engine!r})")
+    if scheduler is not None and engine != "dask":
+        raise ParameterError(f"--scheduler {scheduler} is the Dask engine's: give --engine dask "
+                             f"(got --engine {engine})")
 
 
 def run_jobs(fn: Callable[..., Any], jobs: Sequence[tuple[Any, ...]], *, workers: int = 1, engine: str = "local",
              scheduler: str | None = None) -> Iterator[Any]:
     """``fn(*job)`` for every job (``fn`` must be a module-level function), yielded in completion order."""
-    check_engine(workers, engine)
+    check_engine(workers, engine, scheduler)
     if engine == "dask":
         yield from _dask(fn, jobs, workers, scheduler)
     elif workers == 1 or len(jobs) <= 1:

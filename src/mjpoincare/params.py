@@ -142,19 +142,33 @@ def _span(start: str, stop: str, count: str) -> list[str]:
     return [f"{v:.10g}" for v in numpy.linspace(*ends, int(count))]
 
 
+#: The most values a ``--values`` list or range may give: one sweep point per value, each a whole validation, so
+#: more is a typo (a COUNT with a zero too many), refused before any simulation.
+MAX_VALUES = 1000
+
+
 def parse_values(text: str) -> list[str]:
-    """``0.07,0.072,0.074`` or ``0.07:0.076:4`` (start:stop:count) -> value strings."""
+    """``0.07,0.072,0.074`` or ``0.07:0.076:4`` (start:stop:count) -> value strings: at least one, at most
+    :data:`MAX_VALUES`, none twice (ParameterError, one line, otherwise)."""
     if text.count(":") == 2:
+        count = text.split(":")[2].strip()
+        if count.isdigit() and int(count) > MAX_VALUES:
+            raise ParameterError(f"--values START:STOP:COUNT needs COUNT <= {MAX_VALUES} (got {count})")
         try:
             values = _span(*text.split(":"))
         except ValueError:
             raise ParameterError(f"--values START:STOP:COUNT expects numbers (got {text!r})") from None
         if not values:
             raise ParameterError(f"--values START:STOP:COUNT needs COUNT >= 1 (got {text!r})")
-        return values
-    values = [v.strip() for v in text.split(",") if v.strip()]
-    if not values:
-        raise ParameterError("--values needs at least one value")
+    else:
+        values = [v.strip() for v in text.split(",") if v.strip()]
+        if not values:
+            raise ParameterError("--values needs at least one value")
+        if len(values) > MAX_VALUES:
+            raise ParameterError(f"--values gives {len(values)} values, more than {MAX_VALUES}")
+    twice = sorted({v for v in values if values.count(v) > 1})
+    if twice:
+        raise ParameterError(f"--values gives {', '.join(twice)} more than once")
     return values
 
 

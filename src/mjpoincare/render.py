@@ -73,6 +73,22 @@ def parse_size(text: str) -> tuple[int, int]:
 MEDIA_SUFFIXES = (".mp4", ".gif", ".png")
 
 
+#: The longest clip ``render`` makes, s (every frame is kept in memory until the file is written).
+MAX_SECONDS = 600.0
+
+
+def check_clip(seconds: float, fps: int, timestep: float) -> None:
+    """Refuse, before any simulation, a clip outside (0, :data:`MAX_SECONDS`] s or [1, 240] frames per second, or one
+    whose MuJoCo steps (``seconds / timestep``) exceed :data:`mjpoincare.cost.LONG_STEPS`."""
+    from mjpoincare.cost import refuse_long
+    from mjpoincare.params import ParameterError
+
+    if not 0 < seconds <= MAX_SECONDS or not 1 <= fps <= 240:
+        raise ParameterError(f"--seconds must be in (0, {MAX_SECONDS:g}] and --fps in [1, 240] (got {seconds}, {fps})")
+    refuse_long(seconds / timestep, f"render ({seconds:g} s at timestep {timestep:g} s)", allow=False,
+                remedy="raise timestep or shorten --seconds")
+
+
 def check_media_path(path: str) -> None:
     """Refuse, before any simulation, an output whose suffix is not one of :data:`MEDIA_SUFFIXES`."""
     from mjpoincare.params import ParameterError
@@ -89,6 +105,7 @@ def render_frames(name: str, assignments: Mapping[str, str], preset: str | None,
     import mujoco
     from scipy import ndimage
 
+    from mjpoincare.cost import check_chunk
     from mjpoincare.validation import resolve_inputs
 
     scenario, _, params, settings = resolve_inputs(name, assignments, preset)
@@ -96,6 +113,7 @@ def render_frames(name: str, assignments: Mapping[str, str], preset: str | None,
     dt = model.opt.timestep
     frame_every = max(1, round(1.0 / (fps * dt)))
     nframes = max(1, round(seconds * fps))
+    check_chunk(1, nframes * frame_every, mujoco.mj_stateSize(model, mujoco.mjtState.mjSTATE_FULLPHYSICS))
     start = time.perf_counter()
     clip = scenario.clip(params, settings, model, nframes * frame_every)
     states, mocap = clip if isinstance(clip, tuple) else (clip, None)

@@ -195,6 +195,18 @@ def check_output_path(path: str | None, option: str, *, directory: bool = False)
         raise ParameterError(f"{option} {path} cannot be written: {err.strerror or err} in {folder}") from None
 
 
+#: The suffixes a plot (matplotlib's ``savefig``) is written as.
+PLOT_SUFFIXES = (".png", ".pdf", ".svg")
+
+
+def check_plot_path(path: str | None, option: str) -> None:
+    """:func:`check_output_path` for a plot, whose format its suffix chooses: one of :data:`PLOT_SUFFIXES`."""
+    if path is not None and Path(path).suffix.lower() not in PLOT_SUFFIXES:
+        raise ParameterError(f"{option} {path}: a plot is written as {', '.join(PLOT_SUFFIXES)} by its suffix "
+                             f"(got {Path(path).suffix or 'none'!r})")
+    check_output_path(path, option)
+
+
 def distinct_outputs(**paths: str | None) -> None:
     """Refuse two outputs given one path (``--json out.json --report out.json``), before any simulation: options by
     keyword (``json="a.json"``, ``report="a.json"``); ``None`` and ``-`` are not compared. Symlinks are followed."""

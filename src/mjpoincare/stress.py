@@ -41,6 +41,8 @@ from mjpoincare.validation import resolve_inputs, run_validation
 LADDER = (1, 2, 4, 8, 16, 32)
 BLOWUP = 10.0  # kinetic energy above this multiple of the largest initial one = blow-up
 SOAK_IMPACTS = 10_000
+#: The longest soak ``--soak`` takes, impacts (100 x the default: minutes of MuJoCo at the fast presets).
+MAX_SOAK = 1_000_000
 STABLE = ("accurate", "inaccurate")
 
 
@@ -201,6 +203,8 @@ def table(report: dict[str, Any]) -> str:
 def run_stress(names: Sequence[str], json_path: str | None, *, soak: int, workers: int) -> int:
     """Stress each scenario; print the tables; exit 0 unless a case crashed or an expectation failed."""
     names = list(names) or list(scenarios.default_scenarios())
+    if not 0 <= soak <= MAX_SOAK:
+        raise ParameterError(f"--soak must be in [0, {MAX_SOAK}] impacts (got {soak})")
     for name in names:
         scenarios.get(name)
     reports = [stress_scenario(name, soak=soak, workers=workers) for name in names]

@@ -79,7 +79,7 @@ def run_sweep(name: str, param: str, values: list[str], assignments: Mapping[str
               json_path: str | None, locate: str | None, *, workers: int = 1, engine: str = "local",
               scheduler: str | None = None, resume: bool = False) -> int:
     """Validate at each value; print the table (and the located bifurcation); exit 0, or 1 if a check failed."""
-    check_engine(workers, engine)
+    check_engine(workers, engine, scheduler)
     point_set = point_assignments(assignments, workers)
     for value in values:  # every input is checked before the first simulation
         resolve_inputs(name, {**point_set, param: value}, preset)
