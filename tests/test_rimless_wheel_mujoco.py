@@ -102,6 +102,22 @@ def test_json_file_written_whole_and_the_exit_code_agrees_with_it(tmp_path: Path
     assert [p.name for p in target.parent.iterdir()] == ["result.json"]
 
 
+def test_scenarios_side_by_side_give_the_serial_results(tmp_path: Path) -> None:
+    """``validate --workers 2`` runs the scenarios in two processes (one rollout thread each): the results, in the
+    order named, are the serial run's, check for check (only ``threads`` and the times differ)."""
+    names, coarse = ["rimless-wheel", "slotted-skate"], [f"--set={k}={v}" for k, v in COARSE.items()]
+    runs = {}
+    for workers in ("1", "2"):
+        target = tmp_path / f"w{workers}.json"
+        assert main(["validate", *names, *coarse, "--workers", workers, "--json", str(target)]) in (0, 1)
+        runs[workers] = json.loads(target.read_text())["results"]
+    assert [r["scenario"] for r in runs["2"]] == names
+    for serial, side in zip(runs["1"], runs["2"], strict=True):
+        assert side["settings"].pop("threads") == 1
+        serial["settings"].pop("threads"), serial.pop("timing"), side.pop("timing")
+        assert serial == side
+
+
 def test_divergence_is_reported_and_warnings_captured(tmp_path: Path) -> None:
     """A blown-up state: MuJoCo resets it silently; the rollout flags it and captures the warning."""
     _, _, params, settings = resolve_inputs("rimless-wheel", {}, "fast")

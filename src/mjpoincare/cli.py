@@ -57,6 +57,8 @@ def _cmd_validate(args: argparse.Namespace) -> int:
     twice = sorted({n for n in names if names.count(n) > 1})
     if twice:
         raise ParameterError(f"scenario {', '.join(twice)} is named more than once")
+    if args.workers is not None and args.workers < 1:
+        raise ParameterError(f"--workers must be >= 1 (got {args.workers})")
     assignments = parse_assignments(args.set)
     check_output_path(args.json, "--json")  # before the inputs: resolving them self-tests the seam (a tiny rollout)
     check_output_path(args.report, "--report", directory=True)
@@ -82,8 +84,18 @@ def _cmd_validate(args: argparse.Namespace) -> int:
 
     for name in names:
         refuse_long(run_steps(name, assignments, args.preset), f"validate {name}", allow=args.allow_long)
-    results = [validate(name, args.preset, args.seed, peer=args.peer, **typed_values(name, assignments))
-               for name in names]
+    workers = min(len(names), args.workers or machine_cores())
+    if workers > 1:  # the scenarios side by side, each in its own process with its share of the cores
+        from mjpoincare.parallel import point_assignments, run_jobs
+        from mjpoincare.validation import run_validation
+
+        shared = point_assignments(assignments, workers)
+        done = run_jobs(run_validation, [(name, shared, args.preset, args.seed, args.peer) for name in names],
+                        workers=workers)
+        results = sorted(done, key=lambda r: names.index(r.scenario))
+    else:
+        results = [validate(name, args.preset, args.seed, peer=args.peer, **typed_values(name, assignments))
+                   for name in names]
     if args.extrapolate:
         from mjpoincare.extrapolate import extrapolate
 
@@ -441,6 +453,9 @@ def build_parser() -> argparse.ArgumentParser:
     val.add_argument("--preset", default=None, help="simulator preset: fast or accurate")
     val.add_argument("--json", metavar="PATH|-", help="write the result as JSON (- for stdout)")
     val.add_argument("--seed", type=int, default=0, help="seed of the bootstrap (same seed, same result)")
+    val.add_argument("--workers", type=int, default=None, help="scenarios run side by side, each in its own process "
+                     "with its share of the cores (default: this machine's cores, at most one per scenario; results "
+                     "are the serial ones)")
     val.add_argument("--report", metavar="DIR", help="write a self-contained HTML report per scenario into DIR")
     val.add_argument("--baseline", metavar="PATH", help="compare each check's error with this baseline file's (exit "
                      "1 on a change beyond 3 x its resolution, or a check missing or new; a file that does not exist "
