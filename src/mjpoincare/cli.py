@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import argparse
 import importlib.util
+import math
 import sys
 from collections.abc import Sequence
 from pathlib import Path
@@ -202,6 +203,10 @@ def _cmd_bench(args: argparse.Namespace) -> int:
     return run_bench(args.scenario, parse_assignments(args.set), args.output, args.json, quick=args.quick)
 
 
+#: The most cells a region map's --grid may have without --allow-long (100 x 100: each cell is a trajectory).
+MAX_GRID_CELLS = 10_000
+
+
 def _cmd_sweep(args: argparse.Namespace) -> int:
     from mjpoincare import scenarios
     from mjpoincare.params import parse_values
@@ -216,6 +221,12 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
             with_map = [s.name for s in scenarios.REGISTRY.values() if s.region_map]
             raise ParameterError(f"--grid: {scenario.name} has no region map (scenarios with one: "
                                  f"{', '.join(with_map)})")
+        from mjpoincare.params import parse_grid
+
+        cells = math.prod(len(v) for v in parse_grid(args.grid, facet.axes).values())
+        if cells > MAX_GRID_CELLS and not args.allow_long:
+            raise ParameterError(f"--grid gives {cells} cells, more than {MAX_GRID_CELLS} (each one a trajectory): "
+                                 "use fewer points per axis, or give --allow-long")
         output = (args.output or facet.output).format(scenario=scenario.name)
         check_plot_path(output, "--output")
         distinct_outputs(json=args.json, output=output)
