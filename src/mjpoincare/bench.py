@@ -28,11 +28,12 @@ from mujoco import rollout as mj_rollout
 from mjpoincare import progress, scenarios
 from mjpoincare.analysis.checks import jsonable
 from mjpoincare.analysis.tables import markdown_table
+from mjpoincare.cost import refuse_long
 from mjpoincare.params import Value
 from mjpoincare.peers.compare import bench_block
 from mjpoincare.result import write_json
 from mjpoincare.scenarios.base import Foot
-from mjpoincare.validation import resolve_inputs, run_validation
+from mjpoincare.validation import resolve_inputs, run_steps, run_validation
 
 #: (label, setting overrides): timestep refinement per integrator with the contact time constant kept at
 #: 10 steps, then contact variants at 0.1 ms steps.
@@ -117,6 +118,8 @@ def run_bench(name: str, assignments: Mapping[str, str], output: str, json_path:
     resolve_inputs(name, assignments, None)  # bad input fails before any run
     configs = [foot_row(c, scenario.foot) for c in SWEEP if not quick or c[0] in QUICK]
     configs = [c for c in configs if c is not None]
+    steps = sum(run_steps(name, {**{k: str(v) for k, v in o.items()}, **assignments}, None) for _, o in configs)
+    refuse_long(steps, f"bench {name} ({len(configs)} runs)", allow=False, remedy="raise timestep")
     rows: list[dict[str, Any]] = []
     accuracy = scenario.accuracy_checks
     with progress.bar(len(configs), f"bench {name}", unit="config") as bar:

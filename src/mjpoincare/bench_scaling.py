@@ -24,11 +24,12 @@ from mujoco import rollout as mj_rollout
 
 from mjpoincare.analysis.checks import jsonable
 from mjpoincare.analysis.tables import markdown_table
+from mjpoincare.cost import refuse_long
 from mjpoincare.parallel import run_jobs
 from mjpoincare.params import ParameterError, parse_values
 from mjpoincare.result import write_json
 from mjpoincare.sweep import sweep_point
-from mjpoincare.validation import resolve_inputs
+from mjpoincare.validation import resolve_inputs, run_steps
 
 
 def rollout_work(name: str, assignments: Mapping[str, str]) -> float:
@@ -57,6 +58,9 @@ def measure_scaling(name: str, param: str, values: list[str], assignments: Mappi
     point = {**assignments, "threads": "1"}
     for value in values:
         resolve_inputs(name, {**point, param: value}, None)
+    sweep_steps = sum(run_steps(name, {**point, param: value}, None) for value in values)
+    refuse_long(2 * repeats * sweep_steps, f"bench --scaling {name} ({len(values)} values x {2 * repeats} sweeps)",
+                allow=False, remedy="raise timestep, or give fewer --values or --repeats")
     alone = min(_concurrent_wall(rollout_work, [(name, point)], 1) for _ in range(repeats))
     together = min(_concurrent_wall(rollout_work, [(name, point)] * workers, workers) for _ in range(repeats))
     jobs = [(name, param, value, point, None) for value in values]

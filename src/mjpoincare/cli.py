@@ -9,7 +9,7 @@ import math
 import sys
 from collections.abc import Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NoReturn
 
 from mjpoincare.parallel import machine_cores
 from mjpoincare.params import ParameterError, Value, grid_syntax, parse_assignments
@@ -238,6 +238,9 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
     if args.output:
         raise ParameterError(f"--output {args.output} is the region map's image: it goes with --grid, not --param")
     values = parse_values(args.values)
+    if any(a.split("=", 1)[0].strip() == args.param for a in args.set):
+        raise ParameterError(f"--set {args.param} and --param {args.param}: the sweep sets {args.param} at each value; "
+                             "drop the --set")
     if args.param not in scenario.param_sweeps:
         from mjpoincare.cost import refuse_long
         from mjpoincare.validation import run_steps
@@ -445,16 +448,24 @@ def _cmd_render(args: argparse.Namespace) -> int:
     return EXIT_PASS
 
 
+class OneLineParser(argparse.ArgumentParser):
+    """argparse's parser whose errors are one line on stderr, as every other refusal (``mjpoincare: error: ...``,
+    exit 2), without the usage block argparse prints first; ``-h`` still shows the usage."""
+
+    def error(self, message: str) -> NoReturn:
+        self.exit(EXIT_BAD_INPUT, f"{self.prog}: error: {message} (see {self.prog} -h)\n")
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser (exposed for tests and docs)."""
     from importlib.metadata import version
 
     from mjpoincare import __version__
 
-    parser = argparse.ArgumentParser(prog="mjpoincare", description=__doc__)
+    parser = OneLineParser(prog="mjpoincare", description=__doc__)
     parser.add_argument("--version", action="version",
                         version=f"mjpoincare {__version__} (MuJoCo {version('mujoco')})")
-    sub = parser.add_subparsers(dest="command", required=True)
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=OneLineParser)
     sub.add_parser("list", help="list scenarios, their parameters and presets").set_defaults(func=_cmd_list)
 
     val = sub.add_parser("validate", help="run scenarios and check them against the analytic results")
