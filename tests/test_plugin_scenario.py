@@ -177,3 +177,16 @@ def test_a_plugin_model_gets_the_shared_looks(tmp_path: Path) -> None:
 
     sky = mediapy.read_image(str(tmp_path / "still.png"))[:4].reshape(-1, 3).mean(axis=0)
     assert sky.min() > 40, sky  # the gradient sky's top (a missing skybox renders black)
+
+
+@pytest.mark.parametrize(("key", "field", "record"), [("fit", "fit", "FitSummary"),
+                                                      ("analytic", "analytic", "AnalyticValues"),
+                                                      ("basin_bands", "basins", "BasinMap")])
+def test_a_former_extra_key_is_refused_naming_its_field(key: str, field: str, record: str) -> None:
+    """A plugin written when the commands read ``extras["fit"]`` and the like fails in one line naming the field and
+    the record that replaced the key (its values would otherwise sit unread under the JSON's ``extras``)."""
+    from mjpoincare.plugin import Evaluation
+
+    refusal = rf"extras\['{key}'\] is now the field {field}= \(a mjpoincare.plugin.{record}\)"
+    with pytest.raises(TypeError, match=refusal):
+        Evaluation([], None, {key: {}})  # type: ignore[arg-type]
