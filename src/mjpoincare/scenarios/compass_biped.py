@@ -40,9 +40,7 @@ from mjpoincare.scenarios.base import (
     Evaluation,
     FitSummary,
     Reported,
-    ReturnMapPlot,
     Scenario,
-    SectionConvergence,
     Soak,
     StressCase,
     Tolerances,
@@ -57,6 +55,7 @@ from mjpoincare.scenarios.compass_biped_runs import (
     RELEASE_FALL_STEPS,
     STEPS,
     initial_section_states,
+    legs_parallel_figures,
     post_impact_states,
     release_tolerance,
     walk,
@@ -243,11 +242,9 @@ def evaluate(params: Values, settings: Values, preset: str, seed: int) -> Evalua
     y_star_th = theory.legs_parallel_state(bp, x_star)[0]
     analytic = AnalyticValues(eigenvalues=lam, values={"fixed_point": x_star, "legs_parallel_fixed_point": y_star_th,
                                                        "step": _step_summary(bp, x_star)})
-    grid = np.linspace(float(x[:, 0].min()), float(x[:, 0].max()), 2)
-    plot = ReturnMapPlot(label="legs-parallel angle theta (rad)", x=x[:, 0], x_next=x_next[:, 0], analytic_x=grid,
-                         analytic_y=np.full_like(grid, np.nan), analytic_eigenvalues=lam)
-    convergence = SectionConvergence(labels=["theta (rad)", "dtheta_st (rad/s)", "dtheta_sw (rad/s)"],
-                                     fixed_point=y_star_th, sequences=sequences)
+    plot, convergence = legs_parallel_figures(
+        "legs-parallel angle theta (rad)", ["theta (rad)", "dtheta_st (rad/s)", "dtheta_sw (rad/s)"], x, x_next, lam,
+        y_star_th, sequences)
     return Evaluation(out, report, extras, analytic=analytic, fit=FitSummary.of(fit), return_map=plot,
                       section_convergence=convergence, reported=reported)
 

@@ -53,9 +53,7 @@ from mjpoincare.scenarios.base import (
     Evaluation,
     FitSummary,
     Reported,
-    ReturnMapPlot,
     Scenario,
-    SectionConvergence,
     StressCase,
     Tolerances,
     Values,
@@ -73,7 +71,7 @@ from mjpoincare.scenarios.compass_biped_friction_design import (
 )
 from mjpoincare.scenarios.compass_biped_friction_gate import GATE_CASES
 from mjpoincare.scenarios.compass_biped_friction_stance import stance_checks
-from mjpoincare.scenarios.compass_biped_runs import BIPED_FOOT
+from mjpoincare.scenarios.compass_biped_runs import BIPED_FOOT, legs_parallel_figures
 from mjpoincare.seam import RolloutReport
 from mjpoincare.settings import rollout_options
 from mjpoincare.simulate import KeptRows, event_rollout
@@ -323,11 +321,9 @@ def evaluate(params: Values, settings: Values, preset: str, seed: int) -> Evalua
         extras["adaptive_stopping"] = settling.to_dict()
     reported = {"swing_foot_depth": Reported(**swing_foot_report(c.swing_low, -g.record.min_swing_height))}
     analytic = AnalyticValues(eigenvalues=g.eigenvalues, values={"z": g.z, "legs_parallel": y_star_th})
-    grid = np.linspace(float(x[:, 0].min()), float(x[:, 0].max()), 2)
-    plot = ReturnMapPlot(label="legs-parallel angle theta1 (rad)", x=x[:, 0], x_next=x_next[:, 0], analytic_x=grid,
-                         analytic_y=np.full_like(grid, np.nan), analytic_eigenvalues=lam)
-    convergence = SectionConvergence(labels=["theta1 (rad)", "theta1_dot (rad/s)", "-theta2_dot (rad/s)"],
-                                     fixed_point=y_star_th, sequences=sequences)
+    plot, convergence = legs_parallel_figures(
+        "legs-parallel angle theta1 (rad)", ["theta1 (rad)", "theta1_dot (rad/s)", "-theta2_dot (rad/s)"], x, x_next,
+        lam, y_star_th, sequences)
     return Evaluation(out, report, extras, analytic=analytic, fit=FitSummary.of(fit), return_map=plot,
                       section_convergence=convergence, reported=reported)
 

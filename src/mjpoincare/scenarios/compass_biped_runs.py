@@ -14,7 +14,7 @@ from mjpoincare.analysis.start_designs import design_size, sphere_offsets
 from mjpoincare.analysis.theory import compass_biped as theory
 from mjpoincare.analysis.theory import compass_biped_flight as flight
 from mjpoincare.params import Values
-from mjpoincare.scenarios.base import Foot
+from mjpoincare.scenarios.base import Foot, ReturnMapPlot, SectionConvergence
 from mjpoincare.scenarios.compass_biped_controller import GaitController
 from mjpoincare.seam import RolloutReport
 from mjpoincare.settings import rollout_options
@@ -100,3 +100,23 @@ def release_tolerance(model: mujoco.MjModel, bp: theory.CompassBiped, x_star: np
     accel = flight.release_acceleration(bp, theory.step(bp, x_star).x_minus, foot_radius)
     n = RELEASE_FALL_STEPS
     return accel, max(0.0, -accel) * model.opt.timestep**2 * n * (n + 1) / 2
+
+
+def legs_parallel_figures(plot_label: str, labels: list[str], x: np.ndarray, x_next: np.ndarray,
+                          eigenvalues: np.ndarray, fixed_point: np.ndarray, sequences: list[np.ndarray]
+                          ) -> tuple[ReturnMapPlot, SectionConvergence]:
+    """The report's figures of a biped's legs-parallel section map, which has no 1-D analytic form: the first
+    coordinate's x_k -> x_k+1 (no analytic curve) and each coordinate's approach to the analytic fixed point.
+
+    Args:
+        plot_label: the plotted (first) coordinate's axis label.
+        labels: ``(3,)`` the section coordinates' names with units.
+        x, x_next: ``(m, 3)`` the sample pairs.
+        eigenvalues: ``(3,)`` the analytic multipliers.
+        fixed_point: ``(3,)`` the analytic fixed point on the section.
+        sequences: per trajectory, its consecutive section samples ``(k, 3)``.
+    """
+    grid = np.linspace(float(x[:, 0].min()), float(x[:, 0].max()), 2)
+    plot = ReturnMapPlot(label=plot_label, x=x[:, 0], x_next=x_next[:, 0], analytic_x=grid,
+                         analytic_y=np.full_like(grid, np.nan), analytic_eigenvalues=eigenvalues)
+    return plot, SectionConvergence(labels=labels, fixed_point=fixed_point, sequences=sequences)
