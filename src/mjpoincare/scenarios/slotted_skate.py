@@ -41,6 +41,7 @@ from mjpoincare.scenarios.base import (
 from mjpoincare.scenarios.gate_cases import GateCase
 from mjpoincare.scenarios.slotted_skate_pegs import PegController, build
 from mjpoincare.scenarios.slotted_skate_regions import REGION_MAP
+from mjpoincare.seam import RolloutReport
 from mjpoincare.settings import rollout_options, search_space
 from mjpoincare.simulate import event_clip, event_rollout, initial_states
 
@@ -208,7 +209,8 @@ def evaluate(params: Values, settings: Values, preset: str, seed: int) -> Evalua
                                 error=float(wrong), tolerance=0.0, kind="count", unit="",
                                 why="impacts before the first reversing stance (B.6-B.7), per start whose reversal "
                                 "falls inside the simulated stances"))
-    out.extend(_final_state_checks(params, settings, sk, tol["final_speed"]))
+    final_checks, final_report = _final_state_checks(params, settings, sk, tol["final_speed"])
+    out.extend(final_checks)
     if forward_fit is not None:  # the result's fit and analytic eigenvalues (the sweep's columns): the forward map
         lam = float(np.real(forward_fit.eigenvalues[0]))
         if lam > 0 and theory.sigma4(sk, True) > 0:  # (V*/Delta) ln sigma4, V* = 1, vs the sleigh (2.1, 4.1)
@@ -219,7 +221,8 @@ def evaluate(params: Values, settings: Values, preset: str, seed: int) -> Evalua
     extras["reversals_seen"] = reversals
     extras["impacts"] = sum(len(x) for x in controller.samples)
     analytic = AnalyticValues(eigenvalues=[theory.sigma4(sk, True)], values={"stability": theory.stability(sk)})
-    return Evaluation(out, report, extras, analytic=analytic, fit=forward_fit)
+    return Evaluation(out, report if final_report is None else report.merge(final_report), extras, analytic=analytic,
+                      fit=forward_fit)
 
 
 def _collisions_before_reversal(sk: theory.SlottedSkate, runs: list[list[tuple[float, ...]]], e_unit: float,
@@ -294,26 +297,36 @@ def _decay(params: Values, sk: theory.SlottedSkate) -> tuple[theory.MapStep, int
     return q, n, duration, reversals
 
 
-def _final_state_checks(params: Values, settings: Values, sk: theory.SlottedSkate,
-                        tolerance: float) -> list[checks.Check]:
-    """The user's start run until its rotation has died out: final slot speed (B.10/B.12) and reversal count."""
+def _final_run(params: Values, model: mujoco.MjModel, decay: tuple[theory.MapStep, int, float, int]
+               ) -> tuple[np.ndarray, int]:
+    """The user's start (1, nstate) and the steps that carry it past the map's decay (:func:`_decay`) by 10 % plus two
+    stances."""
+    q, _, duration, _ = decay
+    rho, v0 = float(params["rho"]), abs(float(params["V0"]))
+    start = start_states(model, params, np.array([float(params["V0"])]), np.array([float(params["Omega0"])]))
+    return start, math.ceil((1.1 * duration + 2.0 * q.duration) * rho / v0 / model.opt.timestep)
+
+
+def _final_state_checks(params: Values, settings: Values, sk: theory.SlottedSkate, tolerance: float
+                        ) -> tuple[list[checks.Check], RolloutReport | None]:
+    """The user's start run until its rotation has died out: final slot speed (B.10/B.12) and reversal count, and
+    the run's report (None when the map's rotation does not decay: no final state to check)."""
     decay = _decay(params, sk)
     if decay is None:
-        return []
-    q, n, duration, reversals = decay
-    rho, v0 = float(params["rho"]), abs(float(params["V0"]))
-    V, Om = float(params["V0"]) / v0, float(params["Omega0"]) * rho / v0
-    final = theory.final_state(sk, V, Om)
+        return [], None
+    _, n, _, reversals = decay
+    v0 = abs(float(params["V0"]))
+    final = theory.final_state(sk, float(params["V0"]) / v0, float(params["Omega0"]) * float(params["rho"]) / v0)
     model = build(params, settings)
-    start = start_states(model, params, np.array([float(params["V0"])]), np.array([float(params["Omega0"])]))
+    start, nstep = _final_run(params, model, decay)
     entry = float(params["l0"]) if float(params["V0"]) > 0 else float(params["l0"]) + float(params["delta"])
     controller = PegController(model, params, np.array([entry]))
-    nstep = math.ceil((1.1 * duration + 2.0 * q.duration) * rho / v0 / model.opt.timestep)
-    event_rollout(model, start, nstep, controller, threads=1, chunk_steps=max(10, min(2000, nstep // 50)))
+    report = event_rollout(model, start, nstep, controller, **rollout_options(settings),
+                           chunk_steps=max(10, min(2000, nstep // 50)))
     samples = controller.samples[0]
     e_unit = float(params["mass"]) * v0 * v0
     if len(samples) < n + 1:
-        return [checks.relative("final_speed", final.V_f, math.nan, tolerance, "v0", "the run ended early")]
+        return [checks.relative("final_speed", final.V_f, math.nan, tolerance, "v0", "the run ended early")], report
     d_last, e_last = samples[n][0], samples[n][1] / e_unit
     v_last = math.copysign(math.sqrt(2.0 * e_last), 1.0 if d_last == float(params["l0"]) else -1.0)
     seen = sum(int(b[0] != a[0]) for a, b in itertools.pairwise(samples[: n + 1]))
@@ -324,14 +337,19 @@ def _final_state_checks(params: Values, settings: Values, sk: theory.SlottedSkat
         checks.Check(name="final_reversals", analytic=reversals, simulated=seen, error=float(abs(seen - reversals)),
                      tolerance=0.0, kind="count", unit="",
                      why=f"reversals over those {n} impacts: the map's count against the simulation's"),
-    ]
+    ], report
 
 
 def probe(params: Values, settings: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
-    """Model and initial states of the batch (one stance's worth without pegs switched)."""
+    """Model and initial states of the batches: the map's starts and, where the map's rotation decays, the user's start
+    run to its final state (each its whole duration without pegs switched)."""
     model = build(params, settings)
     V, Om = initial_conditions(params)
-    return model, [(start_states(model, params, V, Om), math.ceil(_duration(params, V, Om) / model.opt.timestep))]
+    batches = [(start_states(model, params, V, Om), math.ceil(_duration(params, V, Om) / model.opt.timestep))]
+    decay = _decay(params, skate(params))
+    if decay is not None:
+        batches.append(_final_run(params, model, decay))
+    return model, batches
 
 
 def reference_bench(params: Values, rtol: float) -> dict[str, float]:
