@@ -4,8 +4,12 @@ the rest of the suite."""
 
 from __future__ import annotations
 
+import fcntl
+import functools
+import hashlib
 import json
 import os
+import pickle
 import shutil
 import subprocess
 import sys
@@ -112,6 +116,42 @@ def failed_gated_checks(label: str, checks: list[dict[str, object]]) -> list[str
 
     gated = set(gate.case(label).gated)
     return [str(c["name"]) for c in checks if c["name"] in gated and not c["passed"]]
+
+
+@pytest.fixture(autouse=True, scope="session")
+def _gate_runs_shared_by_workers(request: pytest.FixtureRequest, tmp_path_factory: pytest.TempPathFactory
+                                 ) -> Iterator[None]:
+    """Under pytest-xdist, a gate case's run (:func:`mjpoincare.gate.run_case`, keyed by scenario, preset, seed and
+    settings) is made once per test session, not once per worker: the first worker to ask runs it and pickles the
+    result into the session's shared temporary folder, under a lock the other worker waits on, and reads it from there
+    the next time (each worker keeps its own per-process cache on top). Runs of other environments (the second-kernel
+    process, installed copies) are their own processes and never read it."""
+    if not hasattr(request.config, "workerinput"):
+        yield
+        return
+    from mjpoincare import gate
+
+    shared = tmp_path_factory.getbasetemp().parent / "gate-runs"
+    shared.mkdir(exist_ok=True)
+    run = gate._validate
+
+    @functools.cache
+    def validate_once(scenario: str, preset: str, seed: int, values: tuple[tuple[str, Any], ...]) -> Any:
+        key = hashlib.sha256(repr((scenario, preset, seed, values)).encode()).hexdigest()[:24]
+        path = shared / f"{key}.pickle"
+        with open(shared / f"{key}.lock", "w") as lock:
+            fcntl.flock(lock, fcntl.LOCK_EX)
+            if path.exists():
+                return pickle.loads(path.read_bytes())
+            result = run(scenario, preset, seed, values)
+            partial = path.with_suffix(".partial")
+            partial.write_bytes(pickle.dumps(result))
+            partial.replace(path)
+            return result
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(gate, "_validate", validate_once)
+        yield
 
 
 @pytest.fixture(autouse=True)
