@@ -83,3 +83,29 @@ def test_scaling_param_has_no_default(command: list[str], needle: str, capsys: p
     assert main(command) == 2
     err = capsys.readouterr().err
     assert needle in err and err.count("\n") == 1, err
+
+
+@pytest.mark.mujoco
+def test_paths_bench_puts_fast_accurate_and_richardson_on_one_plot(tmp_path: Path,
+                                                                    capsys: pytest.CaptureFixture[str]) -> None:
+    """``bench --paths`` on the friction wheel (its presets the cheapest): the three paths' table, PNG and JSON; the
+    Richardson path costs the fast run and more (its coarser grids), and a component without a clean order keeps the
+    fast path's error exactly."""
+    png, out = tmp_path / "paths.png", tmp_path / "paths.json"
+    assert main(["bench", "rimless-wheel-friction", "--paths", "-o", str(png), "--json", str(out)]) == 0
+    table = capsys.readouterr().out
+    assert all(f"| {path} |" in table for path in ("fast", "accurate", "fast + Richardson"))
+    assert png.stat().st_size > 10_000
+    fast, accurate, richardson = json.loads(out.read_text())["paths"]
+    assert [fast["path"], accurate["path"], richardson["path"]] == ["fast", "accurate", "fast + Richardson"]
+    assert fast["errors"] and set(fast["errors"]) == set(accurate["errors"]) == set(richardson["errors"])
+    assert richardson["wall_s"] > fast["wall_s"]
+    for component in richardson["not_clean"]:
+        assert richardson["errors"][component] == fast["errors"][component]
+
+
+@pytest.mark.parametrize("flags", [["--paths", "--skips"], ["--quick", "--paths"]])
+def test_bench_takes_one_mode(flags: list[str], capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["bench", "rimless-wheel", *flags]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "bench takes one of --quick, --skips, --scaling, --paths" in err[0]

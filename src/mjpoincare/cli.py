@@ -180,6 +180,9 @@ def _cmd_bench(args: argparse.Namespace) -> int:
     from mjpoincare.bench import run_bench, run_skips
     from mjpoincare.result import check_output_path, check_plot_path, distinct_outputs
 
+    modes = [flag for flag in ("quick", "skips", "scaling", "paths") if getattr(args, flag)]
+    if len(modes) > 1:
+        raise ParameterError(f"bench takes one of --quick, --skips, --scaling, --paths (got --{' and --'.join(modes)})")
     if args.scaling and not args.param:
         raise ParameterError("bench --scaling needs --param NAME (the swept parameter or setting)")
     if args.param and not args.scaling:
@@ -195,11 +198,20 @@ def _cmd_bench(args: argparse.Namespace) -> int:
         json_path = args.json if args.json != "renders/bench-{scenario}.json" else "renders/skips-{scenario}.json"
         check_output_path(json_path and json_path.format(scenario=args.scenario), "--json")
         return run_skips(args.scenario, parse_assignments(args.set), json_path)
-    check_output_path(args.json and args.json.format(scenario=args.scenario), "--json")
-    check_plot_path(args.output.format(scenario=args.scenario), "--output")
-    distinct_outputs(json=args.json and args.json.format(scenario=args.scenario),
-                     output=args.output.format(scenario=args.scenario))
+    if args.paths:
+        json_path = args.json if args.json != "renders/bench-{scenario}.json" else "renders/paths-{scenario}.json"
+        output = args.output if args.output != "renders/bench-{scenario}.png" else "renders/paths-{scenario}.png"
+    else:
+        json_path, output = args.json, args.output
+    check_output_path(json_path and json_path.format(scenario=args.scenario), "--json")
+    check_plot_path(output.format(scenario=args.scenario), "--output")
+    distinct_outputs(json=json_path and json_path.format(scenario=args.scenario),
+                     output=output.format(scenario=args.scenario))
     _require_viz("bench's plot", "matplotlib")
+    if args.paths:
+        from mjpoincare.bench_paths import run_paths
+
+        return run_paths(args.scenario, parse_assignments(args.set), output, json_path)
     return run_bench(args.scenario, parse_assignments(args.set), args.output, args.json, quick=args.quick)
 
 
@@ -499,6 +511,8 @@ def build_parser() -> argparse.ArgumentParser:
     bench.add_argument("--json", metavar="PATH|-", default="renders/bench-{scenario}.json",
                        help="bench table as JSON (the report's convergence plot reads the default path)")
     bench.add_argument("--quick", action="store_true", help="a small sweep (for tests)")
+    bench.add_argument("--paths", action="store_true", help="instead: the error against the wall time of the fast "
+                       "preset, the accurate preset and the fast preset with Richardson extrapolation, one plot")
     bench.add_argument("--skips", action="store_true", help="instead: what each skip (collision filtering, no "
                        "sensors, contact off, solver budget, threads) buys in speed, and the error with and without")
     bench.add_argument("--scaling", action="store_true", help="instead: a sweep's speedup from 1 to --workers "
