@@ -36,10 +36,14 @@ from mjpoincare.validation import run_steps, run_validation
 PATHS = ("fast", "accurate", "fast + Richardson")
 
 
+def _check_of(component: str) -> str:
+    """The check a scalar component (``name``, ``name[i]``, ``name.re``) belongs to."""
+    return component.split("[")[0].split(".")[0]
+
+
 def _accuracy_components(values: Mapping[str, list[float]], accuracy: tuple[str, ...]) -> dict[str, float]:
-    """|simulated - analytic| of each scalar component (``name``, ``name[i]``, ``name.re``) of the accuracy checks."""
-    return {key: abs(float(s) - float(a)) for key, (a, s) in values.items()
-            if key.split("[")[0].split(".")[0] in accuracy}
+    """|simulated - analytic| of each scalar component of the accuracy checks."""
+    return {key: abs(float(s) - float(a)) for key, (a, s) in values.items() if _check_of(key) in accuracy}
 
 
 def measure_paths(name: str, assignments: Mapping[str, str]) -> dict[str, Any]:
@@ -55,18 +59,18 @@ def measure_paths(name: str, assignments: Mapping[str, str]) -> dict[str, Any]:
     refuse_long(steps, f"bench {name} --paths (3 paths)", allow=False, remedy="raise timestep")
     rows: list[dict[str, Any]] = []
     with progress.bar(len(PATHS), f"bench {name} --paths", unit="path") as bar:
+        runs = {}
         for preset in ("fast", "accurate"):
-            result = run_validation(name, assignments, preset)
+            runs[preset] = result = run_validation(name, assignments, preset)
             values, _ = components(result.checks)
             rows.append({"path": preset, "wall_s": result.timing["wall_s"], "passed": result.passed,
                          "errors": _accuracy_components(values, accuracy), "not_clean": []})
             bar.update(1)
-            if preset == "fast":
-                fast = result
+        fast = runs["fast"]
         entry = extrapolate(name, assignments, "fast", 0, fast.checks, fast.timing["wall_s"])
         errors, not_clean = {}, []
         for comp in entry["components"]:
-            if comp["component"].split("[")[0].split(".")[0] not in accuracy:
+            if _check_of(comp["component"]) not in accuracy:
                 continue
             clean = math.isfinite(comp["error_extrapolated"])
             errors[comp["component"]] = comp["error_extrapolated"] if clean else comp["error_plain"]
