@@ -61,7 +61,7 @@ PRESETS: dict[str, dict[str, float | int | str]] = {
     "fast": {"timestep": 0.000494893858142, "solref_timeconst": 0.00390610197978, "integrator": "rk4",
         "solimp_dmin": 0.9999, "solimp_dmax": 0.9999, "solimp_width": 0.001, "iterations": 200,
         "tolerance": 4.67917456765e-11, "solref_dampratio": 0.568133114898},
-    "accurate": {"timestep": 0.0001, "solref_timeconst": 0.0002, "integrator": "rk4", "solimp_dmin": 0.9999,
+    "accurate": {"timestep": 0.0002, "solref_timeconst": 0.0004, "integrator": "rk4", "solimp_dmin": 0.9999,
         "solimp_dmax": 0.9999, "solimp_width": 0.001, "iterations": 200, "tolerance": 1e-14, "solref_dampratio": 1.0},
 }
 TOLERANCES: dict[str, Tolerances] = {
