@@ -86,12 +86,14 @@ def _cmd_validate(args: argparse.Namespace) -> int:
     for name in names:
         refuse_long(run_steps(name, assignments, args.preset), f"validate {name}", allow=args.allow_long)
     workers = min(len(names), args.workers or machine_cores())
-    if workers > 1:  # the scenarios side by side, each in its own process with its share of the cores
-        from mjpoincare.parallel import point_assignments, run_jobs
+    if workers > 1:
+        # The scenarios side by side, one process each, and each with every core's rollout threads: their costs
+        # differ tenfold, so a scenario held to its share of the cores would leave the others' cores idle once they
+        # are done (the results do not depend on the threads).
+        from mjpoincare.parallel import run_jobs
         from mjpoincare.validation import run_validation
 
-        shared = point_assignments(assignments, workers)
-        done = run_jobs(run_validation, [(name, shared, args.preset, args.seed, args.peer) for name in names],
+        done = run_jobs(run_validation, [(name, assignments, args.preset, args.seed, args.peer) for name in names],
                         workers=workers)
         results = sorted(done, key=lambda r: names.index(r.scenario))
     else:
@@ -488,8 +490,8 @@ def build_parser() -> argparse.ArgumentParser:
     val.add_argument("--json", metavar="PATH|-", help="write the result as JSON (- for stdout)")
     val.add_argument("--seed", type=int, default=0, help="seed of the bootstrap (same seed, same result)")
     val.add_argument("--workers", type=int, default=None, help="scenarios run side by side, each in its own process "
-                     "with its share of the cores (default: this machine's cores, at most one per scenario; results "
-                     "are the serial ones)")
+                     "with every core's rollout threads (default: this machine's cores, at most one per scenario; "
+                     "results are the serial ones)")
     val.add_argument("--report", metavar="DIR", help="write a self-contained HTML report per scenario into DIR")
     val.add_argument("--baseline", metavar="PATH", help="compare each check's error with this baseline file's (exit "
                      "1 on a change beyond 3 x its resolution, or a check missing or new; a file that does not exist "
