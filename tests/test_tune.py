@@ -43,6 +43,16 @@ def test_the_preset_is_the_cheapest_front_point_within_half_its_tolerances() -> 
     assert chosen is not None and chosen["number"] == 2 and holds == "margin"
 
 
+def test_a_trial_outside_the_targets_timestep_range_is_never_chosen() -> None:
+    """The fast preset, enqueued into the accurate study and within half the accurate tolerances at its 0.5 ms, is
+    the cheapest such trial, yet not the accurate preset: the 0.2 ms trial is."""
+    space = [{"name": "timestep", "low": 1e-5, "high": 2e-4}, {"name": "solref_dampratio", "low": 0.5, "high": 10.0}]
+    fast, finer = {**_front_row(0, 11.3, 0.28), "settings": {"timestep": 5e-4}}, _front_row(1, 23.2, 0.19)
+    chosen, holds = tune.choose(tune.in_timestep_range([fast, finer], space))
+    assert chosen is finer and holds == "margin"
+    assert tune.choose([fast, finer])[0] is fast
+
+
 def test_without_such_a_point_the_preset_is_the_cheapest_passing_one_or_none() -> None:
     chosen, holds = tune.choose([_front_row(0, 1.0, 3.0), _front_row(1, 2.0, 0.9), _front_row(2, 4.0, 0.6)])
     assert chosen is not None and chosen["number"] == 1 and holds == "no margin"
@@ -89,7 +99,8 @@ def test_every_coverage_point_is_a_valid_input(name: str) -> None:
 def test_the_scenarios_presets_are_the_ones_their_studies_chose(study: dict[str, Any]) -> None:
     """A committed study that found a preset: the scenario declares exactly that preset (every searched setting); one
     that found none says so, and the scenario keeps its own."""
-    assert tune.choose(study["front"]) == (study["chosen"], study["holds"]), "the study's choice is not the rule's"
+    rule = tune.choose(tune.in_timestep_range(study["trials"], study["space"]))
+    assert rule == (study["chosen"], study["holds"]), "the study's choice is not the rule's"
     declared = scenarios.get(study["scenario"]).presets[study["target"]]
     if study["preset"] is None:
         assert study["chosen"] is None and study["holds"] == "none" and declared

@@ -25,6 +25,8 @@ scenario's current presets, so that the front shows where they stand. The Pareto
 (``study.best_trials``). The preset for the target is the cheapest front point whose worst ratio is at most
 :data:`PRESET_RATIO`. If none is, the study says so: the preset is then the cheapest front point that passes every
 check (within the tolerances, without the margin), else none is chosen; the front shows the best that was found.
+Only a trial inside the target's timestep range (:data:`TARGET_TIMESTEPS`) can be chosen: the other preset, enqueued
+as a trial, is shown on the front where it stands, and an accurate preset never becomes the fast one's settings.
 """
 
 from __future__ import annotations
@@ -358,6 +360,17 @@ def _row(trial: Any) -> dict[str, Any]:
             "miss_ratios": attrs.get("miss_ratios"), "refused": attrs.get("refused")}
 
 
+def in_timestep_range(rows: Sequence[Mapping[str, Any]], space: Sequence[Mapping[str, Any]]
+                      ) -> list[Mapping[str, Any]]:
+    """The trial rows whose timestep lies in the searched range (``space``: the JSON form of
+    :func:`target_space`); the cheapest of them within a ratio bound is a point of their own Pareto front."""
+    bounds = [(d["low"], d["high"]) for d in space if d["name"] == "timestep"]
+    if not bounds:
+        return list(rows)
+    low, high = bounds[0]
+    return [r for r in rows if r["settings"] is not None and low <= float(r["settings"]["timestep"]) <= high]
+
+
 def choose(front: Sequence[Mapping[str, Any]], limit: float = PRESET_RATIO) -> tuple[Mapping[str, Any] | None, str]:
     """The preset's trial and how it holds: the cheapest front point whose worst ratio is at most ``limit``
     (``"margin"``); else the cheapest front point that passes every check (``"no margin"``: within the tolerances,
@@ -378,13 +391,13 @@ def summary(study: Any) -> dict[str, Any]:
     rows = [_row(t) for t in study.trials if t.state.is_finished()]
     front = sorted((_row(t) for t in study.best_trials if t.values and math.isfinite(t.values[0])),
                    key=lambda r: r["cpu_s"])
-    chosen, holds = choose(front)
+    space = [{"name": d.name, "low": d.low, "high": d.high, "log": d.log, "choices": list(d.choices),
+              "per_timestep": d.per_timestep} for d in target_space(scenario, target)]
+    chosen, holds = choose(in_timestep_range(rows, space))
     preset = None if chosen is None else {**scenario.presets[target], **chosen["settings"]}
     return {"scenario": scenario.name, "target": target, "study": study.study_name,
             "commands": study.user_attrs.get("commands", []),
             "objectives": ["cpu_s", "worst_ratio"], "preset_ratio": PRESET_RATIO, "ratio_cap": RATIO_CAP,
             "coverage": [{"name": p.name, "assignments": dict(p.assignments), "why": p.why,
                           "miss": target in p.miss_at} for p in scenario.coverage],
-            "space": [{"name": d.name, "low": d.low, "high": d.high, "log": d.log, "choices": list(d.choices),
-                       "per_timestep": d.per_timestep} for d in target_space(scenario, target)],
-            "trials": rows, "front": front, "chosen": chosen, "holds": holds, "preset": preset}
+            "space": space, "trials": rows, "front": front, "chosen": chosen, "holds": holds, "preset": preset}

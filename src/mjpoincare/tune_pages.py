@@ -127,7 +127,8 @@ def render_page(studies: Sequence[Mapping[str, Any]]) -> str:
              "gives up at the first point where a check fails (ratio above 1; the points run hardest first): it "
              "cannot be a preset, and it is shown with the CPU seconds it took to fail. The search is Optuna's "
              "multi-objective TPE sampler over the settings below; the preset is the cheapest point of the Pareto "
-             f"front whose worst ratio is at most {first['preset_ratio']:g}.", ""]
+             f"front whose worst ratio is at most {first['preset_ratio']:g}, among the trials inside the searched "
+             "timestep range (the other preset, enqueued, is shown where it stands and never chosen).", ""]
     for study in studies:
         lines += render_target(study)
     return "\n".join(lines)
