@@ -105,13 +105,19 @@ def _jacobian(bp: CompassBiped, z: NDArray[np.float64], eps: float) -> NDArray[n
     return central_jacobian(lambda zz: return_map(bp, zz), z, eps)
 
 
+@lru_cache(maxsize=256)
+def _eigenvalues_cached(bp: CompassBiped, z: tuple[float, float, float], eps: float) -> tuple[complex, ...]:
+    return tuple(sort_eigenvalues(np.linalg.eigvals(_jacobian(bp, np.array(z), eps)).astype(complex)))
+
+
 def eigenvalues(bp: CompassBiped, x_star: ArrayLike | None = None, eps: float = 1e-6) -> NDArray[np.complex128]:
     """The 3 eigenvalues (Floquet multipliers) of the post-impact section map at the gait x* (default
     :func:`fixed_point`), by central finite differences with step eps; sorted by modulus, descending (conjugate
     pairs: positive imaginary part first). Stability of the gait of 003 eq 4.18 (003 gives no multipliers;
-    Goswami et al. 1996/98 do)."""
+    Goswami et al. 1996/98 do). Computed once per (model, state, step) and process: a new array each call."""
     x = fixed_point(bp) if x_star is None else np.asarray(x_star, dtype=float)
-    return sort_eigenvalues(np.linalg.eigvals(_jacobian(bp, x[[0, 2, 3]], eps)).astype(complex))
+    z = x[[0, 2, 3]]
+    return np.array(_eigenvalues_cached(bp, (float(z[0]), float(z[1]), float(z[2])), float(eps)), dtype=complex)
 
 
 def period_doubling_slope(m_h: float, m_l: float, a: float, b: float, lo: float, hi: float) -> float:

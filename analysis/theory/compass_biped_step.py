@@ -10,7 +10,8 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+from functools import lru_cache
 
 import numpy as np
 from mjpoincare.analysis.theory.compass_biped_dynamics import _qdd, impact_map
@@ -123,8 +124,16 @@ def _integrate_swing(bp: CompassBiped, x0: ArrayLike, events: tuple[Callable[...
 def step(bp: CompassBiped, x_plus: ArrayLike, *, rtol: float = RTOL, atol: float = ATOL) -> StepResult:
     """One passive step (003 eq 4.18): swing (003 eq 4.19, DOP853, event 003 eq 4.6 located to solver accuracy)
     from x_plus to the heel strike, then the impact map (003 eqs 4.7, 4.17). Also reports the contact-validity
-    quantities of :class:`StepResult` (not in 003, which assumes a bilateral, non-slipping stance foot)."""
-    sol = _swing(bp, x_plus, rtol, atol, dense=True)
+    quantities of :class:`StepResult` (not in 003, which assumes a bilateral, non-slipping stance foot). Computed
+    once per (model, state, tolerances) and process; the arrays are new at each call."""
+    x = tuple(float(v) for v in np.asarray(x_plus, dtype=float))
+    once = _step_cached(bp, x, float(rtol), float(atol))
+    return replace(once, x_plus_next=once.x_plus_next.copy(), x_minus=once.x_minus.copy())
+
+
+@lru_cache(maxsize=256)
+def _step_cached(bp: CompassBiped, x_plus: tuple[float, ...], rtol: float, atol: float) -> StepResult:
+    sol = _swing(bp, np.array(x_plus), rtol, atol, dense=True)
     period = float(sol.t_events[0][0])
     x_minus = np.asarray(sol.y_events[0][0], dtype=float)
     x_next = impact_map(bp, x_minus)

@@ -16,20 +16,29 @@ from mjpoincare.peers import Peer
 from mjpoincare.peers.compare import compare
 from mjpoincare.result import Result
 
+#: The (scenario, parameters, settings) this process has already checked and accepted, each with its scenario (kept,
+#: so that its id names it): a command checks its inputs before any simulation and the validation checks them again,
+#: and a scenario's check may solve its gait (the compass biped's shooting and multipliers); a worker forked for a
+#: validation inherits them.
+_ACCEPTED: dict[tuple[int, str, str], scenarios.Scenario] = {}
+
 
 def resolve_values(name: str, assignments: Mapping[str, Value], preset: str | None
                    ) -> tuple[scenarios.Scenario, str, dict, dict]:
     """Scenario, preset name, checked parameters and settings; bad input raises ParameterError (nothing is
-    simulated)."""
+    simulated). The scenario's own checks run once per process for the same values (:data:`_ACCEPTED`)."""
     scenario = scenarios.get(name)
     unknown(assignments, scenario.params, sim_settings.SETTINGS)
     preset_name, overrides = scenario.preset(preset)
     params = resolve(scenario.params, {p.name: p.default for p in scenario.params}, assignments)
     settings = resolve(sim_settings.SETTINGS, {**sim_settings.DEFAULTS, **overrides}, assignments)
     backends.check_backend(settings)
-    scenario.check_params(params)
-    if scenario.check_inputs is not None:
-        scenario.check_inputs(params, settings)
+    key = (id(scenario), repr(sorted(params.items())), repr(sorted(settings.items())))
+    if key not in _ACCEPTED:
+        scenario.check_params(params)
+        if scenario.check_inputs is not None:
+            scenario.check_inputs(params, settings)
+        _ACCEPTED[key] = scenario
     return scenario, preset_name, params, settings
 
 
