@@ -169,3 +169,33 @@ def test_a_check_that_disappears_fails_the_api_and_the_cli(monkeypatch: pytest.M
     out = capsys.readouterr().out
     assert code == 1
     assert re.search(r"^eigenvalue\s.*\bmissing\s.*FAIL$", out, re.M), out
+
+
+def test_a_scenarios_input_check_runs_once_per_process_for_the_same_values(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The command's check before any simulation, the cost check and the validation resolve the same inputs: the
+    scenario's own check (the compass biped's shooting, for one) runs for the first only, again for other values,
+    and a refused input is refused every time."""
+    from dataclasses import replace
+
+    from mjpoincare import scenarios
+    from mjpoincare.params import ParameterError
+    from mjpoincare.validation import resolve_inputs, run_steps
+
+    scenario = scenarios.get("rimless-wheel")
+    calls: list[object] = []
+
+    def counted(params: dict[str, object]) -> None:
+        calls.append(params["slope"])
+        scenario.check_params(params)
+
+    monkeypatch.setitem(scenarios.REGISTRY, scenario.name, replace(scenario, check_params=counted))
+    for _ in range(2):
+        resolve_inputs("rimless-wheel", {"slope": "0.0812"}, "fast")
+        run_steps("rimless-wheel", {"slope": "0.0812"}, "fast")
+    assert calls == [0.0812]
+    resolve_inputs("rimless-wheel", {"slope": "0.0813"}, "fast")
+    assert calls == [0.0812, 0.0813]
+    for _ in range(2):
+        with pytest.raises(ParameterError, match="slope"):
+            resolve_inputs("rimless-wheel", {"slope": "0.01"}, "fast")
+    assert calls == [0.0812, 0.0813, 0.01, 0.01]
