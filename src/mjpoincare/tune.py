@@ -363,7 +363,7 @@ def _row(trial: Any) -> dict[str, Any]:
 def in_timestep_range(rows: Sequence[Mapping[str, Any]], space: Sequence[Mapping[str, Any]]
                       ) -> list[Mapping[str, Any]]:
     """The trial rows whose timestep lies in the searched range (``space``: the JSON form of
-    :func:`target_space`); the cheapest of them within a ratio bound is a point of their own Pareto front."""
+    :func:`target_space`), the ones :func:`choose` may pick from."""
     bounds = [(d["low"], d["high"]) for d in space if d["name"] == "timestep"]
     if not bounds:
         return list(rows)
@@ -371,12 +371,14 @@ def in_timestep_range(rows: Sequence[Mapping[str, Any]], space: Sequence[Mapping
     return [r for r in rows if r["settings"] is not None and low <= float(r["settings"]["timestep"]) <= high]
 
 
-def choose(front: Sequence[Mapping[str, Any]], limit: float = PRESET_RATIO) -> tuple[Mapping[str, Any] | None, str]:
-    """The preset's trial and how it holds: the cheapest front point whose worst ratio is at most ``limit``
-    (``"margin"``); else the cheapest front point that passes every check (``"no margin"``: within the tolerances,
-    but not by the factor ``1 / limit``; a more expensive point would buy accuracy the target does not ask for
-    without reaching the margin either); else None (``"none"``)."""
-    rated = [r for r in front if r["worst_ratio"] is not None and r["cpu_s"]]
+def choose(trials: Sequence[Mapping[str, Any]], limit: float = PRESET_RATIO
+           ) -> tuple[Mapping[str, Any] | None, str]:
+    """The preset's trial and how it holds: the cheapest of ``trials`` whose worst ratio is at most ``limit``
+    (``"margin"``); else the cheapest that passes every check (``"no margin"``: within the tolerances, but not by
+    the factor ``1 / limit``; a more expensive one would buy accuracy the target does not ask for without reaching
+    the margin either); else None (``"none"``). Either is a point of the trials' Pareto front, so ``trials`` may be
+    the front or every finished trial."""
+    rated = [r for r in trials if r["worst_ratio"] is not None and r["cpu_s"]]
     for bound, holds in ((limit, "margin"), (1.0, "no margin")):
         passing = [r for r in rated if r["worst_ratio"] <= bound]
         if passing:
