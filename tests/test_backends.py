@@ -135,6 +135,21 @@ def test_set_states_rewrites_the_chosen_trajectories_only(backend: tuple[str, st
     np.testing.assert_array_equal(second[0, 0], first[0, -1])
 
 
+def test_a_chunk_of_chosen_rows_leaves_the_others_as_they_were(backend: tuple[str, str], model: mujoco.MjModel
+                                                                ) -> None:
+    """``rows``: the chosen trajectory steps as in the whole batch; the other keeps its state, is NaN in the chunk
+    and is not flagged diverged (this engine steps its compiled batch whole)."""
+    start = _states(model, swing=0.6)
+    with _open(backend, model, start) as whole:
+        both = whole.run_chunk(CHUNK)
+    with _open(backend, model, start) as batch:
+        one = batch.run_chunk(CHUNK, rows=np.array([1]))
+        np.testing.assert_array_equal(batch.states()[0], start[0])
+        np.testing.assert_array_equal(batch.states()[1], one[1, -1])
+    assert np.isnan(one[0]).all() and not batch.report.diverged.any()
+    np.testing.assert_array_equal(one[1], both[1])
+
+
 def test_contact_released_per_trajectory(backend: tuple[str, str], model: mujoco.MjModel) -> None:
     """A released ball falls through the floor while the other rests; restored (twice), both rest alike again."""
     ball, drop = model.geom("ball").id, _column(model, "drop")

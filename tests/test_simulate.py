@@ -75,3 +75,31 @@ def test_a_rollout_ends_at_the_first_chunk_its_stop_test_accepts(model: mujoco.M
         report = rollout_batch(model, start, 100, consume, chunk_steps=10, threads=1, stop=stop)
     assert len(seen) == 3
     assert report.steps == 3 * 10 * 2
+
+
+def test_a_finished_trajectory_is_stepped_no_further_and_the_others_step_as_in_the_whole_batch(
+        model: mujoco.MjModel) -> None:
+    """``finished``: a trajectory it marks is NaN in every later chunk, never flagged diverged and never counted as
+    stepped; the others' rows are those of the batch run whole, bit for bit; the rollout ends when all are done."""
+    from mjpoincare.simulate import rollout_batch
+
+    qpos = np.tile([0, 0, 1, 1, 0, 0, 0], (3, 1)).astype(float)
+    qpos[:, 2] = [1.0, 2.0, 3.0]
+    start = initial_states(model, qpos, np.zeros((3, model.nv)))
+    chunks: dict[bool, list[np.ndarray]] = {True: [], False: []}
+    done_after = np.array([1, 2, 3])  # chunks after which each trajectory is finished
+    for retire in (False, True):
+        def consume(chunk: object, retire: bool = retire) -> None:
+            chunks[retire].append(np.array(chunk.qpos))  # type: ignore[attr-defined]
+
+        finished = (lambda: len(chunks[True]) >= done_after) if retire else None
+        report = rollout_batch(model, start, 50, consume, chunk_steps=10, threads=2, finished=finished)
+        assert not report.diverged.any()
+    assert len(chunks[True]) == 3 and len(chunks[False]) == 5
+    for k, (kept, whole) in enumerate(zip(chunks[True], chunks[False], strict=False)):
+        for b in range(3):
+            if k < done_after[b]:
+                np.testing.assert_array_equal(kept[b], whole[b])
+            else:
+                assert np.isnan(kept[b]).all()
+    assert report.steps == 10 * int(done_after.sum())

@@ -131,10 +131,13 @@ class Batch(Protocol):
         """Release the batch; ``report`` then holds the final states and the backend's warnings."""
         ...
 
-    def run_chunk(self, nstep: int, control: np.ndarray | None = None) -> np.ndarray:
+    def run_chunk(self, nstep: int, control: np.ndarray | None = None, rows: np.ndarray | None = None
+                  ) -> np.ndarray:
         """Step every trajectory ``nstep`` steps from its current state (``control`` (B, nstep, nu): the ctrl of each
         step); the recorded states (B, nstep + 1, nstate), row 0 the start, NaN from a divergence on (flagged in
-        ``report``). Each trajectory's current state becomes its last step."""
+        ``report``). Each trajectory's current state becomes its last step. ``rows`` (k,): step these trajectories
+        only; every other one keeps its state and its rows of the chunk are NaN, never flagged (MuJoCo C and Drake
+        step and count only ``rows``; MJX and Warp step their compiled batch whole and count it whole)."""
         ...
 
     def states(self) -> np.ndarray:

@@ -65,6 +65,7 @@ def rollout_batch(
     precision: str = "float64",
     batch: int = 0,
     stop: Callable[[], bool] | None = None,
+    finished: Callable[[], np.ndarray] | None = None,
     engine_options: Mapping[str, Value] | None = None,
 ) -> RolloutReport:
     """Step every initial state in ``state0`` (B, nstate) for ``nstep`` steps, in native chunks.
@@ -75,18 +76,26 @@ def rollout_batch(
     instability) or that contain NaN/inf are flagged in ``diverged``; their rows after the divergence are set to NaN
     before ``consume`` sees them, so no sample is taken from a reset state. ``batch``: the trajectories MJX and
     Warp step (:func:`open_batch`). ``stop`` (optional) is asked after each chunk has been consumed; when it answers
-    True the rollout ends there (adaptive stopping, :mod:`mjpoincare.analysis.adaptive_stopping`).
+    True the rollout ends there (adaptive stopping, :mod:`mjpoincare.analysis.adaptive_stopping`). ``finished``
+    (optional), asked after each chunk has been consumed: a mask (B,) of the trajectories whose result is already
+    known; they are stepped no further (:meth:`~mjpoincare.seam.Batch.run_chunk`'s ``rows``: their rows of later
+    chunks are NaN, never a divergence) and the rollout ends when every one is.
     ``engine_options``: the engine's own options (:func:`mjpoincare.backends.open_batch`).
     """
     start = perturbed_starts(state0, model.nq, model.nv, start_perturbation)
     with captured_mujoco_log() as log:
         with open_batch(model, start, threads=threads, backend=backend, precision=precision, batch=batch,
                         engine_options=engine_options) as rollout:
-            done = 0
+            done, rows = 0, None
             while done < nstep:
                 n = min(chunk_steps, nstep - done)
-                consume(_chunk_of(rollout.run_chunk(n), model.nq, model.nv))
+                consume(_chunk_of(rollout.run_chunk(n, rows=rows), model.nq, model.nv))
                 done += n
+                if finished is not None:
+                    active = ~finished()
+                    if not active.any():
+                        break
+                    rows = None if active.all() else np.flatnonzero(active)
                 if stop is not None and stop():
                     break
         rollout.report.warnings += log

@@ -115,18 +115,29 @@ class ArrayBatch:
         """On leaving the batch: the B trajectories' last states."""
         self.report.final_state = self.states()
 
-    def _finish_chunk(self, states: np.ndarray, sensordata: np.ndarray, nstep: int, seconds: float) -> np.ndarray:
+    def _finish_chunk(self, states: np.ndarray, sensordata: np.ndarray, nstep: int, seconds: float,
+                      rows: np.ndarray | None = None) -> np.ndarray:
         """Count the chunk's ``nstep`` steps and ``seconds``, flag divergences (:func:`flag_divergence`), fold the
         sensor readings ``sensordata`` (rows, nstep, nsensordata) into the report's extremes (divergent rows left
         out) and continue from the last states of ``states`` (rows, nstep, nstate); the B trajectories' recorded
-        chunk (B, nstep + 1, nstate)."""
+        chunk (B, nstep + 1, nstate). With ``rows`` (k,) (:meth:`mjpoincare.seam.Batch.run_chunk`), every other
+        trajectory keeps its state and its divergence flag, is NaN in the chunk and stays out of the sensor
+        extremes."""
         real = self._real
         self.report.wall_s += seconds
         self.report.steps += real * nstep
         self.report.batch_steps += nstep
+        others = np.zeros(self._current.shape[0], bool)
+        if rows is not None:
+            others[:real] = True
+            others[np.asarray(rows, int)] = False
+        flags = self._diverged.copy()
         full, bad = flag_divergence(self._current, states, self._diverged)
+        self._diverged[others] = flags[others]
+        bad[others] = True
+        full[others] = np.nan
         self.report.diverged = self._diverged[:real].copy()
         if sensordata.shape[-1]:
             self.report.record_sensors(np.where(bad[:real, 1:, None], np.nan, sensordata[:real]))
-        self._current = states[:, -1, :].copy()
+        self._current = np.where(others[:, None], self._current, states[:, -1, :])
         return full[:real]

@@ -39,7 +39,8 @@ class DrakeBatch(ArrayBatch):
         self._simulators = [Simulator(self._scene.diagram, context) for context in self._contexts]
         self._applied = np.full(self._real, self._scene.friction)
 
-    def run_chunk(self, nstep: int, control: np.ndarray | None = None) -> np.ndarray:
+    def run_chunk(self, nstep: int, control: np.ndarray | None = None, rows: np.ndarray | None = None
+                  ) -> np.ndarray:
         if control is not None and np.any(control):
             raise NotImplementedError("backend=drake: actuator controls")
         scene, model = self._scene, self._model
@@ -48,7 +49,8 @@ class DrakeBatch(ArrayBatch):
         start = time.perf_counter()
         skipped = 0
         for b, (context, simulator) in enumerate(zip(self._contexts, self._simulators, strict=True)):
-            if self._diverged[b] or not np.isfinite(self._current[b]).all():  # flagged: stays NaN, never stepped
+            if (self._diverged[b] or not np.isfinite(self._current[b]).all()  # flagged: stays NaN, never stepped
+                    or (rows is not None and b not in rows)):
                 states[b] = np.nan
                 skipped += 1
                 continue
@@ -68,8 +70,9 @@ class DrakeBatch(ArrayBatch):
             full[: len(samples)] = samples
             times = t0 + model.opt.timestep * np.arange(1, nstep + 1)
             states[b] = to_mujoco(scene, model, times, full, nstate)
-        stepped = self._finish_chunk(states, np.zeros((self._real, nstep, 0)), nstep, time.perf_counter() - start)
-        self.report.steps -= skipped * nstep  # a flagged trajectory was not stepped
+        stepped = self._finish_chunk(states, np.zeros((self._real, nstep, 0)), nstep, time.perf_counter() - start,
+                                     rows)
+        self.report.steps -= skipped * nstep  # a flagged or unasked trajectory was not stepped
         return stepped
 
     def _failure(self, message: str) -> None:

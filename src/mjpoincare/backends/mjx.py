@@ -130,7 +130,8 @@ class MjxBatch(ArrayBatch):
         """Rows ``rows``' (geom_margin, geom_friction, actuator_biasprm, actuator_gear), as :func:`_step` takes them."""
         return tuple(jnp.asarray(self._fields[name][rows], self._dtype) for name in EVENT_FIELDS)
 
-    def run_chunk(self, nstep: int, control: np.ndarray | None = None) -> np.ndarray:
+    def run_chunk(self, nstep: int, control: np.ndarray | None = None, rows: np.ndarray | None = None
+                  ) -> np.ndarray:
         ctrl = self._controls(control, nstep, self._model.nu)
         with self._scope():
             args = (self._mx, self._event_fields(), self._data, jnp.asarray(self._current, self._dtype),
@@ -138,9 +139,9 @@ class MjxBatch(ArrayBatch):
             chunk, seconds = _compiled("chunk", _chunk, *args)
             self.report.compile_s += seconds
             start = time.perf_counter()
-            self._data, rows, sensors = jax.block_until_ready(chunk(*args))
-            states, sensordata = np.asarray(rows, float), np.asarray(sensors, float)
-        return self._finish_chunk(states, sensordata, nstep, time.perf_counter() - start)
+            self._data, recorded, sensors = jax.block_until_ready(chunk(*args))
+            states, sensordata = np.asarray(recorded, float), np.asarray(sensors, float)
+        return self._finish_chunk(states, sensordata, nstep, time.perf_counter() - start, rows)
 
     def advance(self, index: int, state: np.ndarray, seconds: float) -> np.ndarray:
         """One compiled single-trajectory step from fresh data (no solver warmstart carried over)."""

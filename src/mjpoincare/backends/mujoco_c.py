@@ -34,25 +34,35 @@ def _warning_lines(datas: list[mujoco.MjData]) -> list[str]:
 
 def _native_chunk(pool: mj_rollout.Rollout, model: mujoco.MjModel | list[mujoco.MjModel],
                   datas: list[mujoco.MjData], current: np.ndarray, n: int, dt: float,
-                  report: RolloutReport, control: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
-    """Step ``current`` (B, nstate) ``n`` steps in MuJoCo (with ``control`` (B, n, nu) as ctrl, if given);
-    returns the raw states (B, n, nstate) and the
-    chunk with its first row prepended, where rows from a divergence on (NaN, or MuJoCo's silent reset,
-    seen as time not advancing by one step per step) are NaN and the trajectory is flagged in ``report``."""
-    check_chunk(current.shape[0], n, current.shape[1])
+                  report: RolloutReport, control: np.ndarray | None = None, rows: np.ndarray | None = None
+                  ) -> tuple[np.ndarray, np.ndarray]:
+    """Step ``current`` (B, nstate), or its ``rows`` (k,) only, ``n`` steps in MuJoCo (with ``control`` (B, n, nu)
+    as ctrl, if given; ``model`` one for all or a list of B); returns the raw states of the stepped trajectories
+    (k, n, nstate) and the chunk (B, n + 1, nstate) with its first row prepended, where rows from a divergence on
+    (NaN, or MuJoCo's silent reset, seen as time not advancing by one step per step) are NaN and the trajectory is
+    flagged in ``report``, and every trajectory not in ``rows`` is NaN throughout (not flagged)."""
+    index = np.arange(current.shape[0]) if rows is None else np.asarray(rows, int)
+    start_states = current[index]
+    models = model if isinstance(model, mujoco.MjModel) else [model[i] for i in index]
+    check_chunk(start_states.shape[0], n, current.shape[1])
     start = time.perf_counter()
-    states, sensordata = pool.rollout(model, datas, current, control, nstep=n)
+    states, sensordata = pool.rollout(models, datas, start_states, None if control is None else control[index],
+                                      nstep=n)
     report.wall_s += time.perf_counter() - start
-    report.steps += current.shape[0] * n
+    report.steps += start_states.shape[0] * n
     report.batch_steps += n
-    full = np.concatenate([current[:, None, :], states], axis=1)
-    expected = full[:, :1, 0] + dt * np.arange(n + 1)[None, :]
-    bad = ~np.isfinite(full).all(axis=2) | (np.abs(full[:, :, 0] - expected) > 0.5 * dt)
-    bad = np.logical_or.accumulate(bad | report.diverged[:, None], axis=1)
-    report.diverged |= bad[:, -1]
-    full[bad] = np.nan
+    stepped = np.concatenate([start_states[:, None, :], states], axis=1)
+    expected = stepped[:, :1, 0] + dt * np.arange(n + 1)[None, :]
+    bad = ~np.isfinite(stepped).all(axis=2) | (np.abs(stepped[:, :, 0] - expected) > 0.5 * dt)
+    bad = np.logical_or.accumulate(bad | report.diverged[index, None], axis=1)
+    report.diverged[index] |= bad[:, -1]
+    stepped[bad] = np.nan
     if sensordata.shape[-1]:
         report.record_sensors(np.where(bad[:, 1:, None], np.nan, sensordata))
+    if rows is None:
+        return states, stepped
+    full = np.full((current.shape[0], n + 1, current.shape[1]), np.nan)
+    full[index] = stepped
     return states, full
 
 
@@ -106,12 +116,13 @@ class MujocoBatch:
             self.models[index] = copy.copy(self._shared)
         return self.models[index]
 
-    def run_chunk(self, nstep: int, control: np.ndarray | None = None) -> np.ndarray:
+    def run_chunk(self, nstep: int, control: np.ndarray | None = None, rows: np.ndarray | None = None
+                  ) -> np.ndarray:
         models = self._shared if self._shared is not None and all(m is self._shared for m in self.models) \
             else self.models
         states, full = _native_chunk(self._pool, models, self._datas, self._current, nstep, self.timestep,
-                                     self.report, control)
-        self._current = states[:, -1, :].copy()
+                                     self.report, control, rows)
+        self._current[slice(None) if rows is None else np.asarray(rows, int)] = states[:, -1, :]
         return full
 
     def states(self) -> np.ndarray:

@@ -163,7 +163,8 @@ class WarpBatch(ArrayBatch):
         self.report.compile_s += time.perf_counter() - start
         self._warm = True
 
-    def run_chunk(self, nstep: int, control: np.ndarray | None = None) -> np.ndarray:
+    def run_chunk(self, nstep: int, control: np.ndarray | None = None, rows: np.ndarray | None = None
+                  ) -> np.ndarray:
         if not self._warm:
             self._first_step()
         batch, model = self._current.shape[0], self._model
@@ -171,16 +172,16 @@ class WarpBatch(ArrayBatch):
             self._buffers[nstep] = (wp.zeros((batch, nstep, model.nu), dtype=float),
                                     wp.zeros((batch, nstep, self._current.shape[1]), dtype=float),
                                     wp.zeros((batch, nstep, model.nsensordata), dtype=float), None)
-        controls, rows, sensors, graph = self._buffers[nstep]
+        controls, recorded, sensors, graph = self._buffers[nstep]
         block = _block(nstep)
         controls.assign(self._controls(control, nstep, model.nu).astype(np.float32))
         with quiet():
             if graph is None:
                 start = time.perf_counter()
                 with wp.ScopedCapture(device=self._device) as capture:
-                    self._steps(block, controls, rows, sensors)
+                    self._steps(block, controls, recorded, sensors)
                 graph = capture.graph
-                self._buffers[nstep] = (controls, rows, sensors, graph)
+                self._buffers[nstep] = (controls, recorded, sensors, graph)
                 self.report.compile_s += time.perf_counter() - start
             self._load(self._mw, self._data, slice(None), self._current)
             start = time.perf_counter()
@@ -188,8 +189,8 @@ class WarpBatch(ArrayBatch):
             for _ in range(nstep // block):
                 wp.capture_launch(graph)
             wp.synchronize_device(self._device)
-            states, sensordata = rows.numpy().astype(float), sensors.numpy().astype(float)
-        return self._finish_chunk(states, sensordata, nstep, time.perf_counter() - start)
+            states, sensordata = recorded.numpy().astype(float), sensors.numpy().astype(float)
+        return self._finish_chunk(states, sensordata, nstep, time.perf_counter() - start, rows)
 
     def advance(self, index: int, state: np.ndarray, seconds: float) -> np.ndarray:
         """One step on the one-world event model and data (its solver warmstart carries over, as in MuJoCo C's)."""

@@ -49,11 +49,11 @@ from mjpoincare.scenarios.rimless_wheel_runs import (
     FIT_STEPS,
     WHEEL_FOOT,
     Recorder,
+    final_outcomes,
     fit_seconds,
     post_impact_samples,
     post_impact_states,
     simulate,
-    tail_outcomes,
     whole_chunks,
 )
 from mjpoincare.settings import search_space
@@ -204,7 +204,7 @@ def _fit_checks(w: theory.RimlessWheel, rec: Recorder, batch: int, tol: Toleranc
 
 
 def _basin_checks(w: theory.RimlessWheel, rec: Recorder, omega0: np.ndarray) -> tuple[list[checks.Check], BasinMap]:
-    simulated = tail_outcomes(w, rec)
+    simulated = final_outcomes(w, rec)
     predicted = []
     for om in omega0:
         outcome = theory.predicted_outcome(w, float(om))

@@ -62,6 +62,8 @@ class Recorder:
         self.max_clearance = np.zeros(batch)
         self.window: list[Chunk] = []  # the last TAIL_CHUNKS chunks
         self.last_backward = np.full(batch, -np.inf)  # time of each trajectory's last sample with omega <= 0
+        #: Each trajectory's outcome from the tail window in which it settled (:meth:`settle`), "" before.
+        self.settled = np.full(batch, "", dtype=object)
 
     def __call__(self, chunk: Chunk) -> None:
         w = self.w
@@ -71,22 +73,28 @@ class Recorder:
         self.mid = self.mid.concat(level_crossings(chunk.time, psi, values, max_jump=w.alpha))
         self.impacts = self.impacts.concat(wrap_events(chunk.time, psi, w.alpha))
         clearance = chunk.qpos[:, :, self.z.qpos] - (w.leg_length - self.radius) * np.cos(psi) - self.radius
-        self.max_clearance = np.fmax(self.max_clearance, np.nanmax(clearance, axis=1))
+        self.max_clearance = np.fmax(self.max_clearance, np.fmax.reduce(clearance, axis=1))
         self.window = [*self.window, chunk][-TAIL_CHUNKS:]
         backward = chunk.qvel[:, :, self.pitch.dof] <= 0.0
         last = backward.shape[1] - 1 - np.argmax(backward[:, ::-1], axis=1)
         rows = np.arange(len(last))
         self.last_backward = np.where(backward.any(axis=1), chunk.time[rows, last], self.last_backward)
 
-    def settled(self) -> np.ndarray:
-        """Per trajectory: its outcome can no longer change. Standing over the last tail window (the rocking only
-        decays, 003 Sec. 3.3), or rolling over it after ROLLING_IMPACTS forward impacts with no backward motion."""
-        if len(self.window) < TAIL_CHUNKS:
-            return np.zeros(len(self.last_backward), bool)
-        outcome = tail_outcomes(self.w, self)  # builds the tail window once per look
+    def settle(self) -> np.ndarray:
+        """Per trajectory: whether its outcome has settled, i.e. can no longer change. It settles over a tail window
+        in which it stands (the rocking only decays, 003 Sec. 3.3), or rolls after ROLLING_IMPACTS forward impacts
+        with no backward motion; that window's outcome is kept (:attr:`settled`) and the trajectory needs no more
+        steps."""
+        open_ = self.settled == ""
+        if len(self.window) < TAIL_CHUNKS or not open_.any():
+            return ~open_
+        rows = np.flatnonzero(open_)
+        outcome = tail_outcomes(self.w, self, rows)  # builds the tail window once per look
         forward = np.bincount(self.impacts.trajectory[self.impacts.time > self.last_backward[self.impacts.trajectory]],
-                              minlength=len(self.last_backward))
-        return (outcome == "standing") | ((outcome == "rolling") & (forward >= ROLLING_IMPACTS))
+                              minlength=len(self.last_backward))[rows]
+        now = (outcome == "standing") | ((outcome == "rolling") & (forward >= ROLLING_IMPACTS))
+        self.settled[rows[now]] = outcome[now]
+        return self.settled != ""
 
     @property
     def tail(self) -> Chunk | None:
@@ -115,20 +123,18 @@ def fit_seconds(w: theory.RimlessWheel) -> float:
 def simulate(model: mujoco.MjModel, w: theory.RimlessWheel, omega0: np.ndarray, seconds: float,
               settings: Values, *, until_decided: bool = False, settling: FitSettling | None = None
               ) -> tuple[Recorder, RolloutReport]:
-    """Roll the starts ``omega0`` for ``seconds``; with ``until_decided``, end at the first tail window in which
-    every start's outcome is settled (:meth:`Recorder.settled`); with ``settling``, once it says the post-impact
-    samples so far are enough."""
+    """Roll the starts ``omega0`` for ``seconds``; with ``until_decided``, step each start until its outcome settles
+    (:meth:`Recorder.settle`) and end when every one has; with ``settling``, once it says the post-impact samples so
+    far are enough."""
     radius = float(settings["foot_radius"])
     recorder = Recorder(model, w, len(omega0), radius)
     stop = None
     if settling is not None:
         def stop() -> bool:
             return settling([post[:, None] for post in post_impact_samples(w, recorder, len(omega0))])
-    elif until_decided:
-        def stop() -> bool:
-            return bool(recorder.settled().all())
     report = rollout_batch(model, post_impact_states(model, w, omega0, radius), whole_chunks(model, seconds),
-                           recorder, **rollout_options(settings), chunk_steps=chunk_steps(model), stop=stop)
+                           recorder, **rollout_options(settings), chunk_steps=chunk_steps(model), stop=stop,
+                           finished=recorder.settle if until_decided else None)
     return recorder, report
 
 
@@ -138,13 +144,24 @@ def post_impact_samples(w: theory.RimlessWheel, rec: Recorder, batch: int) -> li
     return [np.asarray(theory.post_impact_speed(w, w.slope, seq[:, 0]), float) for seq in rec.mid.sequences(batch)]
 
 
-def tail_outcomes(w: theory.RimlessWheel, rec: Recorder) -> np.ndarray:
-    """Each start's outcome over the last recorded window (:func:`classify_outcomes`)."""
+def tail_outcomes(w: theory.RimlessWheel, rec: Recorder, rows: np.ndarray | None = None) -> np.ndarray:
+    """Each start's outcome over the last recorded window (:func:`classify_outcomes`), or that of starts ``rows``."""
     tail = rec.tail
     assert tail is not None
+    pick = slice(None) if rows is None else rows
     runaway = 1.5 * math.sqrt(w.gravity / w.leg_length)
-    psi = wrap_phase(tail.qpos[:, :, rec.pitch.qpos], w.alpha)
-    clearance = tail.qpos[:, :, rec.z.qpos] - (w.leg_length - rec.radius) * np.cos(psi) - rec.radius
-    return classify_outcomes(tail.qvel[:, :, rec.pitch.dof], clearance,
+    psi = wrap_phase(tail.qpos[pick, :, rec.pitch.qpos], w.alpha)
+    clearance = tail.qpos[pick, :, rec.z.qpos] - (w.leg_length - rec.radius) * np.cos(psi) - rec.radius
+    return classify_outcomes(tail.qvel[pick, :, rec.pitch.dof], clearance,
                              rest_speed=0.05 * theory.rolling_fixed_point(w), runaway_speed=runaway,
                              flight_clearance=FLIGHT_CLEARANCE * w.leg_length)
+
+
+def final_outcomes(w: theory.RimlessWheel, rec: Recorder) -> np.ndarray:
+    """Each start's outcome: the one it settled on (:meth:`Recorder.settle`), else that of the last recorded window
+    (a start still unsettled when the run ended)."""
+    out = rec.settled.copy()
+    open_ = np.flatnonzero(out == "")
+    if open_.size:
+        out[open_] = tail_outcomes(w, rec, open_)
+    return out.astype(str)
