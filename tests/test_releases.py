@@ -220,6 +220,29 @@ def test_bisect_finds_the_first_patch_release_of_a_change(monkeypatch: pytest.Mo
     assert releases.patch_releases("3.3.7", "3.10.0", fetch=lambda: index) == ["3.4.0", "3.10.0"]
 
 
+def test_a_release_file_is_stamped_by_its_latest_run_and_left_alone_when_nothing_is_added(
+        monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> None:
+    """A resumed matrix that runs nothing new for a release leaves its file byte for byte; one that adds a run
+    stamps the file with that run's environment."""
+    import mujoco
+
+    from mjpoincare import stamp
+
+    dates = iter(f"2026-01-0{day}T00:00:00Z" for day in range(1, 10))
+    monkeypatch.setattr(stamp, "environment", lambda: {"date": next(dates), "mujoco": mujoco.__version__})
+    monkeypatch.setattr(releases, "run_scenario", lambda name, preset: {"scenario": name, "preset": preset,
+                                                                     "refused": None, "passed": True})
+    path = releases.run_release(tmp_path, ["fast"], ["rimless-wheel"])
+    first = path.read_bytes()
+    assert json.loads(first)["environment"]["date"] == "2026-01-02T00:00:00Z"  # the run's, not the opening's
+    assert releases.run_release(tmp_path, ["fast"], ["rimless-wheel"]) == path
+    assert path.read_bytes() == first
+    releases.run_release(tmp_path, ["fast"], ["rimless-wheel", "slotted-skate"])
+    held = json.loads(path.read_text())
+    assert [r["scenario"] for r in held["runs"]] == ["rimless-wheel", "slotted-skate"]
+    assert held["environment"]["date"] == "2026-01-05T00:00:00Z"
+
+
 def test_bad_input_exits_2_in_one_line(capsys: pytest.CaptureFixture[str]) -> None:
     assert releases.main(["bisect", "4.0.0", "3.17.0", "--check", "rimless-wheel/eigenvalue"]) == 2
     assert releases.main(["bisect", "3.17.0", "4.0.0", "--check", "no-such-scenario/x"]) == 2

@@ -143,7 +143,8 @@ def run_scenario(name: str, preset: str) -> dict[str, Any]:
 
 def run_release(out: Path, presets: Sequence[str] | None = None, names: Sequence[str] | None = None) -> Path:
     """The history's runs on the loaded MuJoCo into ``out/json/mujoco-<version>.json``, resuming from what that file
-    holds (a file from another MuJoCo or schema is refused); returns its path."""
+    holds (a file from another MuJoCo or schema is refused); returns its path. The file's environment stamp is that of
+    its latest run: a file to which nothing is added is left as it is."""
     import mujoco
 
     from mjpoincare import scenarios
@@ -160,7 +161,7 @@ def run_release(out: Path, presets: Sequence[str] | None = None, names: Sequence
         held = json.loads(path.read_text())
         if held.get("schema") != SCHEMA or held.get("mujoco") != version:
             raise ParameterError(f"--out: {path} holds another MuJoCo's or schema's runs; remove it to run again")
-        payload["runs"] = held["runs"]
+        payload["environment"], payload["runs"] = held["environment"], held["runs"]
     done = {(r["scenario"], r["preset"]) for r in payload["runs"]}
     for preset in presets:
         for name in names:
@@ -172,7 +173,8 @@ def run_release(out: Path, presets: Sequence[str] | None = None, names: Sequence
             payload["runs"].append(run)
             payload["environment"] = environment()
             write_json(payload, str(path))
-    write_json(payload, str(path))
+    if not path.exists():
+        write_json(payload, str(path))
     return path
 
 
