@@ -4,7 +4,8 @@
 #   make test       creates .venv, installs mjpoincare with every extra and its dev tools from the lock, runs ruff and
 #                   pytest in TEST_WORKERS (2) pytest-xdist workers (the other targets below use that .venv too)
 # The lock (requirements/lock.txt) pins every dependency for every Python >= 3.10 and platform (uv's universal
-# resolution); pip installs through it as constraints, so CI and a new user get the versions the suite was tested on.
+# resolution); uv (its locked version, bootstrapped by pip) installs through it as constraints, so CI and a new user
+# get the versions the suite was tested on.
 #   make lock         regenerate requirements/lock.txt from pyproject.toml
 #   make test-latest  the tests against the newest versions pyproject.toml allows (finds dependency drift)
 #   make margins      the regression gate's margin table: every check's form (gated, watched, declared miss), error,
@@ -42,6 +43,9 @@ STAMP := $(VENV)/.installed
 CORE := .venv-core
 CORE_STAMP := $(CORE)/.installed
 LOCK := requirements/lock.txt
+#: The locked uv, which installs the lock into .venv and .venv-core (pip bootstraps it): the same pins as pip would
+#: install, resolved and installed in a fraction of pip's time.
+UV_VERSION := $(shell sed -n 's/^uv==//p' $(LOCK))
 LATEST := .venv-latest
 
 OLDEST := .venv-oldest
@@ -67,15 +71,15 @@ PYTHON_CHECK := $(PYTHON) -c 'import sys; sys.exit(0 if sys.version_info >= (3, 
 $(STAMP): pyproject.toml $(LOCK)
 	@$(PYTHON_CHECK)
 	$(PYTHON) -m venv $(VENV)
-	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet --constraint $(LOCK) -e ".[dev,peers,mjx,warp]"
+	$(BIN)/python -m pip install --quiet "uv==$(UV_VERSION)"
+	$(BIN)/uv pip install --quiet --python $(BIN)/python --constraint $(LOCK) -e ".[dev,peers,mjx,warp]"
 	touch $(STAMP)
 
 $(CORE_STAMP): pyproject.toml $(LOCK)
 	@$(PYTHON_CHECK)
 	$(PYTHON) -m venv $(CORE)
-	$(CORE)/bin/python -m pip install --quiet --upgrade pip
-	$(CORE)/bin/python -m pip install --quiet --constraint $(LOCK) -e .
+	$(CORE)/bin/python -m pip install --quiet "uv==$(UV_VERSION)"
+	$(CORE)/bin/uv pip install --quiet --python $(CORE)/bin/python --constraint $(LOCK) -e .
 	touch $(CORE_STAMP)
 
 validate: $(CORE_STAMP)
