@@ -102,20 +102,28 @@ def _actuator_without_gear(self: MujocoBatch, index: int, actuator: int, *, bias
     _SET_ACTUATOR(self, index, actuator, bias=bias)
 
 
-def _chunk_without_control(self: MujocoBatch, nstep: int, control: np.ndarray | None = None) -> np.ndarray:
+def _chunk_without_control(self: MujocoBatch, nstep: int, control: np.ndarray | None = None,
+                           rows: np.ndarray | None = None) -> np.ndarray:
     """Steps with no ctrl whatever ``control``."""
-    return _RUN_CHUNK(self, nstep)
+    return _RUN_CHUNK(self, nstep, rows=rows)
 
 
-def _chunk_with_trajectory_0s_control(self: MujocoBatch, nstep: int, control: np.ndarray | None = None
-                                      ) -> np.ndarray:
+def _chunk_with_trajectory_0s_control(self: MujocoBatch, nstep: int, control: np.ndarray | None = None,
+                                      rows: np.ndarray | None = None) -> np.ndarray:
     """Steps every trajectory with trajectory 0's ctrl."""
-    return _RUN_CHUNK(self, nstep, None if control is None else np.repeat(control[:1], len(control), axis=0))
+    return _RUN_CHUNK(self, nstep, None if control is None else np.repeat(control[:1], len(control), axis=0), rows)
 
 
-def _chunk_with_first_step_control(self: MujocoBatch, nstep: int, control: np.ndarray | None = None) -> np.ndarray:
+def _chunk_with_first_step_control(self: MujocoBatch, nstep: int, control: np.ndarray | None = None,
+                                   rows: np.ndarray | None = None) -> np.ndarray:
     """Holds each trajectory's first ctrl over the whole chunk."""
-    return _RUN_CHUNK(self, nstep, None if control is None else np.repeat(control[:, :1], nstep, axis=1))
+    return _RUN_CHUNK(self, nstep, None if control is None else np.repeat(control[:, :1], nstep, axis=1), rows)
+
+
+def _chunk_of_every_row(self: MujocoBatch, nstep: int, control: np.ndarray | None = None,
+                        rows: np.ndarray | None = None) -> np.ndarray:
+    """Steps every trajectory whatever ``rows``."""
+    return _RUN_CHUNK(self, nstep, control)
 
 
 #: Broken seam methods planted into MuJoCo C's batch, each with the mechanism whose self-test must refuse it and a
@@ -131,6 +139,7 @@ PLANTED: dict[str, tuple[str, Callable[..., object], str, list[str]]] = {
                                        ["compass-biped-friction", "--set", "gait=iii"]),
     "first step's control held": ("run_chunk", _chunk_with_first_step_control, "control",
                                   ["compass-biped-friction", "--set", "gait=iii"]),
+    "chosen rows ignored": ("run_chunk", _chunk_of_every_row, "rollout", ["rimless-wheel"]),
 }
 
 

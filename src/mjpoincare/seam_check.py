@@ -166,6 +166,12 @@ def _rollout(opener: Opener, eps: float) -> str | None:
         first = batch.run_chunk(STEPS)
         batch.set_states(np.array([1]), start[1:2])  # trajectory 1 starts again, trajectories 0 and 2 go on
         second = batch.run_chunk(STEPS)
+        third = batch.run_chunk(STEPS, rows=np.array([0, 2]))  # trajectory 1 waits
+        waited = (bool(np.isnan(third[1]).all()) and bool((batch.states()[1] == second[1, -1]).all())
+                  and not batch.report.diverged.any() and bool((third[[0, 2], 0] == second[[0, 2], -1]).all()))
+    if not waited:
+        return ("a chunk of trajectories 0 and 2 did not leave trajectory 1 where it was (its rows NaN, its state "
+                "kept, not flagged) or did not continue the others")
     ticks = np.concatenate([np.diff(first[:, :, 0]), np.diff(second[:, :, 0])], axis=1)
     if not (np.abs(ticks - TIMESTEP) < EXACT * eps).all():  # rounding of times near 0.1 s
         return f"recorded times advance by {ticks.min():.6g}-{ticks.max():.6g} s per step, not the timestep"
@@ -330,7 +336,7 @@ def _contact_fields(opener: Opener, eps: float) -> str | None:
 
 #: Every mechanism of the seam, by the name a scenario declares.
 MECHANISMS: dict[str, Mechanism] = {
-    "rollout": Mechanism(name="chunked rollout and state setting", test=_rollout),
+    "rollout": Mechanism(name="chunked rollout, state setting and chunks of chosen trajectories", test=_rollout),
     "contact": Mechanism(name="contact release and restore", test=_contact_release),
     "equality": Mechanism(name="equality toggling", test=_equality_toggle),
     "friction": Mechanism(name="per-trajectory friction", test=_friction),
