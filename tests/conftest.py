@@ -27,6 +27,11 @@ from mjpoincare.gate_environments import DEFAULT, Environment, runnable_kernels,
 
 # dm_control (the environments' tests) opens a GLFW context at import unless told otherwise; off-screen EGL works here
 os.environ.setdefault("MUJOCO_GL", "egl")
+# JAX's persistent compilation cache (keyed by the compiled program, JAX's version and the device), for the MJX tests
+# and every process they start: XLA's compiles of mjx.step are most of their time, and repeat across tests, processes
+# and runs of the suite, as pip's and uv's downloads do (XDG's user cache, as theirs)
+os.environ.setdefault("JAX_COMPILATION_CACHE_DIR", str(
+    Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "mjpoincare" / "jax-compilation"))
 
 #: The MJX validation of the rimless wheel (a minute on 2 CPU cores, in one XLA thread) that
 #: ``tests/test_backends.py::test_rimless_wheel_on_mjx_passes_its_fast_checks`` reads: started when that test is
