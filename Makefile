@@ -44,7 +44,9 @@ CORE := .venv-core
 CORE_STAMP := $(CORE)/.installed
 LOCK := requirements/lock.txt
 #: The locked uv, which installs the lock into .venv and .venv-core (pip bootstraps it): the same pins as pip would
-#: install, resolved and installed in a fraction of pip's time.
+#: install, resolved and installed in a fraction of pip's time. --compile-bytecode writes the .pyc files at install
+#: time, as pip does: without them every Python process compiles scipy & co. again where the environment sets
+#: PYTHONDONTWRITEBYTECODE (containers often do), about a second per process.
 UV_VERSION := $(shell sed -n 's/^uv==//p' $(LOCK))
 LATEST := .venv-latest
 
@@ -72,14 +74,14 @@ $(STAMP): pyproject.toml $(LOCK)
 	@$(PYTHON_CHECK)
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet "uv==$(UV_VERSION)"
-	$(BIN)/uv pip install --quiet --python $(BIN)/python --constraint $(LOCK) -e ".[dev,peers,mjx,warp]"
+	$(BIN)/uv pip install --quiet --compile-bytecode --python $(BIN)/python --constraint $(LOCK) -e ".[dev,peers,mjx,warp]"
 	touch $(STAMP)
 
 $(CORE_STAMP): pyproject.toml $(LOCK)
 	@$(PYTHON_CHECK)
 	$(PYTHON) -m venv $(CORE)
 	$(CORE)/bin/python -m pip install --quiet "uv==$(UV_VERSION)"
-	$(CORE)/bin/uv pip install --quiet --python $(CORE)/bin/python --constraint $(LOCK) -e .
+	$(CORE)/bin/uv pip install --quiet --compile-bytecode --python $(CORE)/bin/python --constraint $(LOCK) -e .
 	touch $(CORE_STAMP)
 
 validate: $(CORE_STAMP)

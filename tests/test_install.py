@@ -41,9 +41,10 @@ def env_bin(wheel: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
     root = tmp_path_factory.mktemp("venv")
     venv.create(root)
     bin_dir = root / "bin"
-    uv = Path(sys.executable).with_name("uv")
-    done = _run([uv, "pip", "install", "--quiet", "--python", bin_dir / "python", "--constraint",
-                 REPO / "requirements" / "lock.txt", wheel, "pytest"], cwd=root)
+    from uv import find_uv_bin  # the dev extra's uv
+
+    done = _run([find_uv_bin(), "pip", "install", "--quiet", "--compile-bytecode", "--python", bin_dir / "python",
+                 "--constraint", REPO / "requirements" / "lock.txt", wheel, "pytest"], cwd=root)
     assert done.returncode == 0, done.stderr
     return bin_dir
 
