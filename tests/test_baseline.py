@@ -1,9 +1,11 @@
-"""The regression baseline (:mod:`mjpoincare.baseline`): what a change beyond a check's resolution is, on records
-built by hand; ``validate --baseline`` refuses a missing file before any simulation; the gate's committed baseline
-(``docs/results/gate/baseline.json``, ``make baseline``) holds every gate check, and every gate run stays within it."""
+"""The regression baseline (:mod:`mjpoincare.baseline`): what a change beyond a check's allowance is, on records
+built by hand and planted into a gate run; ``validate --baseline`` refuses a missing file before any simulation; the
+gate's committed baseline (``docs/results/gate/baseline.json``, ``make baseline``) holds every gate check, and every
+gate run stays within it."""
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 from pathlib import Path
@@ -12,6 +14,7 @@ import pytest
 from mjpoincare.analysis.checks import Check
 
 from mjpoincare import baseline, gate
+from mjpoincare.allowance import FLOOR, MULTIPLE, allowance, floor
 from mjpoincare.cli import main
 from mjpoincare.reports.gate_baseline import BASELINE
 from mjpoincare.result import Result
@@ -32,20 +35,23 @@ def _baseline(result: Result, resolutions: dict[str, float]) -> dict[str, object
     return baseline.updated(None, [(baseline.run_key(result), baseline.entry(result, resolutions))], {})
 
 
-def test_a_change_beyond_its_multiple_of_the_resolution_fails_naming_old_new_and_resolution() -> None:
+def test_a_change_beyond_its_multiple_of_the_resolution_fails_naming_old_new_and_allowance() -> None:
     recorded = _baseline(_result({"a": 0.01, "b": 0.02}), {"a": 1e-4, "b": 1e-4})
     assert baseline.deviations(_result({"a": 0.01 + 2.9e-4, "b": 0.02 - 2.9e-4}), recorded) == []
     moved = baseline.deviations(_result({"a": 0.01 + 3.1e-4, "b": 0.02}, timestep=1.01e-3), recorded)
     assert [d.check for d in moved] == ["a"]
     assert moved[0].message() == (
-        "rimless-wheel[fast]::a: error 0.01 -> 0.01031: changed 0.00031, 3.1 x its resolution 0.0001 (at most 3 x); "
-        "settings differ from the recorded run: timestep 0.001 -> 0.00101")
+        "rimless-wheel[fast]::a: error 0.01 -> 0.01031: changed 0.00031, 1.03 x its allowance 0.0003 (the larger of "
+        "3 x its resolution 0.0001 and 1e-06 x its tolerance); settings differ from the recorded run: timestep 0.001 "
+        "-> 0.00101")
 
 
-def test_the_resolution_never_falls_below_roundoff_and_nan_matches_only_nan() -> None:
-    recorded = _baseline(_result({"a": 0.5, "b": math.nan}), {"a": 0.0})
-    assert baseline.deviations(_result({"a": 0.5 + 2e-12, "b": math.nan}), recorded) == []
-    assert [d.check for d in baseline.deviations(_result({"a": 0.5 + 4e-12, "b": 0.0}), recorded)] == ["a", "b"]
+def test_below_the_floor_a_change_passes_however_small_the_resolution_and_nan_matches_only_nan() -> None:
+    """The tolerance is 0.1: a resolution at roundoff (or none measured) still allows 1e-7, a millionth of it."""
+    recorded = _baseline(_result({"a": 0.5, "b": math.nan, "c": 0.3}), {"a": 0.0, "c": 1e-14})
+    assert baseline.deviations(_result({"a": 0.5 + 9e-8, "b": math.nan, "c": 0.3 - 9e-8}), recorded) == []
+    moved = baseline.deviations(_result({"a": 0.5 + 1.1e-7, "b": 0.0, "c": 0.3}), recorded)
+    assert [d.check for d in moved] == ["a", "b"]
 
 
 def test_a_missing_or_new_check_and_an_unrecorded_run_are_changes() -> None:
@@ -78,18 +84,38 @@ def test_validate_refuses_a_baseline_it_cannot_use_before_any_simulation(
 
 def test_the_committed_baseline_holds_every_gate_check_with_a_resolution() -> None:
     """One record per gate case (keyed by its non-default parameters), every check of the committed ensemble
-    measurement in it, each resolution at least roundoff and below the check's tolerance except where the gate
-    declares the check unresolved (its spread exceeds half its tolerance: no baseline resolves it either)."""
+    measurement in it, each resolution finite and at least 0 and below the check's tolerance except where the gate
+    declares the check unresolved (its spread exceeds half its tolerance: no baseline resolves it either), recorded
+    under the allowance's rule of today."""
     payload = baseline.load(str(ROOT / BASELINE))
-    assert payload["stamp"]["git_sha"] and payload["multiple"] == baseline.MULTIPLE
+    assert payload["stamp"]["git_sha"] and (payload["multiple"], payload["floor"]) == (MULTIPLE, FLOOR)
     rows = json.loads((ROOT / "docs/results/gate/margins.json").read_text())["rows"]
     keys = {c.label: baseline.key_of(c.scenario, c.preset, dict(c.values)) for c in gate.cases()}
     assert set(payload["runs"]) == set(keys.values()) and len(keys) == len(set(keys.values()))
     for row in rows:
         entry = payload["runs"][keys[row["case"]]]["checks"][row["check"]]
-        assert entry["resolution"] >= baseline.floor(entry["error"]), (row["case"], row["check"])
+        assert entry["resolution"] is not None and entry["resolution"] >= 0, (row["case"], row["check"])
         if row["tolerance"] > 0 and row["status"] != "declared miss, unresolved":
             assert entry["resolution"] < row["tolerance"], (row["case"], row["check"])
+
+
+@pytest.mark.mujoco
+def test_a_planted_change_below_the_floor_passes_and_beyond_the_allowance_fails_the_committed_baseline() -> None:
+    """The skate's gate run with its heading error moved by half its floor (a millionth of its tolerance, far above
+    its recorded resolution) passes the committed baseline; moved by 1.1 x its allowance, it fails, naming the check
+    alone."""
+    run = gate.run_case(gate.case("slotted-skate[fast]"))
+    committed = baseline.load(str(ROOT / BASELINE))
+    entry = committed["runs"][baseline.run_key(run)]["checks"]["heading"]
+    assert entry["resolution"] < 0.5 * floor(entry["tolerance"]), "the heading's resolution reached the floor"
+
+    def moved(shift: float) -> list[baseline.Deviation]:
+        checks = [dataclasses.replace(c, error=c.error + shift) if c.name == "heading" else c for c in run.checks]
+        return baseline.deviations(dataclasses.replace(run, checks=checks), committed)
+
+    assert moved(0.0) == [] and moved(0.5 * floor(entry["tolerance"])) == []
+    beyond = moved(1.1 * allowance(entry["resolution"], entry["tolerance"], entry["error"]))
+    assert [d.check for d in beyond] == ["heading"] and "1.1 x its allowance" in beyond[0].message()
 
 
 @pytest.mark.mujoco

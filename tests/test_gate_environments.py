@@ -1,14 +1,15 @@
 """The gate across the environments one machine can emulate (:mod:`mjpoincare.gate_environments`): the BLAS kernels
-and numpy dispatch a CPU offers; the committed ensemble measurement (``make margins``: docs/results/gate/) and the
-gate's declarations agree with it; the gate's kernel-sensitive cases re-run under a second OpenBLAS kernel (Prescott,
-which every x86-64 CPU runs) in a process of their own move by no more than their measured spread; and a planted
-kernel dependence fails that comparison."""
+crossed with the numpy dispatch levels a CPU offers; the committed ensemble measurement (``make margins``:
+docs/results/gate/) and the gate's declarations agree with it; the gate's kernel-sensitive cases re-run under a second
+OpenBLAS kernel (Prescott, which every x86-64 CPU runs) in a process of their own move by no more than their allowance
+(:func:`mjpoincare.allowance.allowance`); a planted kernel dependence below the allowance's floor passes that
+comparison and one beyond the allowance fails it."""
 
 from __future__ import annotations
 
 import json
-import math
 import sys
+from collections.abc import Callable
 from functools import cache
 from pathlib import Path
 from typing import Any
@@ -17,11 +18,11 @@ import pytest
 from conftest import kernel_run_key, kernel_sensitive_cases, second_kernel
 
 from mjpoincare import gate, gate_environments
+from mjpoincare.allowance import allowance, floor
 from mjpoincare.gate_environments import (
     Environment,
     margins_command,
     read_environment,
-    run_environment,
     runnable_kernels,
     start_environment,
 )
@@ -46,11 +47,17 @@ def _errors_here(labels: list[str]) -> gate_environments.Errors:
             for check in gate.run_case(c).checks}
 
 
-def _allowances() -> dict[tuple[str, str], float]:
-    """Per check, how far two kernels may set its error apart: the larger of its measured spread (around the run the
-    measurement made on its CPU's own kernel) and its range over the measured kernels (two kernels of the ensemble
-    differ by up to that range, and neither need be the one the measurement ran by default: this CPU's may be any)."""
-    return {key: max(float(row["spread"]), gate_page.kernel_spread(row)) for key, row in measured().items()}
+def _spreads() -> dict[tuple[str, str], float]:
+    """Per check, the spread two environments' errors are compared by: the larger of its measured spread (around the
+    run the measurement made on its CPU's own kernel) and its range over the measured environments (two environments
+    of the ensemble differ by up to that range, and neither need be the one the measurement ran by default: this CPU's
+    may be any)."""
+    return {key: max(float(row["spread"]), gate_page.environment_range(row)) for key, row in measured().items()}
+
+
+def _tolerances() -> dict[tuple[str, str], float]:
+    """Per check, its tolerance in the committed measurement (the allowance's floor is a fraction of it)."""
+    return {key: float(row["tolerance"]) for key, row in measured().items()}
 
 
 def test_kernels_offered_by_cpu_features() -> None:
@@ -62,23 +69,45 @@ def test_kernels_offered_by_cpu_features() -> None:
     assert runnable_kernels({}) == ()
 
 
-def test_the_ensemble_is_the_default_the_kernels_and_numpy_at_its_baseline() -> None:
-    labels = [e.label for e in gate_environments.ensemble()]
-    assert labels[0] == "default"
-    assert [x for x in labels if x.startswith("OPENBLAS_CORETYPE=")] == [
-        f"OPENBLAS_CORETYPE={k}" for k in runnable_kernels()]
-    assert ("numpy baseline" in labels) == bool(gate_environments.numpy_dispatched())
+def test_the_ensemble_crosses_every_kernel_with_every_numpy_level() -> None:
+    """The default, each runnable kernel with numpy at each dispatch level the CPU offers, and one BLAS thread."""
+    ensemble = gate_environments.ensemble()
+    labels = [e.label for e in ensemble]
+    levels = gate_environments.numpy_levels()
+    assert labels[0] == "default" and labels[-1] == "OPENBLAS_NUM_THREADS=1" and len(labels) == len(set(labels))
+    kernels = [e for e in ensemble if "OPENBLAS_CORETYPE" in e.variables]
+    assert len(kernels) == len(runnable_kernels()) * len(levels)
+    assert {(e.variables["OPENBLAS_CORETYPE"], e.variables.get("NPY_DISABLE_CPU_FEATURES", "")) for e in kernels} == {
+        (k, " ".join(disabled)) for k in runnable_kernels() for _, disabled in levels}
 
 
-def test_environment_disagreements_hold_each_check_to_its_spread() -> None:
-    """A move within the declared spread passes, beyond it fails with the factor; a check one side lacks fails; the
-    allowance never drops below roundoff."""
-    here = {("c", "a"): 1.0, ("c", "b"): 0.5, ("c", "n"): 0.0}
-    there = {("c", "a"): 1.0 + 1e-6, ("c", "b"): 0.5 + 1e-3, ("c", "n"): 1e-13}
-    spreads = {("c", "a"): 2e-6, ("c", "b"): 1e-4, ("c", "n"): 0.0}
-    lines = gate.environment_disagreements(there, here, spreads, "K")
-    assert len(lines) == 1 and lines[0].startswith("c::b: 0.5 here, 0.501 under K: moved 0.001, 10 x")
-    assert gate.environment_disagreements({}, {("c", "a"): 1.0}, spreads, "K") == ["c::a: 1 here, nan under K"]
+def test_numpy_levels_take_the_dispatch_down_to_avx2_and_to_the_baseline() -> None:
+    """numpy 2's dispatch targets and numpy 1.26's: AVX2 disables exactly the AVX-512 ones, the baseline all; a CPU
+    without AVX-512 has no AVX2 level apart from its own, one with no dispatch none."""
+    assert gate_environments.numpy_levels(("X86_V3", "X86_V4", "AVX512_ICL")) == (
+        ("", ()), ("numpy AVX2", ("X86_V4", "AVX512_ICL")), ("numpy baseline", ("X86_V3", "X86_V4", "AVX512_ICL")))
+    assert gate_environments.numpy_levels(("AVX2", "FMA3", "AVX512F", "AVX512_SKX"))[1] == (
+        "numpy AVX2", ("AVX512F", "AVX512_SKX"))
+    assert [label for label, _ in gate_environments.numpy_levels(("X86_V3",))] == ["", "numpy baseline"]
+    assert gate_environments.numpy_levels(()) == (("", ()),)
+
+
+def test_environment_disagreements_hold_each_check_to_its_allowance() -> None:
+    """A move within 3 x the spread passes, beyond it fails with the factor; a move below the floor (1e-6 of the
+    tolerance) passes however small the spread; a check one side lacks fails; the allowance never drops below
+    roundoff where a check has no tolerance."""
+    here = {("c", "a"): 1.0, ("c", "b"): 0.5, ("c", "f"): 0.2, ("c", "n"): 0.0}
+    there = {("c", "a"): 1.0 + 5e-6, ("c", "b"): 0.5 + 1e-3, ("c", "f"): 0.2 + 9e-9, ("c", "n"): 1e-13}
+    spreads = {("c", "a"): 2e-6, ("c", "b"): 1e-4, ("c", "f"): 1e-15, ("c", "n"): 0.0}
+    tolerances = {("c", "a"): 0.1, ("c", "b"): 0.1, ("c", "f"): 0.01, ("c", "n"): 0.0}
+    lines = gate.environment_disagreements(there, here, spreads, tolerances, "K")
+    assert len(lines) == 1 and lines[0].startswith("c::b: 0.5 here, 0.501 under K: moved 0.001, 3.33 x its allowance")
+    assert "3 x its spread 0.0001 and 1e-06 x its tolerance" in lines[0]
+    there[("c", "f")] = 0.2 + 1.1e-8
+    named = gate.environment_disagreements(there, here, spreads, tolerances, "K")
+    assert [x.split(":")[2] for x in named] == ["b", "f"]
+    assert gate.environment_disagreements({}, {("c", "a"): 1.0}, spreads, tolerances, "K") == [
+        "c::a: 1 here, nan under K"]
 
 
 def test_outside_ensemble_names_the_distance_and_the_closest_environment() -> None:
@@ -102,9 +131,10 @@ def test_the_committed_measurement_covers_every_gate_check_and_every_declaration
             assert row["holds"], f"{c.label}::{name} did not hold its form in {gate_page.MARGINS}"
         for declared in (*c.watched, *c.misses):
             row = rows[(c.label, declared.check)]
-            assert declared.spread >= row["spread"] or (isinstance(declared, Miss) and not declared.resolved), (
-                f"{c.label}::{declared.check}: declared spread {declared.spread:.2g} below the ensemble's "
-                f"{row['spread']:.2g}")
+            allowed = allowance(declared.spread, row["tolerance"])
+            assert row["spread"] <= allowed or (isinstance(declared, Miss) and not declared.resolved), (
+                f"{c.label}::{declared.check}: the ensemble's spread {row['spread']:.2g} beyond the allowance "
+                f"{allowed:.2g} of the declared {declared.spread:.2g}")
         for miss in c.misses:
             row = rows[(c.label, miss.check)]
             for error in (row["error"], *row["environments"].values()):
@@ -128,26 +158,33 @@ def test_the_gate_holds_under_a_second_blas_kernel(request: pytest.FixtureReques
     second = second_kernel()
     process = request.config.stash.get(kernel_run_key, None) or start_environment(second, labels)
     here = _errors_here(labels)  # while the second kernel runs, when this test started it
-    lines = gate.environment_disagreements(read_environment(process, second, labels), here, _allowances(),
-                                           second.label)
+    lines = gate.environment_disagreements(read_environment(process, second, labels), here, _spreads(),
+                                           _tolerances(), second.label)
     assert not lines, "\n".join(lines)
 
 
 @pytest.mark.mujoco
 @pytest.mark.skipif("Prescott" not in runnable_kernels(), reason="OpenBLAS's Prescott kernel is x86-64 only")
-def test_a_planted_kernel_dependence_beyond_its_spread_fails_the_second_kernel_run() -> None:
-    """A check whose error moves by 1e-6 whenever a kernel is forced (far above the skate's heading spread) is named,
-    with its move; nothing else of the case is."""
+def test_a_planted_kernel_dependence_fails_beyond_its_allowance_and_passes_below_its_floor() -> None:
+    """The skate's heading error moved whenever a kernel is forced: by 1.1 x its allowance it is named with its move,
+    and nothing else of the case is; by half its floor (a millionth of its tolerance, far above its measured spread:
+    a change the check cannot express) it passes."""
     forced = Environment("OPENBLAS_CORETYPE=Prescott", {"OPENBLAS_CORETYPE": "Prescott"})
+    key = (PLANTED_CASE, "heading")
+    beyond = 1.1 * allowance(_spreads()[key], _tolerances()[key])
+    below = 0.5 * floor(_tolerances()[key])
+    assert _spreads()[key] < below, "the heading's spread no longer lies below the floor: plant elsewhere"
 
-    def planted(labels: list[str]) -> list[str]:
-        return [sys.executable, str(PLANT), "heading", "1e-6", *margins_command(labels)[3:]]
+    def planted(check: str, shift: float) -> Callable[[list[str]], list[str]]:
+        return lambda labels: [sys.executable, str(PLANT), check, repr(shift), *margins_command(labels)[3:]]
 
-    there = run_environment(forced, [PLANTED_CASE], command=planted)
-    lines = gate.environment_disagreements(there, _errors_here([PLANTED_CASE]), _allowances(), forced.label)
-    assert len(lines) == 1 and lines[0].startswith(f"{PLANTED_CASE}::heading:") and "moved 1e-06" in lines[0], lines
-    assert math.isclose(there[(PLANTED_CASE, "heading")] - _errors_here([PLANTED_CASE])[(PLANTED_CASE, "heading")],
-                        1e-6, rel_tol=1e-6)
+    runs = [start_environment(forced, [PLANTED_CASE], command=planted("heading", shift)) for shift in (beyond, below)]
+    here = _errors_here([PLANTED_CASE])
+    failed, passed = (gate.environment_disagreements(read_environment(run, forced, [PLANTED_CASE]), here, _spreads(),
+                                                     _tolerances(), forced.label) for run in runs)
+    assert len(failed) == 1 and failed[0].startswith(f"{PLANTED_CASE}::heading:"), failed
+    assert "1.1 x its allowance" in failed[0], failed
+    assert passed == []
 
 
 def test_xdist_groups_follow_the_gate_case_in_the_node_id() -> None:

@@ -41,7 +41,7 @@ LAYER_OF: dict[str, str] = {
     "mjpoincare.seam": "core", "mjpoincare.parallel": "core", "mjpoincare.progress": "core",
     "mjpoincare.mjlog": "core", "mjpoincare.mjcompat": "core", "mjpoincare.mjcf_loader": "core",
     "mjpoincare.stamp": "core", "mjpoincare.cost": "core", "mjpoincare.version": "core",
-    "mjpoincare.outputs": "core",
+    "mjpoincare.outputs": "core", "mjpoincare.allowance": "core",
     "mjpoincare.backends": "engines", "mjpoincare.peers": "engines",
     "mjpoincare.simulate": "simulation", "mjpoincare.seam_check": "simulation",
     "mjpoincare.scenarios": "scenarios",

@@ -16,7 +16,7 @@ from typing import Any
 
 import pytest
 
-from mjpoincare import baseline, gate, releases, scenarios
+from mjpoincare import allowance, releases, scenarios
 from mjpoincare.params import ParameterError
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -167,7 +167,7 @@ def test_the_pages_real_changes_are_those_the_raw_values_give() -> None:
     assert listed == expected
     assert marked == {key[:4] for key in expected}
     assert ("slotted-skate", "fast", "final_speed", "3.11.0", "3.10.0") not in expected  # 4.4e-16, spread 0
-    assert (releases.MULTIPLE, gate.ROUNDOFF) == (baseline.MULTIPLE, ROUNDOFF) == (MULTIPLE, ROUNDOFF)
+    assert (releases.MULTIPLE, releases.ROUNDOFF) == (allowance.MULTIPLE, allowance.ROUNDOFF) == (MULTIPLE, ROUNDOFF)
     assert "exceeds both 3 times the larger of the two spreads and the roundoff floor, 1e-12 of max(1," in page
 
 

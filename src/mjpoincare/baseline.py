@@ -11,8 +11,9 @@ its **resolution**: the largest change of the error that jitter gives, that is, 
 - for a user's baseline (``validate --update-baseline``, the plugin's ``--mjpoincare-update-baseline``): over the
   rounding perturbations (:data:`ROUNDING`), run beside the recorded run;
 
-never below roundoff (:data:`mjpoincare.gate.ROUNDOFF` of max(1, |error|)). A later run's check fails when its error
-moves from the recorded one by more than :data:`MULTIPLE` resolutions, or when it is missing or new.
+A later run's check fails when its error moves from the recorded one by more than its allowance
+(:func:`mjpoincare.allowance.allowance`: :data:`~mjpoincare.allowance.MULTIPLE` resolutions, never below
+:data:`~mjpoincare.allowance.FLOOR` of the check's tolerance), or when it is missing or new.
 
 Runs are keyed by scenario, preset and the parameters that differ from the scenario's defaults
 (``rimless-wheel[accurate,spokes=10,slope=0.1]``, the gate cases' labels), never by the simulator settings: a
@@ -30,17 +31,13 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from mjpoincare.allowance import FLOOR, MULTIPLE, allowance
 from mjpoincare.analysis.checks import jsonable
 from mjpoincare.params import ParameterError, Value
 from mjpoincare.result import Result
 
 #: Format of the baseline file (its ``schema`` field).
 SCHEMA = "mjpoincare-baseline/1"
-#: A check's error may move from its recorded value by at most this many resolutions. The resolution is the largest
-#: change measured over a finite ensemble; an environment outside it (another CPU) moved the biped checks by at most
-#: 1.0x the ensemble's spread where both were measured, so 3 leaves room for what was not sampled.
-MULTIPLE = 3.0
-
 #: The gate's perturbations that change a run's rounding only (:data:`mjpoincare.gate.PERTURBATIONS`): threads and
 #: starts x(1 + 1e-12) and x(1 + 1e-9). A baseline compares runs at one seed, so another seed's experiment design (a
 #: different set of starts, not jitter) is not part of its resolution.
@@ -49,8 +46,7 @@ ROUNDING = ("threads 1", "starts x(1+1e-12)", "starts x(1+1e-9)")
 
 @dataclass(frozen=True)
 class Deviation:
-    """A check whose error moved beyond :data:`MULTIPLE` resolutions from its recorded value, or that one of the
-    two runs lacks.
+    """A check whose error moved beyond its allowance from its recorded value, or that one of the two runs lacks.
 
     Attributes:
         run: the run's key (:func:`run_key`).
@@ -58,6 +54,8 @@ class Deviation:
         old: the recorded error (NaN: the baseline lacks the check).
         new: this run's error (NaN: this run lacks the check).
         resolution: the recorded resolution (NaN where the baseline lacks the check).
+        allowed: the change the check is allowed (:func:`mjpoincare.allowance.allowance` of the resolution and the
+            recorded tolerance; NaN where the baseline lacks the check).
         note: what else differs from the recorded run (its settings), or why there is nothing to compare.
     """
 
@@ -66,6 +64,7 @@ class Deviation:
     old: float
     new: float
     resolution: float
+    allowed: float = math.nan
     note: str = ""
 
     def message(self) -> str:
@@ -74,9 +73,9 @@ class Deviation:
         if self.note and not (math.isfinite(self.old) and math.isfinite(self.new)) and math.isnan(self.resolution):
             return head + self.note
         change = abs(self.new - self.old)
-        return (head + f"error {self.old:.6g} -> {self.new:.6g}: changed {change:.3g}, "
-                f"{change / self.resolution:.3g} x its resolution {self.resolution:.3g} (at most {MULTIPLE:g} x)"
-                + (f"; {self.note}" if self.note else ""))
+        return (head + f"error {self.old:.6g} -> {self.new:.6g}: changed {change:.3g}, {change / self.allowed:.3g} x "
+                f"its allowance {self.allowed:.3g} (the larger of {MULTIPLE:g} x its resolution {self.resolution:.3g} "
+                f"and {FLOOR:g} x its tolerance)" + (f"; {self.note}" if self.note else ""))
 
 
 def run_key(result: Result) -> str:
@@ -93,19 +92,12 @@ def key_of(scenario: str, preset: str, params: Mapping[str, Value]) -> str:
     return f"{scenario}[{','.join([preset, *changed])}]"
 
 
-def floor(error: float) -> float:
-    """The smallest resolution a check is held to: roundoff of its error."""
-    from mjpoincare.gate import ROUNDOFF
-
-    return ROUNDOFF * max(1.0, abs(error) if math.isfinite(error) else 1.0)
-
-
 def entry(result: Result, resolutions: Mapping[str, float]) -> dict[str, Any]:
     """The baseline record of ``result``: seed, settings, MuJoCo version, and per check its error, simulated value,
-    tolerance, kind and resolution (at least :func:`floor`; ``None`` where jitter made the error non-finite)."""
+    tolerance, kind and resolution (the measured spread; ``None`` where jitter made the error non-finite)."""
     checks = {}
     for c in result.checks:
-        resolution = max(resolutions.get(c.name, 0.0), floor(c.error))
+        resolution = resolutions.get(c.name, 0.0)
         checks[c.name] = {"error": c.error, "simulated": c.simulated, "tolerance": c.tolerance, "kind": c.kind,
                           "resolution": resolution if math.isfinite(resolution) else None}
     return jsonable({"seed": result.seed, "settings": result.settings, "mujoco_version": result.mujoco_version,
@@ -164,7 +156,8 @@ def check_path(path: str, update: bool, option: str = "--baseline") -> None:
 
 
 def deviations(result: Result, baseline: Mapping[str, Any], key: str | None = None) -> list[Deviation]:
-    """Every check of ``result`` that moved beyond :data:`MULTIPLE` resolutions from ``baseline``'s record of the
+    """Every check of ``result`` that moved beyond its allowance (:func:`mjpoincare.allowance.allowance` of its
+    recorded resolution and tolerance) from ``baseline``'s record of the
     same run (``key``: of the run recorded under that key instead, e.g. the unchanged run of a planted change of
     a parameter), or that one of the two lacks; the run missing from the baseline is one deviation."""
     key = key or run_key(result)
@@ -187,13 +180,16 @@ def deviations(result: Result, baseline: Mapping[str, Any], key: str | None = No
             continue
         old = math.nan if old_entry["error"] is None else float(old_entry["error"])
         resolution = math.inf if old_entry["resolution"] is None else float(old_entry["resolution"])
+        tolerance = old_entry.get("tolerance")
+        allowed = allowance(resolution, math.nan if tolerance is None else float(tolerance), old)
         new = check.error
         if math.isfinite(old) and math.isfinite(new):
-            moved = abs(new - old) > MULTIPLE * resolution
+            moved = abs(new - old) > allowed
         else:
             moved = not (math.isnan(old) and math.isnan(new))
         if moved:
-            out.append(Deviation(run=key, check=name, old=old, new=new, resolution=resolution, note=note))
+            out.append(Deviation(run=key, check=name, old=old, new=new, resolution=resolution, allowed=allowed,
+                                 note=note))
     return out
 
 
@@ -203,4 +199,5 @@ def updated(baseline: Mapping[str, Any] | None, records: Iterable[tuple[str, dic
     (:func:`mjpoincare.stamp.environment`); runs sorted by key so that its diff is what changed."""
     runs = dict(baseline["runs"]) if baseline else {}
     runs.update(records)
-    return {"schema": SCHEMA, "multiple": MULTIPLE, "stamp": dict(stamp), "runs": dict(sorted(runs.items()))}
+    return {"schema": SCHEMA, "multiple": MULTIPLE, "floor": FLOOR, "stamp": dict(stamp),
+            "runs": dict(sorted(runs.items()))}

@@ -381,10 +381,11 @@ def _cmd_power(args: argparse.Namespace) -> int:
     if stamp is not None:
         import mujoco
 
+        from mjpoincare.allowance import FLOOR, MULTIPLE
         from mjpoincare.analysis.checks import jsonable
-        from mjpoincare.baseline import MULTIPLE
 
-        write_json(jsonable({"mujoco_version": mujoco.__version__, "multiple": MULTIPLE, "margin": gate.MARGIN,
+        write_json(jsonable({"mujoco_version": mujoco.__version__, "multiple": MULTIPLE, "floor": FLOOR,
+                             "margin": gate.MARGIN,
                              "stamp": stamp, "rows": rows}), args.json)
     return EXIT_PASS if power.holds(rows) else EXIT_FAIL
 

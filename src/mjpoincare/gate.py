@@ -28,6 +28,7 @@ from collections.abc import Iterable, Mapping
 from functools import cache
 
 from mjpoincare import scenarios
+from mjpoincare.allowance import FLOOR, MULTIPLE, allowance
 from mjpoincare.analysis.tables import text_table
 from mjpoincare.gate_environments import Errors
 from mjpoincare.params import Value
@@ -71,15 +72,16 @@ def case(label: str) -> GateCase:
 
 def margin_rows(cases: Iterable[GateCase], compare: Mapping[tuple[str, str], float] | None = None, *,
                 perturb: bool = True, environments: Mapping[str, Errors] | None = None) -> list[dict[str, object]]:
-    """For every check of every case: error, spread (largest change of the error under :data:`PERTURBATIONS` unless
-    not ``perturb``, in each of ``environments``, label -> (case label, check) -> error, from
+    """For every check of every case: error, spread (largest change of the error under :data:`PERTURBATIONS` unless not
+    ``perturb``, in each of ``environments``, label -> (case label, check) -> error, from
     :func:`mjpoincare.gate_environments.run_ensemble`, and against ``compare``'s errors from another environment),
     the lowest and highest error with the environment or perturbation that gave it (``low``, ``high``: [error,
-    label]), the error in each environment (``environments``), tolerance, the ratio (error + spread) / tolerance, the
-    check's form in the gate, whether it holds there (a gated check within :data:`MARGIN`; a watched check passing
-    everywhere, its spread within its declared one; a declared miss missing everywhere, with every error in its band),
-    its resolution (a gated or watched check's spread, a miss's band width), and a declared miss's error
-    (``declared``: [low, high]) and xfail reason (``miss``)."""
+    label]), the error under each perturbation (``perturbations``) and in each environment (``environments``),
+    tolerance, the ratio (error + spread) / tolerance, the check's form in the gate, whether it holds there (a gated
+    check within :data:`MARGIN`; a watched check passing everywhere, its spread within its declared one's allowance;
+    a declared miss missing everywhere, with every error in its band), its resolution (a gated or watched check's
+    spread, a miss's band width), and a declared miss's error (``declared``: [low, high]) and xfail reason
+    (``miss``)."""
     rows: list[dict[str, object]] = []
     for case in cases:
         base = run_case(case)
@@ -114,10 +116,11 @@ def margin_rows(cases: Iterable[GateCase], compare: Mapping[tuple[str, str], flo
             else:
                 w = watched.get(check.name)
                 holds = (status == "watched" and w is not None and check.passed
-                         and high[0] <= check.tolerance and spread <= w.spread)
+                         and high[0] <= check.tolerance and spread <= allowance(w.spread, check.tolerance))
                 resolution = spread
             rows.append({"case": case.label, "check": check.name, "error": check.error, "spread": spread,
                          "low": list(low), "high": list(high),
+                         "perturbations": {label: error for label, error in others[:len(variants)]},
                          "environments": {label: errors[key] for label, errors in (environments or {}).items()
                                           if key in errors},
                          "tolerance": check.tolerance, "ratio": ratio, "status": status, "holds": holds,
@@ -148,10 +151,6 @@ def margin_table(rows: list[dict[str, object]]) -> str:
     return text_table(head, body)
 
 
-#: The smallest spread a check is held to between environments: roundoff, relative to max(1, |error|).
-ROUNDOFF = 1e-12
-
-
 def outside_ensemble(row: Mapping[str, object] | None, error: float) -> str:
     """Where ``error`` lies against a margins row's range of errors over the ensemble (its ``low`` and ``high``:
     [error, environment]), and the environment that gave the error closest to it; ``row`` None: none measured."""
@@ -170,17 +169,19 @@ def outside_ensemble(row: Mapping[str, object] | None, error: float) -> str:
 
 
 def environment_disagreements(there: Errors, here: Errors, spreads: Mapping[tuple[str, str], float],
-                              environment: str) -> list[str]:
+                              tolerances: Mapping[tuple[str, str], float], environment: str) -> list[str]:
     """One line per check whose error in another ``environment`` (``there``) moves from this process's (``here``)
-    by more than its declared spread (``spreads``, at least :data:`ROUNDOFF`), or that one of the two lacks."""
+    by more than its allowance (:func:`mjpoincare.allowance.allowance` of its measured spread, ``spreads``, and its
+    tolerance, ``tolerances``), or that one of the two lacks."""
     out = []
     for key in sorted(set(here) | set(there)):
         a, b = here.get(key, math.nan), there.get(key, math.nan)
-        allowed = max(spreads.get(key, 0.0), ROUNDOFF * max(1.0, abs(a) if math.isfinite(a) else 1.0))
+        allowed = allowance(spreads.get(key, 0.0), tolerances.get(key, math.nan), a)
         if not (math.isfinite(a) and math.isfinite(b)):
             if not (math.isnan(a) and math.isnan(b) and key in here and key in there):
                 out.append(f"{key[0]}::{key[1]}: {a:.6g} here, {b:.6g} under {environment}")
         elif abs(b - a) > allowed:
             out.append(f"{key[0]}::{key[1]}: {a:.6g} here, {b:.6g} under {environment}: moved {abs(b - a):.2g}, "
-                       f"{abs(b - a) / allowed:.3g} x its declared spread {allowed:.2g}")
+                       f"{abs(b - a) / allowed:.3g} x its allowance {allowed:.2g} (the larger of {MULTIPLE:g} x its "
+                       f"spread {spreads.get(key, 0.0):.2g} and {FLOOR:g} x its tolerance)")
     return out

@@ -1,10 +1,13 @@
 """The environments one machine can emulate, for the regression gate's spread (:mod:`mjpoincare.gate`).
 
 A gate value differs between machines through the libraries' choice of code path by CPU, not only through the
-perturbations of the starts: OpenBLAS picks a kernel per CPU (``OPENBLAS_CORETYPE`` picks another), and numpy
-dispatches its loops to the CPU's SIMD extensions (``NPY_DISABLE_CPU_FEATURES`` takes them down to numpy's baseline).
-Both act when the library loads, so each environment runs in a process of its own: ``mjpoincare margins --base-only
---json -`` with the environment's variables, the gate cases' errors read back from its JSON.
+perturbations of the starts: OpenBLAS picks a kernel per CPU (``OPENBLAS_CORETYPE`` picks another), numpy dispatches
+its loops to the CPU's SIMD extensions (``NPY_DISABLE_CPU_FEATURES`` takes them down to AVX2 or to numpy's
+baseline), and OpenBLAS may split a product over threads (``OPENBLAS_NUM_THREADS``). A real CPU picks a kernel and a
+dispatch level together, so the ensemble is their cross product: every kernel with numpy at each level this CPU
+offers, and the default with one BLAS thread. All act when the library loads, so each environment runs in a process
+of its own: ``mjpoincare margins --base-only --json -`` with the environment's variables, the gate cases' errors read
+back from its JSON.
 
 Each kernel is offered only where this CPU has the instructions it needs (read from numpy's CPU feature table), since
 OpenBLAS accepts a kernel name the CPU cannot run and then dies of an illegal instruction.
@@ -35,7 +38,7 @@ BLAS_KERNELS: tuple[tuple[str, tuple[str, ...]], ...] = (
 )
 #: The variables an environment sets; a run of the ensemble clears them first, so that the caller's own do not leak
 #: into the default environment.
-VARIABLES = ("OPENBLAS_CORETYPE", "NPY_DISABLE_CPU_FEATURES")
+VARIABLES = ("OPENBLAS_CORETYPE", "NPY_DISABLE_CPU_FEATURES", "OPENBLAS_NUM_THREADS")
 #: Errors of a kernel-sensitive run: (case label, check) -> error.
 Errors = dict[tuple[str, str], float]
 
@@ -80,13 +83,35 @@ def numpy_dispatched() -> tuple[str, ...]:
     return tuple(name for name in _multiarray().__cpu_dispatch__ if features.get(name))
 
 
-def ensemble() -> tuple[Environment, ...]:
-    """The environments this machine can emulate: the default, every runnable OpenBLAS kernel, and numpy's dispatch
-    down to its baseline (where numpy dispatches to anything above it)."""
-    out = [DEFAULT, *(Environment(f"OPENBLAS_CORETYPE={k}", {"OPENBLAS_CORETYPE": k}) for k in runnable_kernels())]
-    dispatched = numpy_dispatched()
+def numpy_levels(dispatched: Sequence[str] | None = None) -> tuple[tuple[str, tuple[str, ...]], ...]:
+    """numpy's dispatch levels this CPU offers, each as (label, the dispatched targets it disables): the CPU's own
+    (label ``""``, nothing disabled), AVX2 (every AVX-512 target disabled; where numpy dispatches both above and at
+    AVX2) and numpy's baseline (every dispatched target disabled; where numpy dispatches to anything)."""
+    if dispatched is None:
+        dispatched = numpy_dispatched()
+    above_avx2 = tuple(t for t in dispatched if "AVX512" in t or t == "X86_V4")
+    levels: list[tuple[str, tuple[str, ...]]] = [("", ())]
+    if above_avx2 and len(above_avx2) < len(dispatched):
+        levels.append(("numpy AVX2", above_avx2))
     if dispatched:
-        out.append(Environment("numpy baseline", {"NPY_DISABLE_CPU_FEATURES": " ".join(dispatched)}))
+        levels.append(("numpy baseline", tuple(dispatched)))
+    return tuple(levels)
+
+
+def ensemble() -> tuple[Environment, ...]:
+    """The environments this machine can emulate: the default, every runnable OpenBLAS kernel with numpy at each of
+    its dispatch levels (:func:`numpy_levels`; the cross product, as a CPU picks both), and the default with one BLAS
+    thread."""
+    out = [DEFAULT]
+    for kernel in runnable_kernels():
+        for level, disabled in numpy_levels():
+            variables = {"OPENBLAS_CORETYPE": kernel, **({"NPY_DISABLE_CPU_FEATURES": " ".join(disabled)}
+                                                          if disabled else {})}
+            out.append(Environment(", ".join(x for x in (f"OPENBLAS_CORETYPE={kernel}", level) if x), variables))
+    if not runnable_kernels():
+        out += [Environment(level, {"NPY_DISABLE_CPU_FEATURES": " ".join(disabled)})
+                for level, disabled in numpy_levels() if disabled]
+    out.append(Environment("OPENBLAS_NUM_THREADS=1", {"OPENBLAS_NUM_THREADS": "1"}))
     return tuple(out)
 
 

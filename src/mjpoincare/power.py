@@ -14,8 +14,9 @@ which. Each :class:`Plant` changes one thing:
 
 A planted run is judged as the gate judges its case: **caught by the tolerance** when a gated or watched check fails
 or a declared miss leaves its band (or the run raises: a crash is loud); **caught by the baseline** when a check
-moves beyond :data:`mjpoincare.baseline.MULTIPLE` resolutions from the committed baseline. An unplanted control run
-of every case must be caught by neither, or nothing else in the table means anything.
+moves beyond its allowance (:func:`mjpoincare.allowance.allowance`: 3 resolutions, never below a millionth of its
+tolerance) from the committed baseline. An unplanted control run of every case must be caught by neither, or nothing
+else in the table means anything.
 """
 
 from __future__ import annotations
@@ -29,6 +30,7 @@ from typing import Any
 import mujoco
 
 from mjpoincare import baseline, gate, scenarios
+from mjpoincare.allowance import allowance
 from mjpoincare.mjcf_loader import planted
 from mjpoincare.params import Value
 from mjpoincare.scenarios.gate_cases import GateCase
@@ -160,7 +162,9 @@ def run_plant(label: str, plant: Plant) -> dict[str, Any]:
     key = baseline.key_of(case.scenario, case.preset, dict(case.values))
     by_baseline = sorted({d.check for d in baseline.deviations(result, committed, key)})
     recorded = committed["runs"][key]["checks"]
-    moves = [(abs(c.error - recorded[c.name]["error"]) / recorded[c.name]["resolution"], c.name)
+    moves = [(abs(c.error - recorded[c.name]["error"])
+              / allowance(recorded[c.name]["resolution"], recorded[c.name]["tolerance"], recorded[c.name]["error"]),
+              c.name)
              for c in result.checks if c.name in recorded and recorded[c.name]["error"] is not None
              and recorded[c.name]["resolution"] is not None and math.isfinite(c.error)]
     return {"case": label, "change": plant.change, "size": plant.size, "raised": None,

@@ -12,9 +12,9 @@ Three steps, each a subcommand:
 - ``render``: ``docs/results/mujoco-releases.md`` from that JSON (a pure function of it and of the built-in
   scenarios, naming those it lacks; re-rendered byte for byte).
   Between consecutive releases a change of a check's value is **real** (:func:`is_real`) when it exceeds both
-  :data:`mjpoincare.baseline.MULTIPLE` (3) times the larger of the spreads measured on the two releases and the
-  roundoff floor (:func:`roundoff_floor`: :data:`mjpoincare.gate.ROUNDOFF`, 1e-12, of max(1, the larger magnitude of
-  the two values)), and **jitter** otherwise; each real change names the first release where it appears.
+  :data:`mjpoincare.allowance.MULTIPLE` (3) times the larger of the spreads measured on the two releases and the
+  roundoff floor (:func:`roundoff_floor`: :data:`mjpoincare.allowance.ROUNDOFF`, 1e-12, of max(1, the larger
+  magnitude of the two values)), and **jitter** otherwise; each real change names the first release where it appears.
 - ``bisect``: two releases and one check; the patch releases between them (from the package index) are run one at a
   time through the nox session ``release_point`` until the first release with a real change (the same rule) is
   found.
@@ -33,9 +33,9 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
+from mjpoincare.allowance import MULTIPLE, ROUNDOFF
 from mjpoincare.analysis.tables import markdown_table, table_cell
-from mjpoincare.baseline import MULTIPLE
-from mjpoincare.gate import PERTURBATIONS, ROUNDOFF
+from mjpoincare.gate import PERTURBATIONS
 from mjpoincare.params import ParameterError
 from mjpoincare.result import format_value, write_json, write_text
 

@@ -12,7 +12,9 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+from mjpoincare.allowance import FLOOR, MULTIPLE, allowance, set_by_floor
 from mjpoincare.analysis.tables import markdown_table
+from mjpoincare.baseline import ROUNDING
 from mjpoincare.result import write_text
 from mjpoincare.stamp import stamp_table
 
@@ -20,15 +22,62 @@ from mjpoincare.stamp import stamp_table
 GATE_DIR = Path("docs/results/gate")
 MARGINS = GATE_DIR / "margins.json"
 PAGE = GATE_DIR / "README.md"
-#: The label prefix of the OpenBLAS kernel environments (:func:`mjpoincare.gate_environments.ensemble`).
-KERNEL = "OPENBLAS_CORETYPE="
+#: The label prefix of another margins JSON's errors (``mjpoincare margins --compare``): another library version, not
+#: an environment this CPU's code paths give.
+COMPARED = "--compare "
 
 
-def kernel_spread(row: dict[str, Any]) -> float:
-    """The range of a row's error over this run and its OpenBLAS kernel environments (0 without any)."""
-    errors = [row["error"], *(e for label, e in row.get("environments", {}).items() if label.startswith(KERNEL))]
+def _environment_errors(row: dict[str, Any]) -> dict[str, float]:
+    """A row's error in each environment of the ensemble (not the ``--compare`` runs): label -> error (inf where
+    jitter made it non-finite)."""
+    return {label: math.inf if e is None else float(e) for label, e in row.get("environments", {}).items()
+            if not label.startswith(COMPARED)}
+
+
+def environment_range(row: dict[str, Any]) -> float:
+    """The range of a row's error over this run and the environments of the ensemble: how far two CPUs' code paths
+    set it apart (0 without any environment; inf where one is not finite)."""
+    errors = [row["error"], *_environment_errors(row).values()]
     finite = [e for e in errors if e is not None and math.isfinite(e)]
     return max(finite) - min(finite) if len(finite) == len(errors) else math.inf
+
+
+def left_out(row: dict[str, Any]) -> tuple[float, str]:
+    """How far the environment that lands farthest from this run lies, in allowances
+    (:func:`mjpoincare.allowance.allowance`) of the spread the other environments and the rounding perturbations
+    (:data:`mjpoincare.baseline.ROUNDING`) give, the resolution a baseline would hold it to: each environment left out
+    of the ensemble in turn plays a CPU the ensemble never sampled. Returns (ratio, that environment); (0, "") where the
+    row has fewer than two environments or a non-finite error."""
+    errors = _environment_errors(row)
+    rounding = [math.inf if e is None else float(e) for label, e in row.get("perturbations", {}).items()
+                if label in ROUNDING]
+    ref = row["error"]
+    if len(errors) < 2 or ref is None or not all(math.isfinite(e) for e in [ref, *errors.values(), *rounding]):
+        return 0.0, ""
+    worst = (0.0, "")
+    for label, error in errors.items():
+        others = max(abs(e - ref) for e in [*rounding, *(e for other, e in errors.items() if other != label)])
+        ratio = abs(error - ref) / allowance(others, row["tolerance"], ref)
+        worst = max(worst, (ratio, label))
+    return worst
+
+
+def left_out_table(rows: list[dict[str, Any]]) -> list[tuple[str, ...]]:
+    """Per scenario, the largest :func:`left_out` ratio over its checks, with the check and the environment, and how
+    many of its checks have their allowance set by the floor."""
+    out = []
+    for scenario in dict.fromkeys(r["case"].split("[")[0] for r in rows):
+        mine = [r for r in rows if r["case"].split("[")[0] == scenario]
+        ratio, label, where = max((*left_out(r), f"{r['case']}::{r['check']}") for r in mine)
+        floored = sum(set_by_floor(r["resolution"], r["tolerance"], r["error"]) for r in mine)
+        out.append((scenario, f"{ratio:.3g}", where if label else "", label, f"{floored} of {len(mine)}"))
+    return out
+
+
+def _allowance(row: dict[str, Any]) -> str:
+    """A row's allowance (of its resolution), marked where the floor sets it."""
+    value = allowance(row["resolution"], row["tolerance"], row["error"])
+    return f"{value:.2g}" + (" (floor)" if set_by_floor(row["resolution"], row["tolerance"], row["error"]) else "")
 
 
 def _at(side: list[Any]) -> str:
@@ -48,15 +97,26 @@ def render(payload: dict[str, Any]) -> str:
              "Each check of each gate case ran in every environment below, each in a process of its own (the BLAS "
              "kernel and numpy's dispatch are chosen when the libraries load), and under the perturbations of the "
              "starts, seed and threads. *spread* is the largest change of the error from this run's over all of them; "
-             "*kernels* its range over the OpenBLAS kernels alone. The forms are explained in "
+             "*environments* its range over this run and the environments alone. The forms are explained in "
              "[docs/gate.md](../../gate.md).", "",
              "Environments: " + ", ".join(f"`{e}`" for e in payload["environments"]) + ".", "",
              f"{held} of {len(rows)} checks hold their form.", "",
-             markdown_table(("case", "check", "form", "error", "lowest", "highest", "kernels", "spread", "tolerance",
-                             "(err+spread)/tol", "holds"),
+             "## An environment the ensemble never sampled", "",
+             "Two runs of a check may differ by its **allowance**: the larger of "
+             f"{MULTIPLE:g} x its measured spread (its resolution) and {FLOOR:g} x its tolerance "
+             "([docs/gate.md](../../gate.md)). To see whether the multiple is large enough, each environment is left "
+             "out of the ensemble in turn, as a CPU the measurement never saw: *left out* is how far it lands from "
+             "this run, in allowances of the spread the remaining environments give. Under 1, the allowance would "
+             "have held it; *floor* counts the checks whose allowance the floor, not the spread, sets.", "",
+             markdown_table(("scenario", "largest left-out ratio", "check", "environment left out", "floor"),
+                            left_out_table(rows)), "",
+             "## Every check", "",
+             markdown_table(("case", "check", "form", "error", "lowest", "highest", "environments", "spread",
+                             "tolerance", "(err+spread)/tol", "allowance", "holds"),
                             [(r["case"], r["check"], r["status"], f"{r['error']:.6g}", _at(r["low"]), _at(r["high"]),
-                              f"{kernel_spread(r):.2g}", f"{r['spread']:.2g}", f"{r['tolerance']:.3g}",
-                              f"{r['ratio']:.2f}", "yes" if r["holds"] else "**NO**") for r in rows]), ""]
+                              f"{environment_range(r):.2g}", f"{r['spread']:.2g}", f"{r['tolerance']:.3g}",
+                              f"{r['ratio']:.2f}", _allowance(r), "yes" if r["holds"] else "**NO**")
+                             for r in rows]), ""]
     return "\n".join(lines)
 
 

@@ -25,7 +25,7 @@ def _plant(row: dict[str, Any]) -> str:
 
 
 def _move(largest: list[Any]) -> str:
-    """A run's largest move in resolutions, with the check that made it (none where nothing moved)."""
+    """A run's largest move in allowances, with the check that made it (none where nothing moved)."""
     size, check = largest
     return f"{size:.2g} ({check})" if size else "0"
 
@@ -47,18 +47,18 @@ def render(payload: dict[str, Any]) -> str:
              "switched to the other choice) or through every model the run compiles (gravity, the tracked body's "
              "mass and rotational inertia together, every geom's sliding friction: scaled; one contact pair dropped: "
              "the first colliding geom of a moving body). A cell reads `T n`: n checks fail their tolerance (or a "
-             "declared miss leaves its band); `B n`: n checks move beyond "
-             f"{payload['multiple']:g} resolutions from the committed baseline "
-             "([gate/baseline.json](gate/baseline.json)); `-`: caught by neither; `raised`: the run crashed. "
-             "How the resolution is measured: [docs/gate.md](../gate.md).", "",
+             "declared miss leaves its band); `B n`: n checks move beyond their allowance from the committed baseline "
+             f"([gate/baseline.json](gate/baseline.json): the larger of {payload['multiple']:g} x the check's "
+             f"resolution and {payload['floor']:g} x its tolerance); `-`: caught by neither; `raised`: the run "
+             "crashed. How the resolution is measured: [docs/gate.md](../gate.md).", "",
              "The control (`none`, nothing planted) must read `-` everywhere: "
              + ("it does." if holds(rows) else "**it does not: the table below cannot be read as power.**"), "",
              markdown_table(("change", *cases), [(p, *(cell.get((p, c), "") for c in cases)) for p in plants]), "",
              "## Caught by neither", ""]
     if missed:
-        lines += ["These planted changes moved no check beyond its tolerance or its resolution: the gate cannot see "
+        lines += ["These planted changes moved no check beyond its tolerance or its allowance: the gate cannot see "
                   "them at this size.", "",
-                  markdown_table(("case", "change", "what the plant changed", "largest move (resolutions)"),
+                  markdown_table(("case", "change", "what the plant changed", "largest move (allowances)"),
                                  [(r["case"], _plant(r), ", ".join([*r["edited"], *(
                                      f"{k}={v:.6g}" if isinstance(v, float) else f"{k}={v}"
                                      for k, v in r.get("settings", {}).items())]),

@@ -7,6 +7,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 
+from mjpoincare.allowance import allowance
 from mjpoincare.params import Value
 
 
@@ -16,11 +17,12 @@ class Miss:
 
     ``measured``: the error ``mjpoincare margins`` measures, one number, or (low, high) where the ensemble of
     environments gives a range; ``spread``: the largest change of that error over the ensemble (environments and
-    perturbations), measured with it; ``tolerance``: the check's tolerance at the case's preset (quoted in the reason;
-    tests/test_gate.py compares it with the run's); ``mechanism``: why MuJoCo misses, in words (the numbers behind it
-    are in the scenario modules and the Findings of docs/scenarios/<scenario>.md).
+    perturbations), measured with it (the band allows :func:`mjpoincare.allowance.allowance` of it); ``tolerance``: the
+    check's tolerance at the case's preset (quoted in the reason; tests/test_gate.py compares it with the run's);
+    ``mechanism``: why MuJoCo misses, in words (the numbers behind it are in the scenario modules and the Findings of
+    docs/scenarios/<scenario>.md).
 
-    A miss whose band (the measured error widened by the spread) would be wider than its tolerance is
+    A miss whose band (the measured error widened by its allowance) would be wider than its tolerance is
     ``resolved=False``: no machine's digits pin it, so it is asserted as a miss only, its error above its tolerance and
     at most ``ceiling`` (the largest error the ensemble gives, with room for what it has not seen, stated with the
     mechanism); never as a strict expected failure, and the margins table says so.
@@ -45,12 +47,14 @@ class Miss:
 
     @property
     def band(self) -> tuple[float, float]:
-        """The errors the miss accepts: the declared error widened by its spread on both sides; an unresolved miss's:
-        above its tolerance, at most its ceiling."""
+        """The errors the miss accepts: the declared error widened on both sides by its allowance
+        (:func:`mjpoincare.allowance.allowance` of its spread and tolerance); an unresolved miss's: above its
+        tolerance, at most its ceiling."""
         if self.ceiling is not None:
             return self.tolerance, self.ceiling
         low, high = self.bounds
-        return low - self.spread, high + self.spread
+        room = allowance(self.spread, self.tolerance)
+        return low - room, high + room
 
     def reason(self, preset: str) -> str:
         """The xfail reason: the declared error and spread against the tolerance, and the mechanism."""
@@ -70,7 +74,8 @@ class Miss:
 @dataclass(frozen=True)
 class Watch:
     """A check that passes without the gate's margin: asserted to stay within its tolerance in every environment of
-    the ensemble, its error's largest change there at most ``spread`` (what ``mjpoincare margins`` measured);
+    the ensemble, its error's largest change there within the allowance (:func:`mjpoincare.allowance.allowance`)
+    of ``spread`` (what ``mjpoincare margins`` measured);
     ``why``: why it sits there (what sets its error at this preset)."""
 
     check: str
