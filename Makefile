@@ -105,50 +105,50 @@ margins: $(STAMP)
 	$(OLDEST)/bin/python -m pip install --quiet "numpy==1.26.4" "scipy==1.11.4" -e .
 	$(OLDEST)/bin/mjpoincare margins --base-only --json renders/margins-oldest.json
 	$(BIN)/mjpoincare margins --compare renders/margins-oldest.json --json docs/results/gate/margins.json; \
-		status=$$?; $(BIN)/python -m mjpoincare.reports.gate_page && exit $$status
+		status=$$?; $(BIN)/python -m mjpoincare.pages.gate_page && exit $$status
 
 baseline: $(STAMP)
-	$(BIN)/python -m mjpoincare.reports.gate_baseline
+	$(BIN)/python -m mjpoincare.pages.gate_baseline
 
 power: $(STAMP)
 	$(BIN)/mjpoincare power --json docs/results/gate/power.json --workers $(WORKERS); \
-		status=$$?; $(BIN)/python -m mjpoincare.reports.gate_power_page && exit $$status
+		status=$$?; $(BIN)/python -m mjpoincare.pages.gate_power_page && exit $$status
 
 results: $(STAMP)
-	$(BIN)/python -m mjpoincare.reports.results_pages
+	$(BIN)/python -m mjpoincare.pages.results_pages
 
 results-render: $(STAMP)
-	$(BIN)/python -m mjpoincare.reports.results_pages --render-only
+	$(BIN)/python -m mjpoincare.pages.results_pages --render-only
 
 tune: $(STAMP)
 	set -e; for s in $(TUNE_SCENARIOS); do for t in accurate fast; do \
 	  $(BIN)/mjpoincare tune $$s --target $$t --trials $(TUNE_TRIALS) --resume \
 	    --json docs/results/tune/json/$$s-$$t.json --plot docs/results/tune/$$s-$$t.png; done; done
-	$(BIN)/python -m mjpoincare.tune_pages
+	$(BIN)/python -m mjpoincare.commands.tune_pages
 
 tune-render: $(STAMP)
-	$(BIN)/python -m mjpoincare.tune_pages
+	$(BIN)/python -m mjpoincare.commands.tune_pages
 
 backends: $(STAMP)
-	$(BIN)/python -m mjpoincare.reports.backend_findings all --presets $(PRESETS) --batch $(BATCH) --maps $(MAPS) \
+	$(BIN)/python -m mjpoincare.pages.backend_findings all --presets $(PRESETS) --batch $(BATCH) --maps $(MAPS) \
 		--scaling $(SCALING) --workers $(WORKERS) --out $(BACKENDS_OUT)
 
 engines: $(STAMP)
-	$(BIN)/python -m mjpoincare.reports.engine_findings all --workers $(WORKERS) --out docs/results/engines
+	$(BIN)/python -m mjpoincare.pages.engine_findings all --workers $(WORKERS) --out docs/results/engines
 
 engines-render: $(STAMP)
-	$(BIN)/python -m mjpoincare.reports.engine_findings render docs/results/engines
+	$(BIN)/python -m mjpoincare.pages.engine_findings render docs/results/engines
 
 releases: $(STAMP)
-	$(BIN)/python -m mjpoincare.releases matrix --workers $(RELEASE_WORKERS)
-	$(BIN)/python -m mjpoincare.releases render
+	$(BIN)/python -m mjpoincare.gate.releases matrix --workers $(RELEASE_WORKERS)
+	$(BIN)/python -m mjpoincare.gate.releases render
 
 releases-render: $(STAMP)
-	$(BIN)/python -m mjpoincare.releases render
+	$(BIN)/python -m mjpoincare.gate.releases render
 
 bisect: $(STAMP)
 	@test -n "$(LOW)" -a -n "$(HIGH)" -a -n "$(CHECK)" || { echo "usage: make bisect LOW=3.17.0 HIGH=4.0.0 CHECK=rimless-wheel/eigenvalue [PRESET=fast]"; exit 2; }
-	$(BIN)/python -m mjpoincare.releases bisect $(LOW) $(HIGH) --check $(CHECK) --preset $(PRESET)
+	$(BIN)/python -m mjpoincare.gate.releases bisect $(LOW) $(HIGH) --check $(CHECK) --preset $(PRESET)
 
 gpu-check: PRESETS = fast accurate
 gpu-check: BATCH = 4096

@@ -1,7 +1,7 @@
 """The MuJoCo release matrix: one nox session per MuJoCo release, uv as the installer.
 
     nox -s "release(mujoco='3.3.7')"          the history's runs on MuJoCo 3.3.7 (make releases runs them all)
-    nox -s release_point -- 3.3.5 [ARGS]      the same on any release, for python -m mjpoincare.releases bisect
+    nox -s release_point -- 3.3.5 [ARGS]      the same on any release, for python -m mjpoincare.gate.releases bisect
     nox -s oldest                             every built-in scenario's default validation on the oldest MuJoCo
                                               admitted (CI)
 
@@ -17,7 +17,7 @@ from pathlib import Path
 
 import nox
 
-from mjpoincare.releases import OLDEST, RELEASES, history_scenarios
+from mjpoincare.gate.releases import OLDEST, RELEASES, history_scenarios
 
 nox.options.default_venv_backend = "uv"
 nox.options.reuse_existing_virtualenvs = True
@@ -39,19 +39,19 @@ def _install(session: nox.Session, mujoco: str, *, editable: bool = True) -> Non
 @nox.session
 @nox.parametrize("mujoco", list(RELEASES))
 def release(session: nox.Session, mujoco: str) -> None:
-    """The release history's runs on one MuJoCo (``python -m mjpoincare.releases run``; resumable)."""
+    """The release history's runs on one MuJoCo (``python -m mjpoincare.gate.releases run``; resumable)."""
     _install(session, mujoco)
-    session.run("python", "-m", "mjpoincare.releases", "run", *session.posargs)
+    session.run("python", "-m", "mjpoincare.gate.releases", "run", *session.posargs)
 
 
 @nox.session
 def release_point(session: nox.Session) -> None:
     """Any MuJoCo release (the first argument), for a bisection between two releases of the history."""
     if not session.posargs:
-        session.error("usage: nox -s release_point -- MUJOCO_VERSION [python -m mjpoincare.releases run ARGS]")
+        session.error("usage: nox -s release_point -- MUJOCO_VERSION [python -m mjpoincare.gate.releases run ARGS]")
     version, *rest = session.posargs
     _install(session, version)
-    session.run("python", "-m", "mjpoincare.releases", "run", *rest)
+    session.run("python", "-m", "mjpoincare.gate.releases", "run", *rest)
 
 
 @nox.session

@@ -5,7 +5,7 @@ R = Rz(psi) Rx(phi) Ry(theta) (heading psi, bank phi, pitch theta) and the world
 omega = psi_dot e_z + phi_dot x' + theta_dot y''; q = (psi, phi, theta, psi_dot, phi_dot, theta_dot) is the paper's
 state (eq 2). Quaternions are (w, x, y, z), scalar first, as a simulator stores them; angular velocities given in
 body axes are Omega = R^T omega. Arrays and formulas only (numpy); the scalar forms of the same angles, used by the
-exact reference, are in :mod:`mjpoincare.analysis.theory.rimless_wheel_3d_hybrid_euler`.
+exact reference, are in :mod:`mjpoincare.analysis.theory.rimless_wheel_3d.hybrid_euler`.
 """
 
 from __future__ import annotations

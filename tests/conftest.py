@@ -23,7 +23,7 @@ import pytest
 from packaging.requirements import Requirement
 from packaging.utils import canonicalize_name
 
-from mjpoincare.gate_environments import DEFAULT, Environment, runnable_kernels, start_environment
+from mjpoincare.gate.environments import DEFAULT, Environment, runnable_kernels, start_environment
 
 # dm_control (the environments' tests) opens a GLFW context at import unless told otherwise; off-screen EGL works here
 os.environ.setdefault("MUJOCO_GL", "egl")
@@ -59,12 +59,12 @@ def second_kernel() -> Environment:
 def kernel_sensitive_cases() -> list[str]:
     """The gate cases at the fast preset with a check that a second kernel could move beyond its allowance: the
     measured environments (the committed measurement's ``environments``: the OpenBLAS kernels crossed with numpy's
-    dispatch levels) move its error beyond its allowance's floor (:func:`mjpoincare.allowance.floor`) and by at least
-    its spread, so that the environments, not the rounding perturbations, set its allowance. A check whose spread the
-    perturbations set far above what any kernel moved cannot fail the comparison; none without the measurement."""
-    from mjpoincare.allowance import floor
-    from mjpoincare.gate import case
-    from mjpoincare.reports.gate_page import environment_range
+    dispatch levels) move its error beyond its allowance's floor (:func:`mjpoincare.core.allowance.floor`) and by at
+    least its spread, so that the environments, not the rounding perturbations, set its allowance. A check whose spread
+    the perturbations set far above what any kernel moved cannot fail the comparison; none without the measurement."""
+    from mjpoincare.core.allowance import floor
+    from mjpoincare.gate.forms import case
+    from mjpoincare.pages.gate_page import environment_range
 
     if not MARGINS.exists():
         return []
@@ -74,7 +74,7 @@ def kernel_sensitive_cases() -> list[str]:
                    and environment_range(r) >= r["spread"]})
 
 
-#: The distribution that makes each optional backend (``mjpoincare.backends.REQUIRES``) required in CI.
+#: The distribution that makes each optional backend (``mjpoincare.engines.backends.REQUIRES``) required in CI.
 BACKEND_DISTRIBUTIONS = {"mjx": "mujoco-mjx", "warp": "mujoco-warp", "drake": "drake"}
 #: The extras ``make test`` installs (CI runs ``make test``).
 CI_EXTRAS = ("dev", "viz", "dask", "tune", "peers", "mjx", "warp")
@@ -113,7 +113,7 @@ def require_module(module: str, distribution: str) -> None:
 def all_gated(label: str) -> str:
     """``label``, after asserting that every check of that gate case is gated (a test that needs a whole run to pass
     uses such a case, and leaves the margin to the gate)."""
-    from mjpoincare import gate
+    from mjpoincare.gate import forms as gate
 
     found = gate.case(label)
     assert not found.watched and not found.misses, f"{label} is not a wholly gated case"
@@ -123,7 +123,7 @@ def all_gated(label: str) -> str:
 def failed_gated_checks(label: str, checks: list[dict[str, object]]) -> list[str]:
     """The checks (JSON records) that gate case ``label`` gates and that failed in ``checks`` (a run of the same
     scenario and preset elsewhere: another backend, an installed copy)."""
-    from mjpoincare import gate
+    from mjpoincare.gate import forms as gate
 
     gated = set(gate.case(label).gated)
     return [str(c["name"]) for c in checks if c["name"] in gated and not c["passed"]]
@@ -132,15 +132,15 @@ def failed_gated_checks(label: str, checks: list[dict[str, object]]) -> list[str
 @pytest.fixture(autouse=True, scope="session")
 def _gate_runs_shared_by_workers(request: pytest.FixtureRequest, tmp_path_factory: pytest.TempPathFactory
                                  ) -> Iterator[None]:
-    """Under pytest-xdist, a gate case's run (:func:`mjpoincare.gate.run_case`, keyed by scenario, preset, seed and
-    settings) is made once per test session, not once per worker: the first worker to ask runs it and pickles the
+    """Under pytest-xdist, a gate case's run (:func:`mjpoincare.gate.forms.run_case`, keyed by scenario, preset, seed
+    and settings) is made once per test session, not once per worker: the first worker to ask runs it and pickles the
     result into the session's shared temporary folder, under a lock the other worker waits on, and reads it from there
     the next time (each worker keeps its own per-process cache on top). Runs of other environments (the second-kernel
     process, installed copies) are their own processes and never read it."""
     if not hasattr(request.config, "workerinput"):
         yield
         return
-    from mjpoincare import gate
+    from mjpoincare.gate import forms as gate
 
     shared = tmp_path_factory.getbasetemp().parent / "gate-runs"
     shared.mkdir(exist_ok=True)
@@ -191,15 +191,16 @@ def gate_group(nodeid: str, labels: list[str], sensitive: set[str]) -> str | Non
 
 def pytest_xdist_make_scheduler(config: pytest.Config, log: Any) -> Any:
     """Under ``--dist loadgroup``, the tests of one gate case share a worker, and so its run
-    (:func:`mjpoincare.gate.run_case` caches a run per process); the kernel-sensitive cases, which the second-kernel
-    test runs in its own process to compare, are one group with that test. The groups are read from the node ids
-    (:func:`gate_group`): pytest-xdist 3.8 names the groups of ``xdist_group`` marks by renaming node ids through an
-    attribute pytest 9.2 no longer reads, so marks would be ignored. Without xdist this hook is never called."""
+    (:func:`mjpoincare.gate.forms.run_case` caches a run per process); the kernel-sensitive cases, which the
+    second-kernel test runs in its own process to compare, are one group with that test. The groups are read from the
+    node ids (:func:`gate_group`): pytest-xdist 3.8 names the groups of ``xdist_group`` marks by renaming node ids
+    through an attribute pytest 9.2 no longer reads, so marks would be ignored. Without xdist this hook is never
+    called."""
     if config.getvalue("dist") != "loadgroup":
         return None
     from xdist.scheduler import LoadGroupScheduling
 
-    from mjpoincare import gate
+    from mjpoincare.gate import forms as gate
 
     labels = sorted((c.label for c in gate.cases()), key=len, reverse=True)
     sensitive = set(kernel_sensitive_cases())
@@ -214,14 +215,14 @@ def pytest_xdist_make_scheduler(config: pytest.Config, log: Any) -> Any:
 @pytest.hookimpl(trylast=True)
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
     """The backend tests run last: they load JAX and Warp, whose native threads make every later process pool spawn
-    its workers instead of forking them (:func:`mjpoincare.parallel.start_method`), which costs the sweeps and
+    its workers instead of forking them (:func:`mjpoincare.core.parallel.start_method`), which costs the sweeps and
     convergence ladders after them their start-up time. The MJX validation starts now, in a process of its own, when
     its test is selected and MJX is installed (its test reports a missing MJX). This hook runs last, after ``-m`` and
     ``-k`` have deselected what they deselect, and ``--collect-only`` starts nothing. Under pytest-xdist no worker
     starts either: each test starts its own run (the other worker is the concurrency)."""
     items.sort(key=lambda item: item.nodeid.startswith("tests/test_backends.py"))
-    from mjpoincare.backends import check_installed
-    from mjpoincare.params import ParameterError
+    from mjpoincare.core.params import ParameterError
+    from mjpoincare.engines.backends import check_installed
 
     selected = {item.nodeid for item in items}
     if config.option.collectonly or hasattr(config, "workerinput"):  # an xdist worker: each collects every item
@@ -242,7 +243,7 @@ def start_mjx_run() -> tuple[subprocess.Popen[bytes], Path]:
     out = Path(tempfile.mkdtemp(prefix="mjpoincare-mjx-"))
     scenario, backend, precision, preset = MJX_RUN
     env = {**os.environ, "XLA_FLAGS": "--xla_cpu_multi_thread_eigen=false intra_op_parallelism_threads=1"}
-    process = subprocess.Popen([sys.executable, "-m", "mjpoincare.reports.backend_findings", "run", scenario, backend,
+    process = subprocess.Popen([sys.executable, "-m", "mjpoincare.pages.backend_findings", "run", scenario, backend,
                                 precision, "--preset", preset, "--out", str(out)], cwd=out, env=env,
                                stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
     return process, out

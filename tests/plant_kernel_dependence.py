@@ -8,8 +8,8 @@ import dataclasses
 import os
 import sys
 
-from mjpoincare import gate
 from mjpoincare.cli import main
+from mjpoincare.gate import forms as gate
 
 
 def planted(check: str, shift: float):

@@ -16,7 +16,7 @@ import pytest
 
 import mjpoincare
 from mjpoincare.cli import main
-from mjpoincare.result import RESULTS_SCHEMA
+from mjpoincare.core.result import RESULTS_SCHEMA
 
 
 def test_bad_values_raise_one_exception_type_naming_the_bound() -> None:
@@ -105,9 +105,9 @@ def test_warnings_go_into_the_result_not_a_file_or_stdout(tmp_path: Path, capfd:
     directory, and MuJoCo's warning handler is the caller's again afterwards."""
     import numpy as np
 
+    from mjpoincare.commands.validation import resolve_inputs
     from mjpoincare.scenarios import rimless_wheel as rw
-    from mjpoincare.simulate import initial_states, rollout_batch
-    from mjpoincare.validation import resolve_inputs
+    from mjpoincare.simulation.simulate import initial_states, rollout_batch
 
     _, _, params, settings = resolve_inputs("rimless-wheel", {}, "fast")
     model = rw.build(params, settings)
@@ -129,9 +129,9 @@ def test_a_foreign_warning_handler_is_kept_and_not_called_from_worker_threads() 
     import dm_control.mujoco  # noqa: F401  (installs dm_control's handler)
     import numpy as np
 
+    from mjpoincare.commands.validation import resolve_inputs
     from mjpoincare.scenarios import rimless_wheel as rw
-    from mjpoincare.simulate import initial_states, rollout_batch
-    from mjpoincare.validation import resolve_inputs
+    from mjpoincare.simulation.simulate import initial_states, rollout_batch
 
     foreign = mujoco.get_mju_user_warning()
     assert foreign is not None
@@ -151,7 +151,7 @@ def test_a_check_that_disappears_fails_the_api_and_the_cli(monkeypatch: pytest.M
     rimless-wheel on a coarse step (every check passes: a tenth of the fast preset's time) without its eigenvalue."""
     from dataclasses import replace
 
-    from mjpoincare.params import Values
+    from mjpoincare.core.params import Values
     from mjpoincare.scenarios import REGISTRY, Evaluation
 
     real = REGISTRY["rimless-wheel"]
@@ -178,8 +178,8 @@ def test_a_scenarios_input_check_runs_once_per_process_for_the_same_values(monke
     from dataclasses import replace
 
     from mjpoincare import scenarios
-    from mjpoincare.params import ParameterError
-    from mjpoincare.validation import resolve_inputs, run_steps
+    from mjpoincare.commands.validation import resolve_inputs, run_steps
+    from mjpoincare.core.params import ParameterError
 
     scenario = scenarios.get("rimless-wheel")
     calls: list[object] = []

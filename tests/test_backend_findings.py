@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 from mjpoincare import scenarios
-from mjpoincare.reports import backend_findings as findings
-from mjpoincare.reports import backend_findings_page as findings_page
+from mjpoincare.pages import backend_findings as findings
+from mjpoincare.pages import backend_findings_page as findings_page
 
 BACKENDS = Path(__file__).resolve().parent.parent / "docs" / "results" / "backends"
 RECORDS = findings_page.load(BACKENDS)
@@ -22,7 +22,7 @@ ENV = {"mujoco": "9.9.9", "cpu": "CPU X", "logical_cpus": 2, "git_sha": "abc123"
 
 def test_committed_page_reproduces_from_its_json() -> None:
     assert (BACKENDS / "README.md").read_text() == findings_page.render(RECORDS), "stale: python -m " \
-        "mjpoincare.reports.backend_findings render docs/results/backends"
+        "mjpoincare.pages.backend_findings render docs/results/backends"
 
 
 def test_every_scenario_ran_or_was_refused_on_every_backend_at_the_fast_preset() -> None:

@@ -1,4 +1,4 @@
-"""The rollout seam (:class:`mjpoincare.seam.Batch`) on MJX (x64) and MuJoCo Warp (float32): the semantics of
+"""The rollout seam (:class:`mjpoincare.core.seam.Batch`) on MJX (x64) and MuJoCo Warp (float32): the semantics of
 ``test_rollout_seam.py`` on its small model (plus a sled for friction), and agreement with MuJoCo C.
 
 Skipped when a backend's packages are missing, except under ``CI=true`` on Python 3.11+ (``make test`` installs the
@@ -18,11 +18,11 @@ from conftest import BACKEND_DISTRIBUTIONS, failed_gated_checks, skip_unless_req
 from mujoco import rollout as mj_rollout
 from test_rollout_seam import XML, fractional_step_of
 
-from mjpoincare.backends import check_installed, check_settings, open_batch
-from mjpoincare.params import ParameterError
-from mjpoincare.seam import Batch
-from mjpoincare.settings import DEFAULTS
-from mjpoincare.simulate import initial_states
+from mjpoincare.core.params import ParameterError
+from mjpoincare.core.seam import Batch
+from mjpoincare.core.settings import DEFAULTS
+from mjpoincare.engines.backends import check_installed, check_settings, open_batch
+from mjpoincare.simulation.simulate import initial_states
 
 #: The seam's model with a 1 kg sled on the floor, sliding along x and free to settle along z (box-plane contact):
 #: friction decelerates it.
@@ -266,7 +266,7 @@ def test_rimless_wheel_on_warp_as_measured() -> None:
     fast preset (0.93 ms steps; 7.1e-3 with the starts' velocities scaled by 1 + 1e-6), against MuJoCo C's 2.0e-5:
     float32 arithmetic through the impact jitter. Asserted within a factor of 2.5 of the measurement, as machines
     differ at that level; the gated check above bounds it by its tolerance, 2e-2."""
-    from mjpoincare.validation import run_validation
+    from mjpoincare.commands.validation import run_validation
 
     _require("warp")
     result = run_validation("rimless-wheel", {"backend": "warp"}, "fast")

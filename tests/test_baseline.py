@@ -1,4 +1,4 @@
-"""The regression baseline (:mod:`mjpoincare.baseline`): what a change beyond a check's allowance is, on records
+"""The regression baseline (:mod:`mjpoincare.gate.baseline`): what a change beyond a check's allowance is, on records
 built by hand and planted into a gate run; ``validate --baseline`` refuses a missing file before any simulation; the
 gate's committed baseline (``docs/results/gate/baseline.json``, ``make baseline``) holds every gate check, and every
 gate run stays within it."""
@@ -13,11 +13,12 @@ from pathlib import Path
 import pytest
 from mjpoincare.analysis.checks import Check
 
-from mjpoincare import baseline, gate
-from mjpoincare.allowance import FLOOR, MULTIPLE, allowance, floor
 from mjpoincare.cli import main
-from mjpoincare.reports.gate_baseline import BASELINE
-from mjpoincare.result import Result
+from mjpoincare.core.allowance import FLOOR, MULTIPLE, allowance, floor
+from mjpoincare.core.result import Result
+from mjpoincare.gate import baseline
+from mjpoincare.gate import forms as gate
+from mjpoincare.pages.gate_baseline import BASELINE
 from mjpoincare.scenarios.gate_cases import GateCase
 
 ROOT = Path(__file__).parents[1]

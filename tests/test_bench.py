@@ -7,9 +7,9 @@ from pathlib import Path
 
 import pytest
 
-from mjpoincare import bench
-from mjpoincare.bench import pareto_front
 from mjpoincare.cli import main
+from mjpoincare.commands import bench
+from mjpoincare.commands.bench import pareto_front
 
 #: A coarse step (contact time constant 2 steps) for the tests of the command's output: a wheel validation takes about
 #: a tenth of its time at the fast preset.
@@ -45,7 +45,7 @@ def test_quick_bench_writes_table_plot_and_json(tmp_path: Path, capsys: pytest.C
 
 
 def test_unskip_collisions_makes_every_geom_collide() -> None:
-    from mjpoincare.validation import resolve_inputs
+    from mjpoincare.commands.validation import resolve_inputs
 
     scenario, _, params, settings = resolve_inputs("rimless-wheel", {"unskip": "collisions"}, None)
     model = scenario.build(params, settings)

@@ -218,8 +218,9 @@ def no_simulation(monkeypatch: pytest.MonkeyPatch) -> Iterator[None]:
     """Fail the case on a rollout, a new process or a subprocess. The seam's self-test (a tiny model, cached per
     process) runs first, as any earlier validation in the process would have run it (tests/test_cli.py does the
     same)."""
-    from mjpoincare import render, seam_check, tune
-    from mjpoincare.backends import mujoco_c
+    from mjpoincare.commands import render, tune
+    from mjpoincare.engines.backends import mujoco_c
+    from mjpoincare.simulation import seam_check
 
     seam_check.require(tuple(seam_check.MECHANISMS))
 

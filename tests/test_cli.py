@@ -64,8 +64,8 @@ def test_unwritable_output_exits_2_before_any_simulation(command: list[str], cap
     """An output path that cannot be written is refused first: one line naming the option, exit 2, and no rollout
     (every rollout goes through ``mujoco_c._native_chunk``, which fails this test if reached). The seam's self-test
     (a tiny model, cached per process) runs first, as any earlier validation in the process would have run it."""
-    from mjpoincare import seam_check
-    from mjpoincare.backends import mujoco_c
+    from mjpoincare.engines.backends import mujoco_c
+    from mjpoincare.simulation import seam_check
 
     seam_check.require(tuple(seam_check.MECHANISMS))
 

@@ -4,22 +4,22 @@ Gaits A (passive, 1 deg, mu = 1), I (constant torques, level ground, mu = 0.2), 
 phase reset, fed as native control, level ground, mu = 0.2), B (passive, mu = 0.14, slip+ -> stick -> slip-) and
 the unstable C (passive, mu = 0.2) and II (constant torques, mu = 0.2), fitted over their first 2 steps; fast
 preset, the scenario's own tolerances. The runs' verdicts (and the checks MuJoCo misses, as strict xfails with the
-measured error) are the gate's (:func:`mjpoincare.gate.cases`, tests/test_gate.py); this module checks what they
+measured error) are the gate's (:func:`mjpoincare.gate.forms.cases`, tests/test_gate.py); this module checks what they
 are compared against and how the gaits are classified.
 """
 
 from __future__ import annotations
 
 import pytest
-from mjpoincare.analysis import compass_biped_stance as stance
 from mjpoincare.analysis.checks import Check
+from mjpoincare.analysis.theory.compass_biped_friction import stance_measurements as stance
 
-from mjpoincare import gate
 from mjpoincare.cli import main
-from mjpoincare.result import Result
+from mjpoincare.commands.validation import resolve_inputs
+from mjpoincare.core.result import Result
+from mjpoincare.gate import forms as gate
 from mjpoincare.scenarios import compass_biped_friction as sc
-from mjpoincare.scenarios import compass_biped_friction_design as design
-from mjpoincare.validation import resolve_inputs
+from mjpoincare.scenarios.compass_biped_friction import design
 
 pytestmark = pytest.mark.mujoco
 

@@ -13,17 +13,17 @@ import mujoco
 import numpy as np
 import pytest
 from mjpoincare.analysis.theory import compass_biped as theory
-from mjpoincare.analysis.theory import compass_biped_flight as flight
+from mjpoincare.analysis.theory.compass_biped import flight
 
-from mjpoincare import gate
-from mjpoincare.backends.mujoco_c import MujocoBatch
 from mjpoincare.cli import main
+from mjpoincare.commands.validation import resolve_values
+from mjpoincare.core.seam import STATE_SPEC
+from mjpoincare.engines.backends.mujoco_c import MujocoBatch
+from mjpoincare.gate import forms as gate
 from mjpoincare.scenarios import compass_biped as cb
 from mjpoincare.scenarios.base import JointIndex
-from mjpoincare.scenarios.compass_biped_controller import GaitController
-from mjpoincare.scenarios.compass_biped_runs import RELEASE_FALL_STEPS, post_impact_states, release_tolerance
-from mjpoincare.seam import STATE_SPEC
-from mjpoincare.validation import resolve_values
+from mjpoincare.scenarios.compass_biped.controller import GaitController
+from mjpoincare.scenarios.compass_biped.runs import RELEASE_FALL_STEPS, post_impact_states, release_tolerance
 
 pytestmark = pytest.mark.mujoco
 

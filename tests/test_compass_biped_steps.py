@@ -1,4 +1,5 @@
-"""analysis.compass_biped_steps and analysis.compass_biped_stance on synthetic records whose steps, depths, phases and
+"""The compass bipeds' step and stance measurements (analysis.theory.compass_biped.step_measurements,
+analysis.theory.compass_biped_friction.stance_measurements) on synthetic records whose steps, depths, phases and
 slides are known, and the exact-model helpers they lean on (Kiša 2020 Ch. 4; Gamus & Or 2015 eq 27)."""
 
 from __future__ import annotations
@@ -7,10 +8,14 @@ import math
 
 import numpy as np
 import pytest
-from mjpoincare.analysis import compass_biped_stance as st
-from mjpoincare.analysis.compass_biped_steps import crossing_steps, swing_foot_detail, swing_foot_report
 from mjpoincare.analysis.theory import compass_biped as cb
 from mjpoincare.analysis.theory import compass_biped_friction as cf
+from mjpoincare.analysis.theory.compass_biped.step_measurements import (
+    crossing_steps,
+    swing_foot_detail,
+    swing_foot_report,
+)
+from mjpoincare.analysis.theory.compass_biped_friction import stance_measurements as st
 from scipy.integrate import solve_ivp
 
 

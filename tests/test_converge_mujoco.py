@@ -22,9 +22,9 @@ from conftest import require_module
 from mjpoincare.analysis import checks
 from mjpoincare.analysis.checks import Check
 
-from mjpoincare import validation
 from mjpoincare.cli import main
-from mjpoincare.converge import components, converge, write_plots
+from mjpoincare.commands import validation
+from mjpoincare.commands.converge import components, converge, write_plots
 
 pytestmark = pytest.mark.mujoco
 ANALYTIC = "converges to analytic"
@@ -94,7 +94,7 @@ def test_components_split_vectors_and_complex_values_and_skip_categories() -> No
 def test_a_check_whose_analytic_value_moves_with_the_run_is_analysed_by_its_error() -> None:
     """An analytic value evaluated on each run's own state (e.g. at its measured heading) differs between rungs:
     the error simulated - analytic is what converges, to 0, not the simulated value to the first rung's analytic."""
-    from mjpoincare.converge import _analyse_axis, rung_key
+    from mjpoincare.commands.converge import _analyse_axis, rung_key
 
     rungs = [{"timestep": str(h)} for h in (4e-4, 2e-4, 1e-4)]
     rows = {rung_key(o): {"failed": None, "diverged": 0, "warnings": 0,

@@ -1,4 +1,4 @@
-"""The Drake backend (:mod:`mjpoincare.backends.drake`) and the engines' page.
+"""The Drake backend (:mod:`mjpoincare.engines.backends.drake`) and the engines' page.
 
 - The translation: each wheel's mass matrix in Drake equals MuJoCo's at a random state (the same bodies, inertias,
   joints; the 3D wheel's free joint with its body-frame angular velocity), to rounding.
@@ -20,9 +20,9 @@ import pytest
 from conftest import require_module
 
 from mjpoincare.cli import main
-from mjpoincare.params import ParameterError
-from mjpoincare.reports import engine_findings_page
-from mjpoincare.validation import resolve_inputs, run_validation
+from mjpoincare.commands.validation import resolve_inputs, run_validation
+from mjpoincare.core.params import ParameterError
+from mjpoincare.pages import engine_findings_page
 
 PAGE = Path(__file__).resolve().parents[1] / "docs" / "results" / "engines"
 #: Mass matrices agree to rounding: entries of order 1 (the hub's mass) down to 1e-4 (its floored inertia).
@@ -38,7 +38,7 @@ def drake() -> None:
 @pytest.mark.parametrize("name", ["rimless-wheel", "rimless-wheel-friction"])
 def test_the_translated_mass_matrix_is_mujocos(name: str) -> None:
     """Hinge and slide joints map one to one: the mass matrices agree entry by entry."""
-    from mjpoincare.backends.drake_plant import build_scene, to_drake
+    from mjpoincare.engines.backends.drake_plant import build_scene, to_drake
 
     _, _, params, settings = resolve_inputs(name, {}, "fast")
     from mjpoincare.scenarios import get
@@ -67,7 +67,7 @@ def test_the_translated_mass_matrix_is_mujocos(name: str) -> None:
 def test_the_translated_kinetic_energy_is_mujocos(name: str) -> None:
     """A free joint's state maps through the body's rotation (MuJoCo's angular velocity is in the body frame,
     Drake's in the world's), so its mass matrices differ by it: the kinetic energy of a random state agrees."""
-    from mjpoincare.backends.drake_plant import build_scene, to_drake
+    from mjpoincare.engines.backends.drake_plant import build_scene, to_drake
     from mjpoincare.scenarios import get
 
     _, _, params, settings = resolve_inputs(name, {}, "fast")
@@ -114,7 +114,7 @@ def test_what_drake_cannot_do_is_refused_in_one_line(args: list[str], needle: st
 
 @pytest.mark.usefixtures("drake")
 def test_a_model_feature_with_no_counterpart_is_refused() -> None:
-    from mjpoincare.backends.drake_plant import build_scene
+    from mjpoincare.engines.backends.drake_plant import build_scene
 
     model = mujoco.MjModel.from_xml_string("""<mujoco><worldbody><geom type="plane" size="1 1 1" friction="1"/>
       <body pos="0 0 1"><freejoint/><geom type="sphere" size="0.1" friction="0.5"/></body></worldbody></mujoco>""")

@@ -13,7 +13,7 @@ from dm_control.rl import control
 from dm_env import test_utils
 
 from mjpoincare import envs, scenarios
-from mjpoincare.params import ParameterError
+from mjpoincare.core.params import ParameterError
 
 pytestmark = pytest.mark.mujoco
 

@@ -1,5 +1,5 @@
 """``validate --extrapolate``: Richardson values from the timestep grids h, 2h, 4h, reported only where the order is
-clean (:mod:`mjpoincare.extrapolate`)."""
+clean (:mod:`mjpoincare.commands.extrapolate`)."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 from mjpoincare.cli import main
-from mjpoincare.extrapolate import _component
+from mjpoincare.commands.extrapolate import _component
 
 pytestmark = pytest.mark.mujoco
 

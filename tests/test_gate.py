@@ -1,5 +1,5 @@
-"""The regression gate (:func:`mjpoincare.gate.cases`, each scenario's ``gate_cases``): every gated check passes,
-every gated check holds :data:`~mjpoincare.gate.MARGIN` with its committed spread, every watched check stays
+"""The regression gate (:func:`mjpoincare.gate.forms.cases`, each scenario's ``gate_cases``): every gated check passes,
+every gated check holds :data:`~mjpoincare.gate.forms.MARGIN` with its committed spread, every watched check stays
 within its tolerance, every declared miss misses (strict xfail
 whose reason quotes its declared error) with an error inside its band, a band never wider than the check's
 tolerance; every check of every case's run is in one of the three forms, and every scenario's defaults are in the
@@ -21,11 +21,12 @@ from typing import Any
 
 import pytest
 
-from mjpoincare import gate, scenarios
-from mjpoincare.allowance import allowance
+from mjpoincare import scenarios
 from mjpoincare.cli import main
-from mjpoincare.gate import MARGIN, case, cases, margin_rows, outside_ensemble
-from mjpoincare.reports.gate_page import MARGINS
+from mjpoincare.core.allowance import allowance
+from mjpoincare.gate import forms as gate
+from mjpoincare.gate.forms import MARGIN, case, cases, margin_rows, outside_ensemble
+from mjpoincare.pages.gate_page import MARGINS
 from mjpoincare.scenarios.gate_cases import GateCase, Miss, Watch, span
 
 pytestmark = pytest.mark.mujoco

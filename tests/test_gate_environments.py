@@ -1,8 +1,8 @@
-"""The gate across the environments one machine can emulate (:mod:`mjpoincare.gate_environments`): the BLAS kernels
+"""The gate across the environments one machine can emulate (:mod:`mjpoincare.gate.environments`): the BLAS kernels
 crossed with the numpy dispatch levels a CPU offers; the committed ensemble measurement (``make margins``:
 docs/results/gate/) and the gate's declarations agree with it; the gate's kernel-sensitive cases re-run under a second
 OpenBLAS kernel (Prescott, which every x86-64 CPU runs) in a process of their own move by no more than their allowance
-(:func:`mjpoincare.allowance.allowance`); a planted kernel dependence below the allowance's floor passes that
+(:func:`mjpoincare.core.allowance.allowance`); a planted kernel dependence below the allowance's floor passes that
 comparison and one beyond the allowance fails it."""
 
 from __future__ import annotations
@@ -17,16 +17,17 @@ from typing import Any
 import pytest
 from conftest import kernel_run_key, kernel_sensitive_cases, second_kernel
 
-from mjpoincare import gate, gate_environments
-from mjpoincare.allowance import allowance, floor
-from mjpoincare.gate_environments import (
+from mjpoincare.core.allowance import allowance, floor
+from mjpoincare.gate import environments as gate_environments
+from mjpoincare.gate import forms as gate
+from mjpoincare.gate.environments import (
     Environment,
     margins_command,
     read_environment,
     runnable_kernels,
     start_environment,
 )
-from mjpoincare.reports import gate_page
+from mjpoincare.pages import gate_page
 from mjpoincare.scenarios.gate_cases import Miss
 
 ROOT = Path(__file__).parents[1]

@@ -57,6 +57,7 @@ def test_wheel_ships_no_generic_top_level_name(wheel: Path) -> None:
     models = REPO / "models"  # the models and the files they include (common/)
     assert {f"mjpoincare/mjcf/{m.relative_to(models).as_posix()}" for m in models.rglob("*.xml")} <= set(names)
     assert "mjpoincare/analysis/returnmap.py" in names
+    assert {"mjpoincare/gate/results/baseline.json", "mjpoincare/gate/results/margins.json"} <= set(names)
 
 
 def test_installed_cli_runs_from_another_directory(env_bin: Path, tmp_path: Path) -> None:
@@ -69,6 +70,14 @@ def test_installed_cli_runs_from_another_directory(env_bin: Path, tmp_path: Path
                cwd=tmp_path)
     assert api.stdout.strip() == "True", api.stderr
     assert list(tmp_path.iterdir()) == []  # no MUJOCO_LOG.TXT, nothing else
+
+
+def test_installed_power_finds_the_gates_committed_baseline_through_the_package(env_bin: Path, tmp_path: Path) -> None:
+    """``mjpoincare power`` compares with the committed baseline, which the wheel ships in the package
+    (:mod:`mjpoincare.gate.records`): it runs outside any checkout, and its unplanted control is caught by nothing."""
+    ran = _run([env_bin / "mjpoincare", "power", "--case", "rimless-wheel[", "--change", "none"], cwd=tmp_path)
+    assert ran.returncode == 0, ran.stdout + ran.stderr
+    assert any(line.split()[:3] == ["rimless-wheel[fast]", "none", "-"] for line in ran.stdout.splitlines()), ran.stdout
 
 
 def test_plugin_gates_a_throwaway_project(env_bin: Path, tmp_path: Path) -> None:

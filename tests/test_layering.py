@@ -1,15 +1,23 @@
-"""The package's layers point one way, and no module imports itself through others.
+"""The package's layers point one way, and no module imports itself through others; a module's layer is the folder
+it lies in.
 
-The layers, lowest first (a module may import its own layer and those below, never one above):
+The layers, lowest first (a module may import its own layer and those below, never one above), each a folder whose
+``__init__`` says what lives there and what it may import:
 
-- ``analysis``: formulas, fits, the exact references (numpy and scipy only);
-- ``core``: parameters, settings, the result record, the rollout seam's protocol, the job loop, progress;
-- ``engines``: the seam's implementations (MuJoCo C, MJX, Warp) and the outside peers (Drake);
-- ``simulation``: the chunked event loop over any engine and the seam's self-test;
-- ``scenarios``: one module family per system;
-- ``registry``: the list of scenarios and the resolution of a run's inputs;
-- ``commands``: validate, sweep, converge, bench, stress, tune, releases, gate, the report pages;
-- ``face``: what a user touches (the CLI, the Python API, the pytest plugin, the environments).
+- ``analysis/`` (``mjpoincare.analysis``): formulas, fits, the exact references, one folder per system under
+  ``theory/`` (numpy and scipy only);
+- ``core/``: parameters, settings, the result record, the rollout seam's protocol, the job loop, progress, the stamp;
+- ``engines/``: the seam's implementations (``backends/``: MuJoCo C, MJX, Warp, Drake's plant) and the outside peers
+  (``peers/``: Drake's hybrid models);
+- ``simulation/``: the chunked event loop over any engine and the seam's self-test;
+- ``scenarios/``: one folder per system, and the records every system declares (``base``, ``gate_cases``);
+- the registry: ``scenarios/__init__``, the list of scenarios and the resolution of a run's inputs;
+- ``commands/``: validate, sweep, converge, bench, stress, tune, render, report;
+- ``gate/``: the regression gate's forms, environments, baseline, power and release history;
+- ``pages/``: the generated pages, from runs;
+- the faces: the modules at the top of ``src/mjpoincare/`` (:data:`FACES`), what a user imports.
+
+A module in no such folder and not a face has no layer, and fails :func:`test_every_module_has_a_layer`.
 
 Two seams more: no command or face imports one system's scenario module (they find systems through the registry),
 and no scenario imports an engine's module (it steps through ``simulate``, which opens an engine with
@@ -33,30 +41,18 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 #: Where each top-level package of the distribution lives in the checkout.
 SOURCES = {"mjpoincare": ROOT / "src" / "mjpoincare", "mjpoincare.analysis": ROOT / "analysis"}
-LAYERS = ("analysis", "core", "engines", "simulation", "scenarios", "registry", "commands", "face")
-#: Module (or package prefix) -> layer; the longest matching prefix wins.
-LAYER_OF: dict[str, str] = {
-    "mjpoincare.analysis": "analysis",
-    "mjpoincare.params": "core", "mjpoincare.settings": "core", "mjpoincare.result": "core",
-    "mjpoincare.seam": "core", "mjpoincare.parallel": "core", "mjpoincare.progress": "core",
-    "mjpoincare.mjlog": "core", "mjpoincare.mjcompat": "core", "mjpoincare.mjcf_loader": "core",
-    "mjpoincare.stamp": "core", "mjpoincare.cost": "core", "mjpoincare.version": "core",
-    "mjpoincare.outputs": "core", "mjpoincare.allowance": "core",
-    "mjpoincare.backends": "engines", "mjpoincare.peers": "engines",
-    "mjpoincare.simulate": "simulation", "mjpoincare.seam_check": "simulation",
-    "mjpoincare.scenarios": "scenarios",
-    "mjpoincare.scenarios.__init__": "registry", "mjpoincare.inputs": "registry", "mjpoincare.plugin": "registry",
-    "mjpoincare.validation": "commands", "mjpoincare.peer_compare": "commands", "mjpoincare.sweep": "commands",
-    "mjpoincare.converge": "commands", "mjpoincare.extrapolate": "commands", "mjpoincare.bench": "commands",
-    "mjpoincare.stress": "commands", "mjpoincare.tune": "commands", "mjpoincare.tune_pages": "commands",
-    "mjpoincare.releases": "commands", "mjpoincare.gate": "commands", "mjpoincare.gate_environments": "commands",
-    "mjpoincare.report": "commands", "mjpoincare.render": "commands", "mjpoincare.reports": "commands",
-    "mjpoincare.bench_scaling": "commands", "mjpoincare.bench_paths": "commands",
-    "mjpoincare.baseline": "commands", "mjpoincare.power": "commands",
-    "mjpoincare.cli": "face", "mjpoincare.__main__": "face",
-    "mjpoincare.api": "face", "mjpoincare.pytest_plugin": "face", "mjpoincare.envs": "face",
-    "mjpoincare.__init__": "face",
+LAYERS = ("analysis", "core", "engines", "simulation", "scenarios", "registry", "commands", "gate", "pages", "face")
+#: Folder (package) -> layer: every module below a folder is in its layer (the deepest folder listed wins).
+FOLDERS: dict[str, str] = {
+    "mjpoincare.analysis": "analysis", "mjpoincare.core": "core", "mjpoincare.engines": "engines",
+    "mjpoincare.simulation": "simulation", "mjpoincare.scenarios": "scenarios", "mjpoincare.commands": "commands",
+    "mjpoincare.gate": "gate", "mjpoincare.pages": "pages",
 }
+#: The modules at the top of the package: what a user imports (the faces) and the registry's own module.
+FACES = ("mjpoincare.__init__", "mjpoincare.__main__", "mjpoincare.cli", "mjpoincare.api", "mjpoincare.pytest_plugin",
+         "mjpoincare.envs", "mjpoincare.plugin")
+#: The registry: the scenarios folder's own ``__init__``.
+REGISTRY = "mjpoincare.scenarios.__init__"
 
 
 def modules(sources: Mapping[str, Path]) -> dict[str, Path]:
@@ -98,10 +94,15 @@ def imports(name: str, path: Path, known: Mapping[str, Path]) -> Iterator[tuple[
 
 
 def layer(name: str) -> str:
-    """The layer of module ``name`` (the longest prefix in :data:`LAYER_OF`); KeyError for an unplaced module."""
-    for prefix in sorted(LAYER_OF, key=len, reverse=True):
-        if name == prefix or name.startswith(prefix + "."):
-            return LAYER_OF[prefix]
+    """The layer of module ``name``: the registry's, a face's (:data:`FACES`), or its deepest folder's in
+    :data:`FOLDERS`; KeyError for a module in no layer (a module at the top of the package that is no face)."""
+    if name == REGISTRY:
+        return "registry"
+    if name in FACES:
+        return "face"
+    for folder in sorted(FOLDERS, key=len, reverse=True):
+        if name.startswith(folder + "."):
+            return FOLDERS[folder]
     raise KeyError(name)
 
 
@@ -163,14 +164,19 @@ def cycles(edges: Mapping[str, Mapping[str, int]]) -> list[list[str]]:
     return found
 
 
-def test_every_module_has_a_layer() -> None:
-    unplaced = []
-    for name in modules(SOURCES):
+def unplaced(sources: Mapping[str, Path]) -> list[str]:
+    """Every module in no layer: at the top of the package and no face, or in a folder :data:`FOLDERS` lacks."""
+    out = []
+    for name in modules(sources):
         try:
             layer(name)
         except KeyError:
-            unplaced.append(name)
-    assert not unplaced, f"modules with no layer in LAYER_OF: {unplaced}"
+            out.append(name)
+    return out
+
+
+def test_every_module_has_a_layer() -> None:
+    assert unplaced(SOURCES) == [], "modules in no layer's folder and no face"
 
 
 def test_no_layer_imports_one_above_it() -> None:
@@ -189,14 +195,14 @@ SCENARIO_FRAMEWORK = ("mjpoincare.scenarios.base", "mjpoincare.scenarios.gate_ca
 def seam_reaches(edges: Mapping[str, Mapping[str, int]]) -> list[str]:
     """Imports past the seams, as ``module:line -> module``: a command or a face importing one system's scenario
     module (it must find systems through the registry), and a scenario importing an engine's module (it must step
-    through :func:`mjpoincare.simulate.rollout_batch` / ``event_rollout``, which open an engine with
-    :func:`mjpoincare.backends.open_batch`)."""
+    through :func:`mjpoincare.simulation.simulate.rollout_batch` / ``event_rollout``, which open an engine with
+    :func:`mjpoincare.engines.backends.open_batch`)."""
     found = []
     for name, targets in sorted(edges.items()):
         for target, line in sorted(targets.items()):
             command = layer(name) in ("commands", "face") and layer(target) == "scenarios" and (
                 target not in SCENARIO_FRAMEWORK)
-            engine = layer(name) == "scenarios" and target.startswith("mjpoincare.backends")
+            engine = layer(name) == "scenarios" and target.startswith("mjpoincare.engines.backends")
             if command or engine:
                 found.append(f"{name}:{line} -> {target}")
     return found
@@ -224,31 +230,37 @@ def planted(tmp_path: Path) -> dict[str, Path]:
     for package, base in SOURCES.items():
         copies[package] = tmp_path / package
         shutil.copytree(base, copies[package], ignore=shutil.ignore_patterns("__pycache__"))
-    params = copies["mjpoincare"] / "params.py"
+    params = copies["mjpoincare"] / "core" / "params.py"
     params.write_text(params.read_text() + "\n\ndef _planted() -> None:\n    from mjpoincare import cli  # noqa\n")
     return copies
 
 
 def test_a_planted_upward_import_is_found(planted: dict[str, Path]) -> None:
     found = upward(graph(planted))
-    assert any(f.startswith("mjpoincare.params:") and f.endswith("-> mjpoincare.cli (face)") for f in found), found
+    assert any(f.startswith("mjpoincare.core.params:") and f.endswith("-> mjpoincare.cli (face)") for f in found), found
+
+
+def test_a_module_placed_in_no_layer_is_found(planted: dict[str, Path]) -> None:
+    """A new module put at the top of the package beside the faces is in no layer."""
+    (planted["mjpoincare"] / "helpers.py").write_text('"""A helper put where no layer is."""\n')
+    assert unplaced(planted) == ["mjpoincare.helpers"]
 
 
 def test_a_planted_cycle_is_found(planted: dict[str, Path]) -> None:
     """The planted import closes a cycle: the CLI reaches the parameter module through the registry."""
-    assert any({"mjpoincare.params", "mjpoincare.cli"} <= set(c) for c in cycles(graph(planted)))
+    assert any({"mjpoincare.core.params", "mjpoincare.cli"} <= set(c) for c in cycles(graph(planted)))
 
 
 def test_a_planted_reach_past_the_seams_is_found(planted: dict[str, Path]) -> None:
     """A command that imports one system's module, and a scenario that imports an engine, are both reported."""
-    sweep = planted["mjpoincare"] / "sweep.py"
+    sweep = planted["mjpoincare"] / "commands" / "sweep.py"
     sweep.write_text(sweep.read_text() + "\n\ndef _planted() -> None:\n"
                      "    from mjpoincare.scenarios import rimless_wheel  # noqa\n")
-    wheel = planted["mjpoincare"] / "scenarios" / "rimless_wheel.py"
+    wheel = planted["mjpoincare"] / "scenarios" / "rimless_wheel" / "runs.py"
     wheel.write_text(wheel.read_text() + "\n\ndef _planted() -> None:\n"
-                     "    from mjpoincare.backends import mujoco_c  # noqa\n")
+                     "    from mjpoincare.engines.backends import mujoco_c  # noqa\n")
     reaches = seam_reaches(graph(planted))
-    assert any(r.startswith("mjpoincare.sweep:") and r.endswith("-> mjpoincare.scenarios.rimless_wheel")
-               for r in reaches), reaches
-    assert any(r.startswith("mjpoincare.scenarios.rimless_wheel:") and r.endswith("-> mjpoincare.backends.mujoco_c")
-               for r in reaches), reaches
+    assert any(r.startswith("mjpoincare.commands.sweep:")
+               and r.endswith("-> mjpoincare.scenarios.rimless_wheel.__init__") for r in reaches), reaches
+    assert any(r.startswith("mjpoincare.scenarios.rimless_wheel.runs:")
+               and r.endswith("-> mjpoincare.engines.backends.mujoco_c") for r in reaches), reaches

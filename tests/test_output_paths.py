@@ -1,6 +1,6 @@
 """Output paths keep what they are: a FIFO, a device and a symlink given as an output are written through, never
 replaced by a regular file; a missing folder is created; two outputs to one path, a socket and a folder are refused
-before any simulation (:mod:`mjpoincare.result`)."""
+before any simulation (:mod:`mjpoincare.core.result`)."""
 
 from __future__ import annotations
 
@@ -14,8 +14,8 @@ from pathlib import Path
 import pytest
 
 from mjpoincare.cli import main
-from mjpoincare.params import ParameterError
-from mjpoincare.result import check_output_path, distinct_outputs, write_json
+from mjpoincare.core.params import ParameterError
+from mjpoincare.core.result import check_output_path, distinct_outputs, write_json
 
 
 def test_a_fifo_is_written_in_place(tmp_path: Path) -> None:

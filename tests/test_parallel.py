@@ -8,8 +8,8 @@ from pathlib import Path
 
 import pytest
 
-from mjpoincare.parallel import ResumableRows
-from mjpoincare.params import ParameterError
+from mjpoincare.core.parallel import ResumableRows
+from mjpoincare.core.params import ParameterError
 
 HEADER = {"run": "squares"}
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from mjpoincare.params import Param, ParameterError, grid_syntax, parse_assignments, parse_grid, resolve, unknown
+from mjpoincare.core.params import Param, ParameterError, grid_syntax, parse_assignments, parse_grid, resolve, unknown
 
 SPOKES = Param("spokes", 8, "spokes", int, 3, 64)
 SLOPE = Param("slope", 0.08, "slope", float, 0.0, 1.5, True, True)

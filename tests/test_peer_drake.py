@@ -25,12 +25,13 @@ from mjpoincare.analysis.theory import rimless_wheel as rimless_theory
 
 from mjpoincare import scenarios
 from mjpoincare.cli import main
-from mjpoincare.peers import compare, drake
-from mjpoincare.scenarios import compass_biped_drake, rimless_wheel_drake
+from mjpoincare.commands.validation import resolve_inputs
+from mjpoincare.engines.peers import compare, drake
 from mjpoincare.scenarios.compass_biped import biped
+from mjpoincare.scenarios.compass_biped import drake as compass_biped_drake
+from mjpoincare.scenarios.rimless_wheel import drake as rimless_wheel_drake
 from mjpoincare.scenarios.rimless_wheel import wheel
-from mjpoincare.scenarios.rimless_wheel_drake import point_mass_wheel
-from mjpoincare.validation import resolve_inputs
+from mjpoincare.scenarios.rimless_wheel.drake import point_mass_wheel
 
 ACCURACY = drake.REFERENCE_ACCURACY  # runge_kutta5 at target accuracy 1e-12
 # Post-impact state, period, step length: Drake's error control keeps each step's error near the accuracy, and the

@@ -146,7 +146,7 @@ def test_a_parameter_against_a_setting_is_refused_before_any_simulation(tmp_path
     """The toy's ``check_inputs`` sees the parameters and the settings together: a radius under twice the ball's
     deepest penetration at that contact softness is refused in one line, exit 2, before any rollout, nothing written."""
     code = ("import sys\n"
-            "from mjpoincare.backends import mujoco_c\n"
+            "from mjpoincare.engines.backends import mujoco_c\n"
             "def refuse(*a, **k):\n"
             "    raise SystemExit('simulated before checking the inputs')\n"
             "mujoco_c._native_chunk = refuse\n"
@@ -166,7 +166,7 @@ def test_a_plugin_model_gets_the_shared_looks(tmp_path: Path) -> None:
     gradient sky and the floor's checker material, and a still of it shows the sky (not black) above the floor."""
     code = ("import mujoco, toy_ball\n"
             "m = toy_ball.build({'drop_height': 1.0, 'radius': 0.05, 'gravity': 9.81}, "
-            "{**__import__('mjpoincare.settings', fromlist=['DEFAULTS']).DEFAULTS})\n"
+            "{**__import__('mjpoincare.core.settings', fromlist=['DEFAULTS']).DEFAULTS})\n"
             "sky = [i for i in range(m.ntex) if m.tex_type[i] == mujoco.mjtTexture.mjTEXTURE_SKYBOX]\n"
             "print(len(sky), m.mat('grid').id == m.geom('floor').matid[0])\n")
     model = _run([sys.executable, "-c", code])

@@ -1,4 +1,4 @@
-"""The gate's power (:mod:`mjpoincare.power`): a planted change reaches every model a run compiles and nothing
+"""The gate's power (:mod:`mjpoincare.gate.power`): a planted change reaches every model a run compiles and nothing
 else; the unplanted control is caught by nothing; a change of 1e-2 of the timestep is caught by the baseline; the
 committed page is rendered from its JSON, its control holds, and it says plainly what nothing caught."""
 
@@ -10,10 +10,10 @@ from pathlib import Path
 import mujoco
 import pytest
 
-from mjpoincare import power
 from mjpoincare.cli import main
-from mjpoincare.mjcf_loader import compile_spec, load_spec, planted
-from mjpoincare.reports import gate_power_page
+from mjpoincare.core.mjcf_loader import compile_spec, load_spec, planted
+from mjpoincare.gate import power
+from mjpoincare.pages import gate_power_page
 
 ROOT = Path(__file__).parents[1]
 

@@ -1,4 +1,4 @@
-"""The long commands' progress bar (mjpoincare.progress): shown on a terminal, silent in pipes and under CI."""
+"""The long commands' progress bar (mjpoincare.core.progress): shown on a terminal, silent in pipes and under CI."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ import sys
 
 import pytest
 
-from mjpoincare import progress
+from mjpoincare.core import progress
 
 
 class _Terminal(io.StringIO):

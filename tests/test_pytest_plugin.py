@@ -9,7 +9,7 @@ from conftest import all_gated
 
 # imported here, before any pytester test: pytester restores sys.modules after each test, and scipy's extensions,
 # once dropped from it, cannot be loaded again in the same process
-from mjpoincare.validation import resolve_values
+from mjpoincare.commands.validation import resolve_values
 
 pytest_plugins = ["pytester"]
 
@@ -117,7 +117,7 @@ def test_without_option_the_plugin_adds_nothing(pytester: pytest.Pytester) -> No
 
         def test_plugin_loaded_but_light():
             assert "mjpoincare.pytest_plugin" in sys.modules
-            assert not {"mujoco", "numpy", "mjpoincare.validation"} & set(sys.modules)
+            assert not {"mujoco", "numpy", "mjpoincare.commands.validation"} & set(sys.modules)
     """)
     result = run(pytester, "-v")
     result.assert_outcomes(passed=1)

@@ -16,8 +16,10 @@ from typing import Any
 
 import pytest
 
-from mjpoincare import allowance, releases, scenarios
-from mjpoincare.params import ParameterError
+from mjpoincare import scenarios
+from mjpoincare.core import allowance
+from mjpoincare.core.params import ParameterError
+from mjpoincare.gate import releases
 
 ROOT = Path(__file__).resolve().parent.parent
 PAYLOADS = releases.load(ROOT / releases.OUT)
@@ -226,7 +228,7 @@ def test_a_release_file_is_stamped_by_its_latest_run_and_left_alone_when_nothing
     stamps the file with that run's environment."""
     import mujoco
 
-    from mjpoincare import stamp
+    from mjpoincare.core import stamp
 
     dates = iter(f"2026-01-0{day}T00:00:00Z" for day in range(1, 10))
     monkeypatch.setattr(stamp, "environment", lambda: {"date": next(dates), "mujoco": mujoco.__version__})

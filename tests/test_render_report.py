@@ -16,11 +16,11 @@ import pytest
 from mjpoincare.analysis.checks import jsonable
 from mjpoincare.analysis.returnmap import fit_drifting_cycle, fit_return_map
 
-from mjpoincare import report
 from mjpoincare.cli import main
-from mjpoincare.params import ParameterError
-from mjpoincare.render import parse_size
-from mjpoincare.report import eigenvalue_figure, return_map_figure, write_index, write_report
+from mjpoincare.commands import report
+from mjpoincare.commands.render import parse_size
+from mjpoincare.commands.report import eigenvalue_figure, return_map_figure, write_index, write_report
+from mjpoincare.core.params import ParameterError
 from mjpoincare.scenarios.base import ReturnMapPlot
 
 pytestmark = pytest.mark.mujoco
@@ -35,9 +35,9 @@ def test_size_parsing() -> None:
 def test_render_frames_are_sized_not_blank_and_change(tmp_path: Path) -> None:
     code = (
         "import json, numpy as np\n"
-        "from mjpoincare.render import select_gl_backend\n"
+        "from mjpoincare.commands.render import select_gl_backend\n"
         "backend = select_gl_backend()\n"
-        "from mjpoincare.render import render_frames\n"
+        "from mjpoincare.commands.render import render_frames\n"
         "frames, timing = render_frames('rimless-wheel', {}, None, 1.0, 10, (160, 120))\n"
         "np.save('frames.npy', frames)\n"
         "print(json.dumps({'backend': backend, **timing}))\n"
@@ -111,7 +111,7 @@ def test_plots_leave_the_callers_matplotlib_alone(tmp_path: Path) -> None:
 
     # the raw rcParams entry: matplotlib.get_backend() itself would import pyplot to resolve it
     code = ("import sys, matplotlib; raw = lambda: dict.__getitem__(matplotlib.rcParams, 'backend'); before = raw(); "
-            "from mjpoincare.report import write_report; "
+            "from mjpoincare.commands.report import write_report; "
             "from mjpoincare import api; r = api.validate('slotted-skate'); write_report(r.to_dict(), sys.argv[1]); "
             "assert 'matplotlib.pyplot' not in sys.modules, 'pyplot imported'; "
             "assert raw() == before, (before, raw())")

@@ -9,9 +9,10 @@ from typing import Any
 
 import pytest
 
-from mjpoincare import releases, scenarios
-from mjpoincare.reports import gate_power_page
-from mjpoincare.reports import results_pages as results
+from mjpoincare import scenarios
+from mjpoincare.gate import releases
+from mjpoincare.pages import gate_power_page
+from mjpoincare.pages import results_pages as results
 
 RESULTS = Path(__file__).resolve().parent.parent / "docs" / "results"
 PAYLOADS = results.load_payloads(RESULTS)
@@ -35,7 +36,7 @@ def test_committed_page_reproduces_from_its_json(payload: dict[str, Any]) -> Non
 def test_committed_index_reproduces_from_the_json() -> None:
     assert (RESULTS / "README.md").read_text() == results.render_index(PAYLOADS)
     pages = {p.name for p in RESULTS.glob("*.md")}
-    # the release history (from releases/json, mjpoincare.releases) and the gate's power (from gate/power.json)
+    # the release history (from releases/json, mjpoincare.gate.releases) and the gate's power (from gate/power.json)
     others = {releases.PAGE.name, gate_power_page.PAGE.name}
     assert pages == {"README.md", *others} | {f"{p['scenario']}.md" for p in PAYLOADS}, "a page without its JSON"
 

@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 from mjpoincare.analysis.rigid_body_kinematics import euler_state, matrix_to_quat, quat_to_matrix
-from mjpoincare.analysis.theory import rimless_wheel_3d_hybrid as hybrid
+from mjpoincare.analysis.theory.rimless_wheel_3d import hybrid
 
 #: Rotations about x, y and z by ``angle``: (unit axis index, expected matrix).
 AXES = {0: lambda c, s: [[1, 0, 0], [0, c, -s], [0, s, c]],

@@ -18,12 +18,12 @@ import pytest
 from mjpoincare.analysis.rigid_body_kinematics import matrix_to_quat
 from mjpoincare.analysis.theory import rimless_wheel_3d as theory
 
-from mjpoincare import gate
 from mjpoincare.cli import main
-from mjpoincare.params import ParameterError
+from mjpoincare.commands.validation import resolve_inputs
+from mjpoincare.core.params import ParameterError
+from mjpoincare.gate import forms as gate
 from mjpoincare.scenarios import rimless_wheel_3d as rw3
-from mjpoincare.scenarios import rimless_wheel_3d_runs as rw3_runs
-from mjpoincare.validation import resolve_inputs
+from mjpoincare.scenarios.rimless_wheel_3d import runs as rw3_runs
 
 pytestmark = pytest.mark.mujoco
 

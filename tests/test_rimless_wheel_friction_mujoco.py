@@ -14,12 +14,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mjpoincare import gate
 from mjpoincare.cli import main
-from mjpoincare.params import ParameterError
-from mjpoincare.scenarios import rimless_wheel_friction_basins as basins
-from mjpoincare.scenarios import rimless_wheel_friction_sweep as mu_sweep
-from mjpoincare.validation import resolve_inputs, run_validation
+from mjpoincare.commands.validation import resolve_inputs, run_validation
+from mjpoincare.core.params import ParameterError
+from mjpoincare.gate import forms as gate
+from mjpoincare.scenarios.rimless_wheel_friction import basins
+from mjpoincare.scenarios.rimless_wheel_friction import sweep as mu_sweep
 
 pytestmark = pytest.mark.mujoco
 
@@ -117,8 +117,8 @@ def test_sliding_law_cannot_be_read_from_float32_states(monkeypatch: pytest.Monk
     the law's residual goes from ~1e-11 to order 1 (measured 1.0 of its largest possible 1), as the foot's depth and
     velocities are differences of hub coordinates of order 1 that float32 resolves to ~1e-7. The float32 backends'
     misses of ``sliding_contact_law`` are their records' precision, not their contact."""
+    from mjpoincare.core.seam import Chunk
     from mjpoincare.scenarios import rimless_wheel_friction as scenario
-    from mjpoincare.seam import Chunk
 
     measured: dict[str, float] = {}
     law = scenario.sliding_contact

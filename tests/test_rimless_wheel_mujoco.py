@@ -14,12 +14,13 @@ import numpy as np
 import pytest
 from mjpoincare.analysis.theory import rimless_wheel as theory
 
-from mjpoincare import gate, scenarios
+from mjpoincare import scenarios
 from mjpoincare.cli import main
+from mjpoincare.commands.validation import resolve_inputs, run_validation
+from mjpoincare.gate import forms as gate
 from mjpoincare.scenarios import rimless_wheel as rw
-from mjpoincare.scenarios import rimless_wheel_runs as runs
-from mjpoincare.simulate import initial_states, rollout_batch
-from mjpoincare.validation import resolve_inputs, run_validation
+from mjpoincare.scenarios.rimless_wheel import runs
+from mjpoincare.simulation.simulate import initial_states, rollout_batch
 
 pytestmark = pytest.mark.mujoco
 

@@ -1,5 +1,5 @@
-"""analysis.rimless_wheel_rows: the planar rimless wheel's stick-slip variables of recorded rows (002 = Gamus & Or
-2015, Sec. 3) and the soft contact's impact window."""
+"""analysis.theory.rimless_wheel_friction.rows: the planar rimless wheel's stick-slip variables of recorded rows
+(002 = Gamus & Or 2015, Sec. 3) and the soft contact's impact window."""
 
 from __future__ import annotations
 
@@ -7,8 +7,8 @@ import math
 
 import numpy as np
 import pytest
-from mjpoincare.analysis.rimless_wheel_rows import impact_window, wheel_rows
 from mjpoincare.analysis.stick_slip_phases import STICK, Classifier
+from mjpoincare.analysis.theory.rimless_wheel_friction.rows import impact_window, wheel_rows
 
 
 def test_impact_window_is_the_longest_of_its_three_bounds() -> None:

@@ -1,4 +1,4 @@
-"""The rollout seam (:class:`mjpoincare.seam.Batch` on MuJoCo C): restarts, state rewrites and per-trajectory
+"""The rollout seam (:class:`mjpoincare.core.seam.Batch` on MuJoCo C): restarts, state rewrites and per-trajectory
 contact, equality and actuator switches."""
 
 from __future__ import annotations
@@ -11,9 +11,9 @@ import numpy as np
 import pytest
 from mujoco import rollout as mj_rollout
 
-from mjpoincare.backends.mujoco_c import MujocoBatch
-from mjpoincare.seam import RELEASED_MARGIN, STATE_SPEC, Batch, Chunk, switch_contact
-from mjpoincare.simulate import event_rollout, initial_states
+from mjpoincare.core.seam import RELEASED_MARGIN, STATE_SPEC, Batch, Chunk, switch_contact
+from mjpoincare.engines.backends.mujoco_c import MujocoBatch
+from mjpoincare.simulation.simulate import event_rollout, initial_states
 
 #: A ball on a slide joint above a plane (contact margin 1 mm), a pendulum, a bob held by a weld, and a slider pushed
 #: by a motor with a constant bias force.

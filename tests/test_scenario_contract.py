@@ -2,8 +2,8 @@
 has defaults its own input check accepts, tolerances for that preset, a declaration of the checks a run reports, a
 model that compiles, a probe whose batches fit the model, a render frame, and a validation result whose JSON
 round-trips and whose checks are the declared ones. The validation results are the gate's cached runs
-(:func:`mjpoincare.gate.case`), so no validation runs twice in a session; the declarations of the gate's other runs
-are held to the checks the committed margins measurement (docs/results/gate/margins.json) saw them report."""
+(:func:`mjpoincare.gate.forms.case`), so no validation runs twice in a session; the declarations of the gate's other
+runs are held to the checks the committed margins measurement (docs/results/gate/margins.json) saw them report."""
 
 from __future__ import annotations
 
@@ -18,13 +18,13 @@ import mujoco
 import numpy as np
 import pytest
 
-from mjpoincare import gate
-from mjpoincare.result import write_json
+from mjpoincare.commands.validation import resolve_inputs, resolve_values
+from mjpoincare.core.result import write_json
+from mjpoincare.core.seam import STATE_SPEC
+from mjpoincare.gate import forms as gate
 from mjpoincare.scenarios import REGISTRY
 from mjpoincare.scenarios.base import MissingTolerances, Tolerances, at_preset
 from mjpoincare.scenarios.gate_cases import GateCase
-from mjpoincare.seam import STATE_SPEC
-from mjpoincare.validation import resolve_inputs, resolve_values
 
 CASES = [pytest.param(name, preset, id=f"{name}[{preset}]") for name, s in REGISTRY.items() for preset in s.presets]
 MARGINS = Path(__file__).resolve().parent.parent / "docs" / "results" / "gate" / "margins.json"
@@ -102,7 +102,7 @@ def test_model_compiles_and_probe_batches_fit_it(name: str, preset: str) -> None
 @pytest.mark.mujoco
 @pytest.mark.parametrize(("name", "preset"), CASES)
 def test_one_render_frame(name: str, preset: str) -> None:
-    from mjpoincare.render import render_frames
+    from mjpoincare.commands.render import render_frames
 
     fps = 50
     frames, timing = render_frames(name, {}, preset, 1.0 / fps, fps, (32, 24))

@@ -15,11 +15,12 @@ import numpy as np
 import pytest
 from conftest import BACKEND_DISTRIBUTIONS, required_in_ci
 
-from mjpoincare import cli, seam_check
-from mjpoincare.backends import LACKS, REQUIRES, _importable
-from mjpoincare.backends.mujoco_c import MujocoBatch
-from mjpoincare.mjcompat import efc_diag_inverse_inertia
+from mjpoincare import cli
+from mjpoincare.core.mjcompat import efc_diag_inverse_inertia
+from mjpoincare.engines.backends import LACKS, REQUIRES, _importable
+from mjpoincare.engines.backends.mujoco_c import MujocoBatch
 from mjpoincare.scenarios import REGISTRY
+from mjpoincare.simulation import seam_check
 
 pytestmark = pytest.mark.mujoco
 

@@ -1,4 +1,5 @@
-"""Tests of the shared MuJoCo helpers in mjpoincare.simulate: the fractional guard step and the plain render clip."""
+"""Tests of the shared MuJoCo helpers in mjpoincare.simulation.simulate: the fractional guard step and the plain render
+clip."""
 
 from __future__ import annotations
 
@@ -6,9 +7,9 @@ import mujoco
 import numpy as np
 import pytest
 
-from mjpoincare.backends.mujoco_c import fractional_step
-from mjpoincare.seam import STATE_SPEC
-from mjpoincare.simulate import initial_states, plain_clip
+from mjpoincare.core.seam import STATE_SPEC
+from mjpoincare.engines.backends.mujoco_c import fractional_step
+from mjpoincare.simulation.simulate import initial_states, plain_clip
 
 BALL = """<mujoco><option timestep="0.01" gravity="0 0 -9.81"/><worldbody>
 <body><freejoint/><geom type="sphere" size="0.1" mass="1"/></body></worldbody></mujoco>"""
@@ -59,7 +60,7 @@ def test_plain_clip_is_trajectory_0_stepped(model: mujoco.MjModel) -> None:
 @pytest.mark.parametrize("events", [False, True])
 def test_a_rollout_ends_at_the_first_chunk_its_stop_test_accepts(model: mujoco.MjModel, events: bool) -> None:
     """Adaptive stopping: ``stop`` is asked after every chunk; the rollout ends at the first True."""
-    from mjpoincare.simulate import event_rollout, rollout_batch
+    from mjpoincare.simulation.simulate import event_rollout, rollout_batch
 
     start = initial_states(model, np.zeros((2, model.nq)) + np.array([0, 0, 1, 1, 0, 0, 0]), np.zeros((2, model.nv)))
     seen: list[int] = []
@@ -81,7 +82,7 @@ def test_a_finished_trajectory_is_stepped_no_further_and_the_others_step_as_in_t
         model: mujoco.MjModel) -> None:
     """``finished``: a trajectory it marks is NaN in every later chunk, never flagged diverged and never counted as
     stepped; the others' rows are those of the batch run whole, bit for bit; the rollout ends when all are done."""
-    from mjpoincare.simulate import rollout_batch
+    from mjpoincare.simulation.simulate import rollout_batch
 
     qpos = np.tile([0, 0, 1, 1, 0, 0, 0], (3, 1)).astype(float)
     qpos[:, 2] = [1.0, 2.0, 3.0]

@@ -8,9 +8,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mjpoincare import gate
 from mjpoincare.cli import main
-from mjpoincare.validation import run_validation
+from mjpoincare.commands.validation import run_validation
+from mjpoincare.gate import forms as gate
 
 pytestmark = pytest.mark.mujoco
 

@@ -9,7 +9,7 @@ import pytest
 from mjpoincare.analysis.soft_contact import SoftContact, impedance, lift_ratio
 from mujoco import rollout
 
-from mjpoincare.mjcompat import efc_diag_inverse_inertia
+from mjpoincare.core.mjcompat import efc_diag_inverse_inertia
 
 SOLIMP = (0.9, 0.999, 1e-3, 0.5, 2.0)  # a wide, strongly varying impedance: every part of the sigmoid is used
 #: A 2 kg puck on slide joints (no rotation: MuJoCo's diagonal inverse inertia is exactly 1/m) with a sphere foot.

@@ -11,8 +11,8 @@ import pytest
 
 from mjpoincare import scenarios
 from mjpoincare.cli import main
+from mjpoincare.commands.stress import LADDER, generic_cases, largest_timesteps, run_case, soak_summary
 from mjpoincare.scenarios.base import StressCase
-from mjpoincare.stress import LADDER, generic_cases, largest_timesteps, run_case, soak_summary
 
 
 def test_generic_cases_cover_the_ladder_integrators_solvers_and_contact() -> None:
@@ -68,7 +68,7 @@ def test_stress_cli_refuses_unknown_scenario(tmp_path: Path) -> None:
 def test_stress_json_is_strict(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     """The report is written whole, as strict JSON (NaN becomes null). Of the edges the skate declares, it keeps the
     two that run in half a second together and the two it must refuse (its other edges take 15 s)."""
-    from mjpoincare import stress
+    from mjpoincare.commands import stress
 
     monkeypatch.setattr(stress, "generic_cases", lambda scenario: [])
     skate = scenarios.get("slotted-skate")

@@ -13,8 +13,8 @@ import pytest
 from conftest import require_module
 
 from mjpoincare.cli import main
-from mjpoincare.params import ParameterError, parse_values
-from mjpoincare.sweep import crossing, verdict
+from mjpoincare.commands.sweep import crossing, verdict
+from mjpoincare.core.params import ParameterError, parse_values
 
 #: Coarse steps for the sweeps, which test the command rather than accuracy (a tenth to a third of a validation's time
 #: at the fast preset; every check passes there): the wheel's contact time constant, and the skate's peg's, at 2 steps.
@@ -95,8 +95,8 @@ def test_bad_engine_and_resume_without_file_are_refused() -> None:
 def _no_simulation(monkeypatch: pytest.MonkeyPatch) -> None:
     """Fail the test if a scenario's rollout starts (every rollout goes through ``mujoco_c._native_chunk``; the
     seam's self-test, cached per process, runs first)."""
-    from mjpoincare import seam_check
-    from mjpoincare.backends import mujoco_c
+    from mjpoincare.engines.backends import mujoco_c
+    from mjpoincare.simulation import seam_check
 
     seam_check.require(tuple(seam_check.MECHANISMS))
 
@@ -131,8 +131,8 @@ def test_a_region_map_gets_resolved_inputs_and_the_command_writes_its_data(
     """``--grid`` over the map's axes and the inputs are checked before the map runs; the map gets the resolved inputs
     and the axes' values, and the command prints its summary, writes the PNG (the map's default path) and the JSON
     (``scenario``, then the map's data, NaN as null) and exits by the map's verdict."""
-    from mjpoincare.scenarios import rimless_wheel_friction_basins as basins
     from mjpoincare.scenarios.base import RegionMap
+    from mjpoincare.scenarios.rimless_wheel_friction import basins
 
     _no_simulation(monkeypatch)
     calls: list[tuple[object, ...]] = []
@@ -213,7 +213,7 @@ def test_a_scenario_sweep_gets_resolved_inputs_and_the_command_resumes_its_rows(
 def test_the_mu_sweeps_references_run_in_two_processes_at_least(monkeypatch: pytest.MonkeyPatch) -> None:
     """The friction wheel's mu sweep plans its references in two processes or more, the mu values interleaved, and
     groups them in increasing mu into the rollouts the batch setting allows (the processes are replaced)."""
-    from mjpoincare.scenarios import rimless_wheel_friction_sweep as mu_sweep
+    from mjpoincare.scenarios.rimless_wheel_friction import sweep as mu_sweep
 
     seen: list[tuple[int, list[list[float]]]] = []
 
@@ -232,7 +232,7 @@ def test_workers_are_spawned_once_a_threaded_library_is_loaded(monkeypatch: pyte
     import sys
     import types
 
-    from mjpoincare import parallel
+    from mjpoincare.core import parallel
 
     monkeypatch.delitem(sys.modules, "jax", raising=False)
     monkeypatch.delitem(sys.modules, "jaxlib", raising=False)

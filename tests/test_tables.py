@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from mjpoincare.analysis.tables import markdown_table, table_cell, text_table
 
-from mjpoincare.result import format_value
+from mjpoincare.core.result import format_value
 
 
 def test_markdown_table_writes_header_rule_and_rows() -> None:

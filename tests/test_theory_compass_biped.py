@@ -11,8 +11,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 from mjpoincare.analysis.theory import compass_biped as cb
-from mjpoincare.analysis.theory import compass_biped_flight as flight
-from mjpoincare.analysis.theory.compass_biped import CompassBiped
+from mjpoincare.analysis.theory.compass_biped import CompassBiped, flight
 from scipy.integrate import solve_ivp
 
 KISA_X = np.array([-0.2073985186, 0.2873985186, 1.0406442919, 0.4810330477])

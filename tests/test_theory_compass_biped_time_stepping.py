@@ -1,7 +1,7 @@
 """The stick-slip gaits of 002 (Gamus & Or) Secs. 4-5 computed twice, by two methods that share no equation, mode
 logic or impact law: the event-driven reference (:mod:`mjpoincare.analysis.theory.compass_biped_friction`, eq 27 in
 stance-foot coordinates, eqs 31-40) and complementarity time-stepping in floating-base coordinates
-(:mod:`mjpoincare.analysis.theory.compass_biped_time_stepping`).
+(:mod:`mjpoincare.analysis.theory.compass_biped_friction.time_stepping`).
 
 The paper prints no numbers for Gaits C, II and III; these tests are their independent source. The scheme is first
 order in its step h: every quantity is computed at h = 4e-4 and 2e-4 s and Richardson-extrapolated (error O(h^2)).
@@ -23,7 +23,7 @@ from functools import cache
 import numpy as np
 import pytest
 from mjpoincare.analysis.theory import compass_biped_friction as cf
-from mjpoincare.analysis.theory import compass_biped_time_stepping as ts
+from mjpoincare.analysis.theory.compass_biped_friction import time_stepping as ts
 
 #: The two steps (s) of every extrapolation.
 H = (4e-4, 2e-4)

@@ -8,8 +8,8 @@ import math
 import numpy as np
 import pytest
 from mjpoincare.analysis.theory import rimless_wheel as rw
-from mjpoincare.analysis.theory import rimless_wheel_hybrid as hy
 from mjpoincare.analysis.theory.rimless_wheel import RimlessWheel
+from mjpoincare.analysis.theory.rimless_wheel import hybrid as hy
 
 ALPHA8 = math.pi / 8
 KAPPA_PAPER = 1.0 / 3.0

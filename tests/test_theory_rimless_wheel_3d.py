@@ -8,8 +8,8 @@ import math
 import numpy as np
 import pytest
 from mjpoincare.analysis.theory import rimless_wheel_3d as th
-from mjpoincare.analysis.theory import rimless_wheel_3d_hybrid as hy
 from mjpoincare.analysis.theory.rimless_wheel_3d import RimlessWheel3D
+from mjpoincare.analysis.theory.rimless_wheel_3d import hybrid as hy
 
 TABLE2 = RimlessWheel3D(16, 0.125, 0.5, math.pi / 10)  # 001 Sec. 8.1 / Table 2 / Fig 4
 

@@ -12,9 +12,10 @@ import pytest
 from conftest import require_module
 from mjpoincare.analysis.checks import Check
 
-from mjpoincare import scenarios, tune, tune_pages
+from mjpoincare import scenarios
 from mjpoincare.cli import main
-from mjpoincare.validation import resolve_inputs
+from mjpoincare.commands import tune, tune_pages
+from mjpoincare.commands.validation import resolve_inputs
 
 TUNE = Path(__file__).resolve().parent.parent / "docs" / "results" / "tune"
 STUDIES = [json.loads(p.read_text()) for p in sorted((TUNE / "json").glob("*.json"))]

@@ -9,14 +9,14 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
-from mjpoincare.version import VERSION as __version__
+from mjpoincare.core.version import VERSION as __version__
 
 if TYPE_CHECKING:
     from mjpoincare.api import validate
-    from mjpoincare.params import ParameterError
-    from mjpoincare.result import Result
+    from mjpoincare.core.params import ParameterError
+    from mjpoincare.core.result import Result
 
-_LAZY = {"validate": "mjpoincare.api", "Result": "mjpoincare.result", "ParameterError": "mjpoincare.params"}
+_LAZY = {"validate": "mjpoincare.api", "Result": "mjpoincare.core.result", "ParameterError": "mjpoincare.core.params"}
 __all__ = ["ParameterError", "Result", "__version__", "validate"]
 
 

@@ -1,16 +1,16 @@
 """The Python API: ``mjpoincare.validate(scenario, preset=None, seed=0, **values) -> Result``.
 
 The command line (:mod:`mjpoincare.cli`) is a thin layer over this function: the same inputs give the same
-:class:`~mjpoincare.result.Result`, and ``Result.to_dict()`` is the CLI's ``--json`` output.
+:class:`~mjpoincare.core.result.Result`, and ``Result.to_dict()`` is the CLI's ``--json`` output.
 """
 
 from __future__ import annotations
 
 from mjpoincare import scenarios
-from mjpoincare import settings as sim_settings
-from mjpoincare.params import ParameterError, Value, typed
-from mjpoincare.result import Result
-from mjpoincare.validation import run_validation
+from mjpoincare.commands.validation import run_validation
+from mjpoincare.core import settings as sim_settings
+from mjpoincare.core.params import ParameterError, Value, typed
+from mjpoincare.core.result import Result
 
 
 def validate(scenario: str, preset: str | None = None, seed: int = 0, *, peer: str | None = None,
@@ -27,7 +27,7 @@ def validate(scenario: str, preset: str | None = None, seed: int = 0, *, peer: s
             ``integrator="rk4"``): text for a number (``spokes="8"``) is refused, as is a bool.
 
     Returns:
-        The :class:`~mjpoincare.result.Result`: ``passed`` (bool) and ``checks`` (name, analytic, simulated,
+        The :class:`~mjpoincare.core.result.Result`: ``passed`` (bool) and ``checks`` (name, analytic, simulated,
         error, tolerance, passed, why each).
 
     Raises:

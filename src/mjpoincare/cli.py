@@ -11,11 +11,11 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, NoReturn
 
-from mjpoincare.parallel import machine_cores
-from mjpoincare.params import ParameterError, Value, grid_syntax, parse_assignments
+from mjpoincare.core.parallel import machine_cores
+from mjpoincare.core.params import ParameterError, Value, grid_syntax, parse_assignments
 
 if TYPE_CHECKING:
-    from mjpoincare.result import Result
+    from mjpoincare.core.result import Result
 
 EXIT_PASS, EXIT_FAIL, EXIT_BAD_INPUT = 0, 1, 2
 
@@ -51,8 +51,8 @@ def _cmd_validate(args: argparse.Namespace) -> int:
     no_gl = _select_still_backend() if args.report else None  # before MuJoCo is imported
     from mjpoincare import scenarios
     from mjpoincare.api import validate
-    from mjpoincare.result import check_output_path, distinct_outputs, results_document, write_json
-    from mjpoincare.validation import peer_of, resolve_inputs, typed_values
+    from mjpoincare.commands.validation import peer_of, resolve_inputs, typed_values
+    from mjpoincare.core.result import check_output_path, distinct_outputs, results_document, write_json
 
     names = args.scenario or list(scenarios.default_scenarios())
     twice = sorted({n for n in names if names.count(n) > 1})
@@ -67,7 +67,7 @@ def _cmd_validate(args: argparse.Namespace) -> int:
     if args.update_baseline and not args.baseline:
         raise ParameterError("--update-baseline needs --baseline PATH (the file to record into)")
     if args.baseline:
-        from mjpoincare import baseline
+        from mjpoincare.gate import baseline
 
         baseline.check_path(args.baseline, args.update_baseline)
     for name in names:  # refuse bad input before any simulation or file
@@ -75,13 +75,13 @@ def _cmd_validate(args: argparse.Namespace) -> int:
         if args.peer:
             peer_of(scenario, args.peer, params)
         if args.extrapolate:
-            from mjpoincare.extrapolate import coarse_grids
+            from mjpoincare.commands.extrapolate import coarse_grids
 
             coarse_grids(name, assignments, args.preset)
     if args.report:
         _require_viz("--report", "matplotlib")
-    from mjpoincare.cost import refuse_long
-    from mjpoincare.validation import run_steps
+    from mjpoincare.commands.validation import run_steps
+    from mjpoincare.core.cost import refuse_long
 
     for name in names:
         refuse_long(run_steps(name, assignments, args.preset), f"validate {name}", allow=args.allow_long)
@@ -90,8 +90,8 @@ def _cmd_validate(args: argparse.Namespace) -> int:
         # The scenarios side by side, one process each, and each with every core's rollout threads: their costs
         # differ tenfold, so a scenario held to its share of the cores would leave the others' cores idle once they
         # are done (the results do not depend on the threads).
-        from mjpoincare.parallel import run_jobs
-        from mjpoincare.validation import run_validation
+        from mjpoincare.commands.validation import run_validation
+        from mjpoincare.core.parallel import run_jobs
 
         done = run_jobs(run_validation, [(name, assignments, args.preset, args.seed, args.peer) for name in names],
                         workers=workers)
@@ -100,7 +100,7 @@ def _cmd_validate(args: argparse.Namespace) -> int:
         results = [validate(name, args.preset, args.seed, peer=args.peer, **typed_values(name, assignments))
                    for name in names]
     if args.extrapolate:
-        from mjpoincare.extrapolate import extrapolate
+        from mjpoincare.commands.extrapolate import extrapolate
 
         for result in results:
             result.extrapolated = extrapolate(result.scenario, assignments, args.preset, args.seed,
@@ -109,11 +109,11 @@ def _cmd_validate(args: argparse.Namespace) -> int:
         for result in results:
             print(result.table())
             if result.peer is not None:
-                from mjpoincare.peers.compare import format_peer
+                from mjpoincare.engines.peers.compare import format_peer
 
                 print(format_peer(result.peer))
             if result.extrapolated is not None:
-                from mjpoincare.extrapolate import table
+                from mjpoincare.commands.extrapolate import table
 
                 print(table(result.extrapolated))
             print()
@@ -121,7 +121,7 @@ def _cmd_validate(args: argparse.Namespace) -> int:
         write_json(results_document(results), args.json)
     changed = _compare_or_record_baseline(args, results, assignments) if args.baseline else []
     if args.report:
-        from mjpoincare.report import write_index, write_report
+        from mjpoincare.commands.report import write_index, write_report
 
         pages = [r.to_dict() for r in results]
         paths = [write_report(page, args.report, no_gl or _report_still(page["scenario"], assignments, args.preset))
@@ -137,7 +137,7 @@ def _compare_or_record_baseline(args: argparse.Namespace, results: list[Result],
                                 ) -> list[str]:
     """With ``--update-baseline``: record each result with its resolution (the gate's perturbations, re-run) into
     ``--baseline``, and return nothing; without: the lines of every check that moved beyond its resolution."""
-    from mjpoincare import baseline
+    from mjpoincare.gate import baseline
 
     out = sys.stderr if args.json == "-" else sys.stdout
     if not args.update_baseline:
@@ -146,8 +146,8 @@ def _compare_or_record_baseline(args: argparse.Namespace, results: list[Result],
         print("\n".join([f"baseline {args.baseline}: {len(lines)} change(s) beyond the resolution", *lines])
               if lines else f"baseline {args.baseline}: no change beyond the resolution", file=out)
         return lines
-    from mjpoincare.result import write_json
-    from mjpoincare.stamp import environment
+    from mjpoincare.core.result import write_json
+    from mjpoincare.core.stamp import environment
 
     previous = baseline.load(args.baseline) if Path(args.baseline).exists() else None
     records = [(baseline.run_key(r), baseline.entry(r, baseline.perturbation_spreads(r, assignments)))
@@ -159,7 +159,7 @@ def _compare_or_record_baseline(args: argparse.Namespace, results: list[Result],
 
 def _select_still_backend() -> str | None:
     """Choose the OpenGL backend of the report's stills (before MuJoCo is imported); None, or why none works."""
-    from mjpoincare.render import RenderError, select_gl_backend
+    from mjpoincare.commands.render import RenderError, select_gl_backend
 
     try:
         select_gl_backend()
@@ -170,7 +170,7 @@ def _select_still_backend() -> str | None:
 
 def _report_still(name: str, assignments: dict[str, str], preset: str | None) -> bytes | str:
     """The report's still of scenario ``name`` (PNG bytes), or why it could not be rendered."""
-    from mjpoincare.render import RenderError, render_still
+    from mjpoincare.commands.render import RenderError, render_still
 
     try:
         return render_still(name, assignments, preset)
@@ -179,8 +179,8 @@ def _report_still(name: str, assignments: dict[str, str], preset: str | None) ->
 
 
 def _cmd_bench(args: argparse.Namespace) -> int:
-    from mjpoincare.bench import run_bench, run_skips
-    from mjpoincare.result import check_output_path, check_plot_path, distinct_outputs
+    from mjpoincare.commands.bench import run_bench, run_skips
+    from mjpoincare.core.result import check_output_path, check_plot_path, distinct_outputs
 
     modes = [flag for flag in ("quick", "skips", "scaling", "paths") if getattr(args, flag)]
     if len(modes) > 1:
@@ -190,7 +190,7 @@ def _cmd_bench(args: argparse.Namespace) -> int:
     if args.param and not args.scaling:
         raise ParameterError(f"--param {args.param} is for bench --scaling only")
     if args.scaling:
-        from mjpoincare.bench_scaling import run_scaling
+        from mjpoincare.commands.bench_scaling import run_scaling
 
         json_path = args.json if args.json != "renders/bench-{scenario}.json" else "renders/scaling-{scenario}.json"
         check_output_path(json_path and json_path.format(scenario=args.scenario), "--json")
@@ -211,7 +211,7 @@ def _cmd_bench(args: argparse.Namespace) -> int:
                      output=output.format(scenario=args.scenario))
     _require_viz("bench's plot", "matplotlib")
     if args.paths:
-        from mjpoincare.bench_paths import run_paths
+        from mjpoincare.commands.bench_paths import run_paths
 
         return run_paths(args.scenario, parse_assignments(args.set), output, json_path)
     return run_bench(args.scenario, parse_assignments(args.set), args.output, args.json, quick=args.quick)
@@ -223,9 +223,9 @@ MAX_GRID_CELLS = 10_000
 
 def _cmd_sweep(args: argparse.Namespace) -> int:
     from mjpoincare import scenarios
-    from mjpoincare.params import parse_values
-    from mjpoincare.result import check_output_path, check_plot_path, distinct_outputs
-    from mjpoincare.sweep import run_own_sweep, run_region_map, run_sweep
+    from mjpoincare.commands.sweep import run_own_sweep, run_region_map, run_sweep
+    from mjpoincare.core.params import parse_values
+    from mjpoincare.core.result import check_output_path, check_plot_path, distinct_outputs
 
     scenario = scenarios.get(args.scenario)
     check_output_path(args.json, "--json")
@@ -235,7 +235,7 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
             with_map = [s.name for s in scenarios.REGISTRY.values() if s.region_map]
             raise ParameterError(f"--grid: {scenario.name} has no region map (scenarios with one: "
                                  f"{', '.join(with_map)})")
-        from mjpoincare.params import parse_grid
+        from mjpoincare.core.params import parse_grid
 
         cells = math.prod(len(v) for v in parse_grid(args.grid, facet.axes).values())
         if cells > MAX_GRID_CELLS and not args.allow_long:
@@ -256,8 +256,8 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
         raise ParameterError(f"--set {args.param} and --param {args.param}: the sweep sets {args.param} at each value; "
                              "drop the --set")
     if args.param not in scenario.param_sweeps:
-        from mjpoincare.cost import refuse_long
-        from mjpoincare.validation import run_steps
+        from mjpoincare.commands.validation import run_steps
+        from mjpoincare.core.cost import refuse_long
 
         assignments = parse_assignments(args.set)
         ends = {values[0], values[len(values) // 2], values[-1]}  # a value's steps vary smoothly along the sweep
@@ -273,8 +273,8 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
 
 
 def _cmd_converge(args: argparse.Namespace) -> int:
-    from mjpoincare.converge import DEFAULT_AXES, run_converge
-    from mjpoincare.result import check_output_path, distinct_outputs
+    from mjpoincare.commands.converge import DEFAULT_AXES, run_converge
+    from mjpoincare.core.result import check_output_path, distinct_outputs
 
     check_output_path(args.json, "--json")
     check_output_path(args.report, "--report", directory=True)
@@ -288,8 +288,8 @@ def _cmd_converge(args: argparse.Namespace) -> int:
 
 
 def _cmd_stress(args: argparse.Namespace) -> int:
-    from mjpoincare.result import check_output_path
-    from mjpoincare.stress import run_stress
+    from mjpoincare.commands.stress import run_stress
+    from mjpoincare.core.result import check_output_path
 
     check_output_path(args.json, "--json")
 
@@ -299,8 +299,9 @@ def _cmd_stress(args: argparse.Namespace) -> int:
 def _cmd_margins(args: argparse.Namespace) -> int:
     import json
 
-    from mjpoincare import gate, gate_environments
-    from mjpoincare.result import check_output_path, write_json
+    from mjpoincare.core.result import check_output_path, write_json
+    from mjpoincare.gate import environments as gate_environments
+    from mjpoincare.gate import forms as gate
 
     check_output_path(args.json, "--json")
     cases = [c for c in gate.cases() if not args.case or any(k in c.label for k in args.case)]
@@ -328,7 +329,7 @@ def _cmd_margins(args: argparse.Namespace) -> int:
         recorded[f"--compare {Path(path).name}"] = gate_environments.errors_of(other)
     stamp = None
     if args.json:
-        from mjpoincare.stamp import environment, git_state
+        from mjpoincare.core.stamp import environment, git_state
 
         stamp = environment()  # the commit the run starts from; marked dirty if the tree changes while it runs
     environments = {**gate_environments.run_ensemble(chosen, [c.label for c in cases], workers=args.workers),
@@ -351,8 +352,9 @@ def _cmd_margins(args: argparse.Namespace) -> int:
 
 
 def _cmd_power(args: argparse.Namespace) -> int:
-    from mjpoincare import gate, power
-    from mjpoincare.result import check_output_path, write_json
+    from mjpoincare.core.result import check_output_path, write_json
+    from mjpoincare.gate import forms as gate
+    from mjpoincare.gate import power
 
     check_output_path(args.json, "--json")
     if args.workers < 1:
@@ -368,7 +370,7 @@ def _cmd_power(args: argparse.Namespace) -> int:
     power.committed_baseline()
     stamp = None
     if args.json:
-        from mjpoincare.stamp import environment
+        from mjpoincare.core.stamp import environment
 
         stamp = environment()
     rows = power.power_rows(cases, chosen, args.workers)
@@ -381,8 +383,8 @@ def _cmd_power(args: argparse.Namespace) -> int:
     if stamp is not None:
         import mujoco
 
-        from mjpoincare.allowance import FLOOR, MULTIPLE
         from mjpoincare.analysis.checks import jsonable
+        from mjpoincare.core.allowance import FLOOR, MULTIPLE
 
         write_json(jsonable({"mujoco_version": mujoco.__version__, "multiple": MULTIPLE, "floor": FLOOR,
                              "margin": gate.MARGIN,
@@ -392,9 +394,9 @@ def _cmd_power(args: argparse.Namespace) -> int:
 
 def _cmd_tune(args: argparse.Namespace) -> int:
     from mjpoincare import scenarios
-    from mjpoincare.result import check_output_path, check_plot_path, distinct_outputs, write_json
-    from mjpoincare.stamp import environment
-    from mjpoincare.tune import STUDY_DIR, run_study, summary
+    from mjpoincare.commands.tune import STUDY_DIR, run_study, summary
+    from mjpoincare.core.result import check_output_path, check_plot_path, distinct_outputs, write_json
+    from mjpoincare.core.stamp import environment
 
     name = scenarios.get(args.scenario).name
     check_output_path(args.json, "--json")
@@ -426,14 +428,14 @@ def _cmd_tune(args: argparse.Namespace) -> int:
     if args.json:
         write_json(data, args.json)
     if args.plot:
-        from mjpoincare.tune_pages import plot_front
+        from mjpoincare.commands.tune_pages import plot_front
 
         plot_front(data, args.plot)
     return EXIT_PASS
 
 
 def _cmd_render(args: argparse.Namespace) -> int:
-    from mjpoincare.render import (
+    from mjpoincare.commands.render import (
         check_clip,
         check_media_path,
         parse_size,
@@ -448,10 +450,10 @@ def _cmd_render(args: argparse.Namespace) -> int:
     assignments = parse_assignments(args.set)
     check_clip(args.seconds, args.fps, 1.0)
     backend = select_gl_backend()  # before MuJoCo is imported
-    from mjpoincare.validation import resolve_inputs
+    from mjpoincare.commands.validation import resolve_inputs
 
     check_clip(args.seconds, args.fps, float(resolve_inputs(args.scenario, assignments, args.preset)[3]["timestep"]))
-    from mjpoincare.result import check_output_path
+    from mjpoincare.core.result import check_output_path
 
     check_output_path(output, "--output")
     _require_viz("render", "mediapy", "imageio_ffmpeg")

@@ -52,9 +52,9 @@ from dm_control.rl import control
 from dm_control.suite import base
 
 from mjpoincare import scenarios
-from mjpoincare import settings as sim_settings
-from mjpoincare.params import ParameterError, Value, typed
-from mjpoincare.validation import resolve_inputs
+from mjpoincare.commands.validation import resolve_inputs
+from mjpoincare.core import settings as sim_settings
+from mjpoincare.core.params import ParameterError, Value, typed
 
 #: The loadable names: every scenario of the registry.
 ALL: tuple[str, ...] = tuple(scenarios.REGISTRY)

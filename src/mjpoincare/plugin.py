@@ -38,8 +38,8 @@ from __future__ import annotations
 from mjpoincare.analysis.checks import Check, absolute, categorical, fraction, relative
 from mjpoincare.analysis.returnmap import ReturnMapFit, fit_return_map, sample_pairs
 from mjpoincare.analysis.sections import Crossings, level_crossings
-from mjpoincare.mjcf_loader import compile_spec, load_spec
-from mjpoincare.outputs import (
+from mjpoincare.core.mjcf_loader import compile_spec, load_spec
+from mjpoincare.core.outputs import (
     AnalyticValues,
     BasinMap,
     FitSummary,
@@ -47,7 +47,17 @@ from mjpoincare.outputs import (
     ReturnMapPlot,
     SectionConvergence,
 )
-from mjpoincare.params import Param, ParameterError, Values
+from mjpoincare.core.params import Param, ParameterError, Values
+from mjpoincare.core.seam import Chunk
+from mjpoincare.core.settings import (
+    Dimension,
+    apply_options,
+    apply_unskip,
+    rollout_options,
+    search_space,
+    solimp,
+    solref,
+)
 from mjpoincare.scenarios.base import (
     CoveragePoint,
     Evaluation,
@@ -57,17 +67,7 @@ from mjpoincare.scenarios.base import (
     at_preset,
 )
 from mjpoincare.scenarios.gate_cases import GateCase, Miss, Watch
-from mjpoincare.seam import Chunk
-from mjpoincare.settings import (
-    Dimension,
-    apply_options,
-    apply_unskip,
-    rollout_options,
-    search_space,
-    solimp,
-    solref,
-)
-from mjpoincare.simulate import event_rollout, initial_states, plain_clip, rollout_batch
+from mjpoincare.simulation.simulate import event_rollout, initial_states, plain_clip, rollout_batch
 
 __all__ = [
     "AnalyticValues",

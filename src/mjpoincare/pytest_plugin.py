@@ -6,7 +6,7 @@ Usage (the plugin is registered through the ``pytest11`` entry point ``mjpoincar
            [--mjpoincare-set timestep=2e-4 ...] [--mjpoincare-seed 0]
            [--mjpoincare-baseline PATH [--mjpoincare-update-baseline]]
 
-Each scenario gives one item per check of its :class:`~mjpoincare.result.Result`, node id
+Each scenario gives one item per check of its :class:`~mjpoincare.core.result.Result`, node id
 ``mjpoincare::<scenario>::<check>`` (the ``stable`` check, divergence + MuJoCo warnings, included); every item
 carries the ``mjpoincare`` marker, so ``-m mjpoincare`` selects only these and ``-m "not mjpoincare"`` skips them.
 A failing item prints the check's analytic and simulated values, error (and its kind), tolerance, unit and why,
@@ -15,7 +15,7 @@ then the scenario / preset / seed / settings. Exit status is pytest's: 0 all pas
 and its bound, raised in ``pytest_configure`` before any simulation). Without ``--mjpoincare`` the plugin adds
 nothing and imports nothing beyond pytest (no MuJoCo, numpy or scipy); ``-p no:mjpoincare`` disables it.
 
-With ``--mjpoincare-baseline PATH`` (:mod:`mjpoincare.baseline`) an item also fails when its check's error moved
+With ``--mjpoincare-baseline PATH`` (:mod:`mjpoincare.gate.baseline`) an item also fails when its check's error moved
 from the one recorded in ``PATH`` for the same scenario, preset and parameters by more than its resolution allows
 (naming the old and new errors and the resolution), or when the check is missing from the run or from the baseline;
 a ``PATH`` that does not exist is a usage error. With ``--mjpoincare-update-baseline`` the runs are recorded into
@@ -60,7 +60,7 @@ import pytest
 
 if TYPE_CHECKING:
     from mjpoincare.analysis.checks import Check
-    from mjpoincare.result import Result
+    from mjpoincare.core.result import Result
 
 MARKER = "mjpoincare"
 
@@ -161,11 +161,11 @@ def _parse_request(config: pytest.Config) -> Request | None:
         raise pytest.UsageError("--mjpoincare-update-baseline needs --mjpoincare-baseline PATH (the file to record "
                                 "into)")
 
-    from mjpoincare.params import ParameterError, parse_assignments
-    from mjpoincare.validation import resolve_inputs
+    from mjpoincare.commands.validation import resolve_inputs
+    from mjpoincare.core.params import ParameterError, parse_assignments
 
     if baseline:
-        from mjpoincare.baseline import check_path
+        from mjpoincare.gate.baseline import check_path
 
         try:
             check_path(baseline, update, option="--mjpoincare-baseline")
@@ -221,7 +221,7 @@ def _result(config: pytest.Config, scenario: str) -> Result | Exception:
     cache = config.stash[_RESULTS]
     if scenario not in cache:
         import mjpoincare
-        from mjpoincare.validation import typed_values
+        from mjpoincare.commands.validation import typed_values
 
         request = config.stash[_REQUEST]
         try:
@@ -239,7 +239,7 @@ def _against_baseline(config: pytest.Config, scenario: str, result: Result) -> N
     request = config.stash[_REQUEST]
     if request.baseline is None:
         return
-    from mjpoincare import baseline
+    from mjpoincare.gate import baseline
 
     if request.update_baseline:
         config.stash[_RECORDS][baseline.run_key(result)] = baseline.entry(
@@ -259,9 +259,9 @@ def pytest_sessionfinish(session: pytest.Session) -> None:
         return
     from pathlib import Path
 
-    from mjpoincare import baseline
-    from mjpoincare.result import write_json
-    from mjpoincare.stamp import environment
+    from mjpoincare.core.result import write_json
+    from mjpoincare.core.stamp import environment
+    from mjpoincare.gate import baseline
 
     path = session.config.stash[_REQUEST].baseline
     assert path is not None
@@ -274,7 +274,7 @@ class ScenarioCollector(pytest.Collector):
 
     def collect(self) -> list[pytest.Item]:
         """A :class:`CheckItem` per declared check, then ``stable`` (the scenario runs when the first one does)."""
-        from mjpoincare.validation import resolve_values
+        from mjpoincare.commands.validation import resolve_values
 
         request = self.config.stash[_REQUEST]
         scenario, _, params, settings = resolve_values(self.name, request.assignments, request.preset)
@@ -433,7 +433,7 @@ def _failure_lines(check: Check, result: Result, request: Request) -> tuple[str,
 
 
 def _fmt(value: Any) -> str:
-    from mjpoincare.result import format_value  # loaded with the results it formats, never without --mjpoincare
+    from mjpoincare.core.result import format_value  # loaded with the results it formats, never without --mjpoincare
 
     return format_value(value)
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 from collections.abc import Iterator, MutableMapping
 from importlib.metadata import EntryPoint, entry_points
 
-from mjpoincare.params import ParameterError
+from mjpoincare.core.params import ParameterError
 from mjpoincare.scenarios.base import Evaluation, Scenario
 
 #: The entry-point group a distribution declares its scenarios in: ``name = "module:attribute"`` of a Scenario.

@@ -18,7 +18,7 @@ import mujoco
 import numpy as np
 
 from mjpoincare.analysis.checks import Check
-from mjpoincare.outputs import (
+from mjpoincare.core.outputs import (
     AnalyticValues,
     BasinMap,
     FitSummary,
@@ -26,11 +26,11 @@ from mjpoincare.outputs import (
     ReturnMapPlot,
     SectionConvergence,
 )
-from mjpoincare.params import Param, ParameterError, Values
-from mjpoincare.peers import Peer
+from mjpoincare.core.params import Param, ParameterError, Values
+from mjpoincare.core.seam import RolloutReport
+from mjpoincare.core.settings import SEARCH_SPACE, Dimension
+from mjpoincare.engines.peers import Peer
 from mjpoincare.scenarios.gate_cases import GateCase
-from mjpoincare.seam import RolloutReport
-from mjpoincare.settings import SEARCH_SPACE, Dimension
 
 T = TypeVar("T")
 
@@ -215,7 +215,7 @@ class RegionMap:
 
     Attributes:
         axes: the grid's two axes (their names, what they are and their bounds), in the order :attr:`compute` takes
-            them; ``--grid`` is :func:`~mjpoincare.params.parse_grid` over them.
+            them; ``--grid`` is :func:`~mjpoincare.core.params.parse_grid` over them.
         output: the PNG path when ``-o`` is not given (``{scenario}`` is filled in).
         compute: the map (:class:`RegionMapCompute`).
         summary: ``(data) -> text``: what the command prints.
@@ -257,8 +257,8 @@ class ParamSweep:
 
     It computes on resolved inputs and returns data; the command resolves the other inputs and checks the values
     against the parameter's declared range (before any simulation), keeps the rows in the resumable results file
-    (:class:`~mjpoincare.parallel.ResumableRows`, one row per value, ``row[NAME]`` the value), prints :attr:`table` and
-    the timing, and returns the exit code from :attr:`passed`.
+    (:class:`~mjpoincare.core.parallel.ResumableRows`, one row per value, ``row[NAME]`` the value), prints :attr:`table`
+    and the timing, and returns the exit code from :attr:`passed`.
 
     Attributes:
         plan: the references and the jobs (:class:`SweepPlan`).
@@ -334,12 +334,14 @@ class Scenario:
         param_sweeps: the scenario's own sweeps by parameter name (:class:`ParamSweep`), run by ``sweep --param NAME``
             in place of the generic sweep; every other parameter or setting gets the generic sweep.
         mechanisms: the seam mechanisms its event controllers and checks use (keys of
-            :data:`mjpoincare.seam_check.MECHANISMS`), each self-tested on the loaded MuJoCo before the scenario runs.
+            :data:`mjpoincare.simulation.seam_check.MECHANISMS`), each self-tested on the loaded MuJoCo before the
+            scenario runs.
         coverage: the parameter points that span the scenario's range (:class:`CoveragePoint`; the defaults first):
             the preset search judges each trial at all of them.
-        search_space: the settings the preset search varies (:class:`~mjpoincare.settings.Dimension`); the preset's
+        search_space: the settings the preset search varies (:class:`~mjpoincare.core.settings.Dimension`); the preset's
             other settings are the scene's own and stay as declared.
-        peers: outside simulators' models of the system (:class:`~mjpoincare.peers.Peer`), for ``validate --peer``
+        peers: outside simulators' models of the system (:class:`~mjpoincare.engines.peers.Peer`), for ``validate
+        --peer``
             and the bench's peer rows.
         tolerances: preset -> :class:`Tolerances` (or mode -> such a table): what ``evaluate`` judges each check
             against, and why.
@@ -349,9 +351,9 @@ class Scenario:
             defaults at every preset at least), each check in its form: gated, watched or a declared miss.
         checks: every check ``evaluate`` reports at some inputs, by name and in its order (not ``stable``, which the
             validation appends to every run). A run reports :meth:`checks_for` of them, and
-            :func:`mjpoincare.validation.run_validation` appends a failing check of kind ``missing`` for each of those
-            it does not report: a check that disappears fails. A check measured only where the samples allow (a fit
-            that needs 3 sample pairs) is declared all the same, so that a run whose samples do not allow it fails.
+            :func:`mjpoincare.commands.validation.run_validation` appends a failing check of kind ``missing`` for each
+            of those it does not report: a check that disappears fails. A check measured only where the samples allow (a
+            fit that needs 3 sample pairs) is declared all the same, so that a run whose samples do not allow it fails.
             Empty: the scenario declares nothing, and nothing is appended.
         checks_at: ``(params, settings) -> checks``, in ``checks``' order, where a run reports fewer than all of
             ``checks``: the paper has the quantity at some parameters only (a gait, a friction regime), or the

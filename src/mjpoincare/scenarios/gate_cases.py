@@ -1,5 +1,5 @@
 """The gate's records: each scenario declares, as its ``gate_cases``, the validation runs the regression gate
-(:mod:`mjpoincare.gate`) asserts and, per check, the form it is asserted in: gated, watched (:class:`Watch`) or a
+(:mod:`mjpoincare.gate.forms`) asserts and, per check, the form it is asserted in: gated, watched (:class:`Watch`) or a
 declared miss (:class:`Miss`) with its measured error, spread and mechanism."""
 
 from __future__ import annotations
@@ -7,8 +7,8 @@ from __future__ import annotations
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 
-from mjpoincare.allowance import allowance
-from mjpoincare.params import Value
+from mjpoincare.core.allowance import allowance
+from mjpoincare.core.params import Value
 
 
 @dataclass(frozen=True)
@@ -17,8 +17,8 @@ class Miss:
 
     ``measured``: the error ``mjpoincare margins`` measures, one number, or (low, high) where the ensemble of
     environments gives a range; ``spread``: the largest change of that error over the ensemble (environments and
-    perturbations), measured with it (the band allows :func:`mjpoincare.allowance.allowance` of it); ``tolerance``: the
-    check's tolerance at the case's preset (quoted in the reason; tests/test_gate.py compares it with the run's);
+    perturbations), measured with it (the band allows :func:`mjpoincare.core.allowance.allowance` of it); ``tolerance``:
+    the check's tolerance at the case's preset (quoted in the reason; tests/test_gate.py compares it with the run's);
     ``mechanism``: why MuJoCo misses, in words (the numbers behind it are in the scenario modules and the Findings of
     docs/scenarios/<scenario>.md).
 
@@ -48,7 +48,7 @@ class Miss:
     @property
     def band(self) -> tuple[float, float]:
         """The errors the miss accepts: the declared error widened on both sides by its allowance
-        (:func:`mjpoincare.allowance.allowance` of its spread and tolerance); an unresolved miss's: above its
+        (:func:`mjpoincare.core.allowance.allowance` of its spread and tolerance); an unresolved miss's: above its
         tolerance, at most its ceiling."""
         if self.ceiling is not None:
             return self.tolerance, self.ceiling
@@ -74,7 +74,7 @@ class Miss:
 @dataclass(frozen=True)
 class Watch:
     """A check that passes without the gate's margin: asserted to stay within its tolerance in every environment of
-    the ensemble, its error's largest change there within the allowance (:func:`mjpoincare.allowance.allowance`)
+    the ensemble, its error's largest change there within the allowance (:func:`mjpoincare.core.allowance.allowance`)
     of ``spread`` (what ``mjpoincare margins`` measured);
     ``why``: why it sits there (what sets its error at this preset)."""
 

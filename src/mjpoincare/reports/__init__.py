@@ -1,1 +1,0 @@
-"""Report commands: they run validations and measurements through the public layers and write generated pages."""
