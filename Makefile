@@ -9,8 +9,9 @@
 #   make lock         regenerate requirements/lock.txt from pyproject.toml
 #   make test-latest  the tests against the newest versions pyproject.toml allows (finds dependency drift)
 #   make margins      the regression gate's margin table: every check's form (gated, watched, declared miss), error,
-#                     spread over the environments this machine emulates (every OpenBLAS kernel the CPU runs, numpy at
-#                     its baseline, each in its own process), under seed, threads, starts x(1+1e-12) and x(1+1e-9) and
+#                     spread over the environments this machine emulates (every OpenBLAS kernel the CPU runs crossed
+#                     with numpy's dispatch levels, one BLAS thread, each in its own process), under seed, threads,
+#                     starts x(1+1e-12) and x(1+1e-9) and
 #                     the oldest numpy/scipy allowed, and resolution, into docs/results/gate/ (JSON and page)
 #   make baseline     the gate's regression baseline (docs/results/gate/baseline.json): every gate check's error and
 #                     resolution (its spread over the environments make margins measured and the rounding
