@@ -4,6 +4,13 @@ The registry discovers scenarios: it lists the entry points of the group ``mjpoi
 distribution (this one's are in its ``pyproject.toml``; another distribution adds a system by declaring its own,
 docs/adding-a-scenario.md), by name. A scenario's module is imported when the scenario is first looked up, so a
 command that runs one scenario loads only that one (its theory, its model and their libraries).
+
+The folder holds the registry (this module, a layer of its own above the systems), the records a system declares
+(``base``: the Scenario and its parts; ``gate_cases``: its gate runs) and one subpackage per system, whose
+``__init__`` is the system's Scenario and whose modules are its runs, checks and gate declarations. A system's
+modules may import the records, the simulation (never an engine's module: the seam is ``simulate``),
+:mod:`mjpoincare.core` and :mod:`mjpoincare.analysis`; never another layer above them, and a command reaches a system
+only through this registry.
 """
 
 from __future__ import annotations
