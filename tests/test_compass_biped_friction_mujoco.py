@@ -19,7 +19,7 @@ from mjpoincare.commands.validation import resolve_inputs
 from mjpoincare.core.result import Result
 from mjpoincare.gate import forms as gate
 from mjpoincare.scenarios import compass_biped_friction as sc
-from mjpoincare.scenarios.compass_biped_friction import design
+from mjpoincare.scenarios.compass_biped_friction import start_design as design
 
 pytestmark = pytest.mark.mujoco
 

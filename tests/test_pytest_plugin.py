@@ -128,7 +128,7 @@ def test_without_option_the_plugin_adds_nothing(pytester: pytest.Pytester) -> No
 def test_a_baseline_catches_a_timestep_one_percent_off_that_every_tolerance_passes(pytester: pytest.Pytester) -> None:
     """Recorded with ``--mjpoincare-update-baseline``, the same run passes against it; at a timestep 1 % off the
     preset's, every check still passes its tolerance and at least one item fails on the baseline, naming the check,
-    the old and new errors and the resolution."""
+    the old and new errors, the resolution and the allowance."""
     from mjpoincare import scenarios
 
     scenario = all_gated("rimless-wheel[fast]")
@@ -144,7 +144,8 @@ def test_a_baseline_catches_a_timestep_one_percent_off_that_every_tolerance_pass
     assert "mjpoincare check" not in out, "a tolerance failed: the change is not below the tolerance"
     failed = [name for name, verdict in nodes(scenario).findall(out) if verdict == "FAILED"]
     assert failed, out
-    assert re.search(rf"rimless-wheel\[fast\]::{failed[0]}: error \S+ -> \S+: changed \S+, \S+ x its resolution",
+    assert re.search(rf"rimless-wheel\[fast\]::{failed[0]}: error \S+ -> \S+: changed \S+, \S+ x its allowance \S+ "
+                     r"\(the larger of 3 x its resolution \S+ and 1e-06 x its tolerance\)",
                      out), out
 
 

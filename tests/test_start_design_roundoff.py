@@ -14,7 +14,7 @@ from mjpoincare.analysis.start_designs import DESIGN_DIGITS, design_size
 from mjpoincare import scenarios
 from mjpoincare.scenarios import compass_biped_friction as friction
 from mjpoincare.scenarios.compass_biped import runs
-from mjpoincare.scenarios.compass_biped_friction.design import initial_section_states
+from mjpoincare.scenarios.compass_biped_friction.start_design import initial_section_states
 
 #: The relative roundoff the multipliers carry between kernels (measured: 2e-10 SkylakeX against Haswell, 9.5e-10
 #: Prescott), with a factor of 10 on it.

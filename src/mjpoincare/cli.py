@@ -136,7 +136,7 @@ def _cmd_validate(args: argparse.Namespace) -> int:
 def _compare_or_record_baseline(args: argparse.Namespace, results: list[Result], assignments: dict[str, Value]
                                 ) -> list[str]:
     """With ``--update-baseline``: record each result with its resolution (the gate's perturbations, re-run) into
-    ``--baseline``, and return nothing; without: the lines of every check that moved beyond its resolution."""
+    ``--baseline``, and return nothing; without: the lines of every check that moved beyond its allowance."""
     from mjpoincare.gate import baseline
 
     out = sys.stderr if args.json == "-" else sys.stdout
@@ -497,8 +497,8 @@ def build_parser() -> argparse.ArgumentParser:
                      "results are the serial ones)")
     val.add_argument("--report", metavar="DIR", help="write a self-contained HTML report per scenario into DIR")
     val.add_argument("--baseline", metavar="PATH", help="compare each check's error with this baseline file's (exit "
-                     "1 on a change beyond 3 x its resolution, or a check missing or new; a file that does not exist "
-                     "is an error)")
+                     "1 on a change beyond its allowance: 3 x its resolution, never below 1e-6 x its tolerance; or a "
+                     "check missing or new; a file that does not exist is an error)")
     val.add_argument("--update-baseline", action="store_true", help="record this run into --baseline instead (kept: "
                      "its other runs), each check's resolution measured by re-running under the gate's perturbations")
     val.add_argument("--extrapolate", action="store_true", help="also run the timestep grids 2h and 4h and report "

@@ -16,8 +16,9 @@ and its bound, raised in ``pytest_configure`` before any simulation). Without ``
 nothing and imports nothing beyond pytest (no MuJoCo, numpy or scipy); ``-p no:mjpoincare`` disables it.
 
 With ``--mjpoincare-baseline PATH`` (:mod:`mjpoincare.gate.baseline`) an item also fails when its check's error moved
-from the one recorded in ``PATH`` for the same scenario, preset and parameters by more than its resolution allows
-(naming the old and new errors and the resolution), or when the check is missing from the run or from the baseline;
+from the one recorded in ``PATH`` for the same scenario, preset and parameters by more than its allowance
+(:func:`mjpoincare.core.allowance.allowance`: 3 x its resolution, never below 1e-6 x its tolerance; naming the old
+and new errors, the resolution and the allowance), or when the check is missing from the run or from the baseline;
 a ``PATH`` that does not exist is a usage error. With ``--mjpoincare-update-baseline`` the runs are recorded into
 ``PATH`` instead (whole, at the end of the session; its other runs kept), each check's resolution measured by
 re-running the scenario under the rounding perturbations, and the items judge the tolerances only (as
@@ -102,7 +103,7 @@ def pytest_addoption(parser: pytest.Parser) -> None:
     group.addoption("--mjpoincare-seed", type=int, default=None, metavar="SEED",
                     help="seed of the experiment design's random parts (default 0)")
     group.addoption("--mjpoincare-baseline", default=None, metavar="PATH",
-                    help="also fail a check whose error moved beyond its resolution from this baseline's")
+                    help="also fail a check whose error moved beyond its allowance from this baseline's")
     group.addoption("--mjpoincare-update-baseline", action="store_true", default=False,
                     help="record the runs into --mjpoincare-baseline instead (resolution measured by re-running)")
     parser.addini("mjpoincare", "scenarios to validate when --mjpoincare is not given (comma- or space-separated)",
@@ -313,7 +314,7 @@ class CheckFailed(AssertionError):
 
 
 class BaselineChanged(AssertionError):
-    """A check's error moved beyond its resolution from the baseline's, or one of the two lacks the check."""
+    """A check's error moved beyond its allowance from the baseline's, or one of the two lacks the check."""
 
 
 class UndeclaredCheck(AssertionError):
@@ -322,7 +323,7 @@ class UndeclaredCheck(AssertionError):
 
 class CheckItem(_MjpoincareItem):
     """One check of a scenario's cached result (the scenario runs at the first of its items): passes when the check
-    passed and, against a baseline, did not move beyond its resolution."""
+    passed and, against a baseline, did not move beyond its allowance."""
 
     def runtest(self) -> None:
         """Read the check from the cached result; raise :class:`ScenarioCrashed` if the run raised,

@@ -29,11 +29,16 @@ so its Fig. 18 state is ~3e-4 off the true fixed point; here the fixed point is 
 
 Modules (each imports only those above it); this module re-exports their public API:
 
-* :mod:`.compass_biped_params`: the biped, its admissible parameters and the benchmark sets (003 Sec. 4.1, Goswami)
-* :mod:`.compass_biped_dynamics`: the swing EoM and the heel-strike impact law (003 eqs 4.5, 4.15-4.18)
-* :mod:`.compass_biped_step`: one step, the post-impact map, period and length (003 eqs 4.6, 4.18-4.19)
-* :mod:`.compass_biped_shooting`: the period-1 gait, its multipliers and the first period doubling
-* :mod:`.compass_biped_midswing`: the legs-parallel section and the lowest swing-foot height (003 eq 4.20)
+* :mod:`~mjpoincare.analysis.theory.compass_biped.params`: the biped, its admissible parameters and the benchmark sets
+  (003 Sec. 4.1, Goswami)
+* :mod:`~mjpoincare.analysis.theory.compass_biped.dynamics`: the swing EoM and the heel-strike impact law (003 eqs 4.5,
+  4.15-4.18)
+* :mod:`~mjpoincare.analysis.theory.compass_biped.one_step`: one step, the post-impact map, period and length (003 eqs
+  4.6, 4.18-4.19)
+* :mod:`~mjpoincare.analysis.theory.compass_biped.shooting`: the period-1 gait, its multipliers and the first period
+  doubling
+* :mod:`~mjpoincare.analysis.theory.compass_biped.midswing`: the legs-parallel section and the lowest swing-foot height
+  (003 eq 4.20)
 """
 
 from __future__ import annotations
@@ -54,9 +59,7 @@ from mjpoincare.analysis.theory.compass_biped.midswing import (
     parallel_return_map,
     post_impact_from_parallel,
 )
-from mjpoincare.analysis.theory.compass_biped.params import CompassBiped, goswami, kisa, validate
-from mjpoincare.analysis.theory.compass_biped.shooting import eigenvalues, fixed_point, period_doubling_slope
-from mjpoincare.analysis.theory.compass_biped.step import (
+from mjpoincare.analysis.theory.compass_biped.one_step import (
     ATOL,
     MAX_SWING,
     RTOL,
@@ -66,6 +69,8 @@ from mjpoincare.analysis.theory.compass_biped.step import (
     step_length,
     step_period,
 )
+from mjpoincare.analysis.theory.compass_biped.params import CompassBiped, goswami, kisa, validate
+from mjpoincare.analysis.theory.compass_biped.shooting import eigenvalues, fixed_point, period_doubling_slope
 
 __all__ = ["ATOL", "MAX_SWING", "RTOL", "CompassBiped", "StepResult", "coriolis", "eigenvalues", "energy",
            "fixed_point", "goswami", "gravity_vector", "impact_map", "impact_matrices", "kisa", "legs_parallel_state",

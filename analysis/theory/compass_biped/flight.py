@@ -4,9 +4,9 @@ released trailing foot's slope-normal acceleration at heel strike.
 Source: the point-mass biped of 003 = Kiša (2020), *Mathematical modelling of walking robots*, MSc thesis, Ch. 4,
 Sec. 4.1 and Fig. 15 (the model of Goswami, Thuilot & Espiau 1998): hip mass m_h, each leg's mass m_l at a from its
 foot (b from the hip), l = a + b, with the constant torques of eq 4.5 (hip torque between the legs, B = (-1, 1);
-ground's ankle torque on the stance leg; senses in :mod:`.compass_biped`). 003 writes the swing with the stance
-foot pinned (eq 4.5); at a heel strike the trailing foot is released, and with the stance contact gone the hip is
-free to translate. Derived here from the Lagrangian of the point masses.
+ground's ankle torque on the stance leg; senses in :mod:`~mjpoincare.analysis.theory.compass_biped`). 003 writes the
+swing with the stance foot pinned (eq 4.5); at a heel strike the trailing foot is released, and with the stance contact
+gone the hip is free to translate. Derived here from the Lagrangian of the point masses.
 
 Coordinates (MuJoCo's: ``models/compass_biped.xml``): q = (x, z, phi_0, phi_1), the hip's position in the slope
 frame (+x downhill along the slope, +z along its normal) and the two legs' hinge angles phi_i = theta_i - gamma

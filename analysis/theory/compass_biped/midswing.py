@@ -10,8 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 from mjpoincare.analysis.theory.compass_biped.dynamics import impact_map, swing_dynamics, swing_foot_height
-from mjpoincare.analysis.theory.compass_biped.params import CompassBiped
-from mjpoincare.analysis.theory.compass_biped.step import (
+from mjpoincare.analysis.theory.compass_biped.one_step import (
     ATOL,
     RTOL,
     _heel_strike,
@@ -19,6 +18,7 @@ from mjpoincare.analysis.theory.compass_biped.step import (
     _swing,
     step_period,
 )
+from mjpoincare.analysis.theory.compass_biped.params import CompassBiped
 from numpy.typing import ArrayLike, NDArray
 from scipy.integrate import solve_ivp
 from scipy.optimize import minimize_scalar

@@ -18,7 +18,7 @@ class CompassBiped:
 
     ``m_h`` hip mass > 0 (kg), ``m_l`` leg point mass > 0 (kg), ``a`` foot-to-leg-mass and ``b`` leg-mass-to-hip
     distances > 0 (m), ``slope`` gamma in (0, pi/2) rad, ``gravity`` g > 0 (m/s^2), constant ``tau_ankle`` and
-    ``tau_hip`` (N m; their senses in :mod:`.compass_biped`).
+    ``tau_hip`` (N m; their senses in :mod:`~mjpoincare.analysis.theory.compass_biped`).
     """
 
     m_h: float = 10.0

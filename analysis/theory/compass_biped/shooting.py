@@ -14,8 +14,8 @@ from functools import lru_cache
 
 import numpy as np
 from mjpoincare.analysis.eigenvalues import sort_eigenvalues
+from mjpoincare.analysis.theory.compass_biped.one_step import _section_state, return_map
 from mjpoincare.analysis.theory.compass_biped.params import CompassBiped, validate
-from mjpoincare.analysis.theory.compass_biped.step import _section_state, return_map
 from mjpoincare.analysis.theory.shooting import central_jacobian
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq, fsolve

@@ -56,7 +56,7 @@ Gaits (002 Secs. 4-5; :func:`paper_gait`, seeds in :data:`GAIT_SEEDS`, values in
 * A (sticking throughout) and B (sticking impact, slip+ -> stick -> slip-): the values of the derivation page,
   Sec. 3.2; B loses stability at mu = 0.11035 (linear interpolation of the page's table: 0.1104; 002 "~0.11").
   Gait A equals the passive biped of
-  :mod:`.compass_biped` (003 Ch. 4) in that module's angles.
+  :mod:`~mjpoincare.analysis.theory.compass_biped` (003 Ch. 4) in that module's angles.
 * C (slipping impact with forward slip, slip+ -> stick, stuck before the heel strike) is found here by
   :func:`search_gaits` (grid on the pre-impact section, then Newton): unstable
   (|lambda|max 1.82 at mu = 0.14, 1.53 at 0.2), impact angle 4.53 deg at mu = 0.14 (002: "4 deg" in Fig. 4.2a)
@@ -94,25 +94,32 @@ Corrections to 002 found here (also on the derivation page, Sec. 7 items 3-5, 12
   later, downward crossing theta1 = theta2 > 0.
 * Sec. 5 (29): c_mt = W/(M_tot g S) with the total weight M_tot g, W in J (printed "W = 0.1").
 
-Independent confirmation: :mod:`.compass_biped_time_stepping` computes the same gaits by complementarity
-time-stepping in floating-base coordinates, sharing no equation, mode logic or impact law with these modules; its
-Richardson-extrapolated strides reproduce the fixed points of Gaits B, C, I, II, III to 4e-6, the step quantities to
-6e-6 and the multipliers to 6e-3 (tests/test_theory_compass_biped_time_stepping.py). Where 002 disagrees (III
-|lambda|max < 0.5; II S = 0.23 m, W = 0.1 J), the evidence supports this model's values for the model as printed
-(eq 27, the torques and gains of Sec. 5 in the convention that reproduces Gait I); what 002 computed differently is
-not recoverable from the paper.
+Independent confirmation: :mod:`~mjpoincare.analysis.theory.compass_biped_friction.time_stepping` computes the same
+gaits by complementarity time-stepping in floating-base coordinates, sharing no equation, mode logic or impact law with
+these modules; its Richardson-extrapolated strides reproduce the fixed points of Gaits B, C, I, II, III to 4e-6, the
+step quantities to 6e-6 and the multipliers to 6e-3 (tests/test_theory_compass_biped_time_stepping.py). Where 002
+disagrees (III |lambda|max < 0.5; II S = 0.23 m, W = 0.1 J), the evidence supports this model's values for the model as
+printed (eq 27, the torques and gains of Sec. 5 in the convention that reproduces Gait I); what 002 computed differently
+is not recoverable from the paper.
 
 Modules (each imports only those above it; the stick-slip machinery is re-exported as ``ss``):
 
-* :mod:`.compass_biped_friction_params`: the parameters and their admissible ranges (002 Sec. 4.1)
-* :mod:`.compass_biped_friction_actuation`: constant torques and PD tracking (002 eqs 28, 30)
-* :mod:`.compass_biped_friction_dynamics`: the matrices of 002 eq 27, the heel-strike guards, the contact model
-* :mod:`.compass_biped_friction_step`: one step, the post-impact map and the gait types (002 Secs. 4-5)
-* :mod:`.compass_biped_friction_shooting`: fixed points, multipliers, continuation in mu (002 Sec. 4.2)
-* :mod:`.compass_biped_friction_search`: the pre-impact section and the search that finds Gait C
-* :mod:`.compass_biped_friction_demand`: friction demand, cost of transport and speed (002 Secs. 4.1, 5)
-* :mod:`.compass_biped_friction_trajectories`: the PD reference, stance-foot motion and scuffing along a step
-* :mod:`.compass_biped_friction_gaits`: the paper's Gaits A-C and I-III (002 Secs. 4-5)
+* :mod:`~mjpoincare.analysis.theory.compass_biped_friction.params`: the parameters and their admissible ranges (002 Sec.
+  4.1)
+* :mod:`~mjpoincare.analysis.theory.compass_biped_friction.actuation`: constant torques and PD tracking (002 eqs 28, 30)
+* :mod:`~mjpoincare.analysis.theory.compass_biped_friction.dynamics`: the matrices of 002 eq 27, the heel-strike guards,
+  the contact model
+* :mod:`~mjpoincare.analysis.theory.compass_biped_friction.one_step`: one step, the post-impact map and the gait types
+  (002 Secs. 4-5)
+* :mod:`~mjpoincare.analysis.theory.compass_biped_friction.shooting`: fixed points, multipliers, continuation in mu (002
+  Sec. 4.2)
+* :mod:`~mjpoincare.analysis.theory.compass_biped_friction.search`: the pre-impact section and the search that finds
+  Gait C
+* :mod:`~mjpoincare.analysis.theory.compass_biped_friction.demand`: friction demand, cost of transport and speed (002
+  Secs. 4.1, 5)
+* :mod:`~mjpoincare.analysis.theory.compass_biped_friction.trajectories`: the PD reference, stance-foot motion and
+  scuffing along a step
+* :mod:`~mjpoincare.analysis.theory.compass_biped_friction.gaits`: the paper's Gaits A-C and I-III (002 Secs. 4-5)
 """
 
 from __future__ import annotations
@@ -158,6 +165,15 @@ from mjpoincare.analysis.theory.compass_biped_friction.gaits import (
     paper_gait,
     paper_setup,
 )
+from mjpoincare.analysis.theory.compass_biped_friction.one_step import (
+    T_MAX,
+    StepRecord,
+    _phase_solutions,
+    classify,
+    describe,
+    return_map,
+    step,
+)
 from mjpoincare.analysis.theory.compass_biped_friction.params import NQ, FrictionBiped, validate
 from mjpoincare.analysis.theory.compass_biped_friction.search import impact_from_pre, pre_impact_map, search_gaits
 from mjpoincare.analysis.theory.compass_biped_friction.shooting import (
@@ -171,15 +187,6 @@ from mjpoincare.analysis.theory.compass_biped_friction.shooting import (
     map_jacobian,
     spectral_radius,
     stability_loss_mu,
-)
-from mjpoincare.analysis.theory.compass_biped_friction.step import (
-    T_MAX,
-    StepRecord,
-    _phase_solutions,
-    classify,
-    describe,
-    return_map,
-    step,
 )
 from mjpoincare.analysis.theory.compass_biped_friction.trajectories import (
     legs_parallel,

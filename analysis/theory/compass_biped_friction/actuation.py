@@ -35,8 +35,8 @@ class ConstantTorque:
     """Open-loop constant ankle/hip torques (tau1, tau2) (N m) of 002 Sec. 5 (Gaits I, II), eq 28.
 
     ``convention="effective"`` (default): Q = E_eff u = (-tau1 - tau2, tau2), the convention that reproduces
-    002's Gait I (see :mod:`.compass_biped_friction`); ``"printed"``: Q = E u with 002's printed E,
-    (tau1 + tau2, tau2)."""
+    002's Gait I (see :mod:`~mjpoincare.analysis.theory.compass_biped_friction`); ``"printed"``: Q = E u with 002's
+    printed E, (tau1 + tau2, tau2)."""
 
     tau1: float = 0.0
     tau2: float = 0.0

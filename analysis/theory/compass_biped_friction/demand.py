@@ -13,8 +13,8 @@ from typing import NamedTuple
 
 import numpy as np
 from mjpoincare.analysis.theory.compass_biped_friction.actuation import Actuation
+from mjpoincare.analysis.theory.compass_biped_friction.one_step import StepRecord, step
 from mjpoincare.analysis.theory.compass_biped_friction.params import FrictionBiped
-from mjpoincare.analysis.theory.compass_biped_friction.step import StepRecord, step
 from numpy.typing import ArrayLike
 
 

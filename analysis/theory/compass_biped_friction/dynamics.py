@@ -111,8 +111,8 @@ def swing_jacobian(bp: FrictionBiped, q: ArrayLike) -> Matrix:
 def heel_strike_guard(q: ArrayLike) -> float:
     """max(theta2 - theta1, -(theta1 + theta2)): > 0 just after an impact (theta1 = theta2 = -theta*) and while the
     swing foot is behind the stance foot, crossing 0 downwards at the heel strike theta1 = theta2 > 0 (002 Sec. 4;
-    the same guard as :mod:`.compass_biped` in its angles). It also crosses 0 when the legs pass
-    parallel (theta1 + theta2 = 0) with theta1 > theta2, i.e. with the stance leg already past the normal; the
+    the same guard as :mod:`~mjpoincare.analysis.theory.compass_biped` in its angles). It also crosses 0 when the legs
+    pass parallel (theta1 + theta2 = 0) with theta1 > theta2, i.e. with the stance leg already past the normal; the
     stance is then continued with :func:`heel_strike_after_scuff` (:func:`step`, ``late_swing``)."""
     th1, th2 = float(np.asarray(q)[0]), float(np.asarray(q)[1])
     return max(th2 - th1, -(th1 + th2))
@@ -134,7 +134,7 @@ _JAC[1, 3] = 1.0
 def contact_model(bp: FrictionBiped, actuation: Actuation | None = None) -> ss.ContactModel:
     """The biped as a :class:`.stick_slip.ContactModel` (002 eq 27 with eq 28 or 30) on the
     augmented q = (theta1, theta2, x, y, phi, w): phi the phase clock, w_dot the actuator work
-    (:mod:`.compass_biped_friction`).
+    (:mod:`~mjpoincare.analysis.theory.compass_biped_friction`).
 
     h = B + G - Q (002 eq 2), W and W~ of eq 27 (zero columns for the clock and accumulator), guard
     :func:`heel_strike_guard`; failure events ``"fell"`` (|theta1| = FALL_ANGLE) and ``"backward"`` (the stance leg

@@ -29,8 +29,8 @@ _AB_SEEDS = (
     (0.11, (0.1227550, 0.6475338, -0.5131655)),
 )
 #: (mu, section state z*) pairs of each named gait of 002 from which :func:`paper_gait` continues (computed here;
-#: see :mod:`.compass_biped_friction`). "A" and "B" are one branch (sticking impact): Gait A for
-#: mu >= mu_c = 0.1749, Gait B below. Gait C's post-impact theta1_dot+ is small at low mu (0.044 rad/s at 0.14), so
+#: see :mod:`~mjpoincare.analysis.theory.compass_biped_friction`). "A" and "B" are one branch (sticking impact): Gait A
+#: for mu >= mu_c = 0.1749, Gait B below. Gait C's post-impact theta1_dot+ is small at low mu (0.044 rad/s at 0.14), so
 #: it has seeds at both ends.
 GAIT_SEEDS: dict[str, tuple[tuple[float, tuple[float, ...]], ...]] = {
     "A": _AB_SEEDS,
@@ -43,7 +43,8 @@ GAIT_SEEDS: dict[str, tuple[tuple[float, tuple[float, ...]], ...]] = {
         (0.09, (0.0720499, 0.2311505, -0.3868293, 0.2788256)),
     ),
 }
-#: Gait I and II torques (tau1, tau2) of 002 Sec. 5 (effective convention, see :mod:`.compass_biped_friction`).
+#: Gait I and II torques (tau1, tau2) of 002 Sec. 5 (effective convention, see
+#: :mod:`~mjpoincare.analysis.theory.compass_biped_friction`).
 GAIT_I_TORQUES = (-2.73, 0.54)
 GAIT_II_TORQUES = (-0.69, 0.12)
 #: mu of the passive Gait C whose joint trajectory Gait III tracks (002 Sec. 5: "Gait C ... in Figure 4.2(a)",

@@ -15,9 +15,9 @@ import numpy as np
 from mjpoincare.analysis.theory import stick_slip as ss
 from mjpoincare.analysis.theory.compass_biped_friction.actuation import PASSIVE, Actuation
 from mjpoincare.analysis.theory.compass_biped_friction.dynamics import _model
+from mjpoincare.analysis.theory.compass_biped_friction.one_step import StepRecord, step
 from mjpoincare.analysis.theory.compass_biped_friction.params import FrictionBiped, Vector
 from mjpoincare.analysis.theory.compass_biped_friction.shooting import NEWTON_TOL
-from mjpoincare.analysis.theory.compass_biped_friction.step import StepRecord, step
 from mjpoincare.analysis.theory.shooting import chord_newton
 from numpy.typing import ArrayLike
 

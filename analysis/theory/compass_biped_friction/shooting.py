@@ -16,8 +16,8 @@ from typing import NamedTuple
 import numpy as np
 from mjpoincare.analysis.eigenvalues import sort_eigenvalues
 from mjpoincare.analysis.theory.compass_biped_friction.actuation import PASSIVE, Actuation
+from mjpoincare.analysis.theory.compass_biped_friction.one_step import StepRecord, classify, return_map, step
 from mjpoincare.analysis.theory.compass_biped_friction.params import FrictionBiped, Matrix, Vector
-from mjpoincare.analysis.theory.compass_biped_friction.step import StepRecord, classify, return_map, step
 from mjpoincare.analysis.theory.shooting import central_jacobian, chord_newton
 from numpy.typing import ArrayLike, NDArray
 

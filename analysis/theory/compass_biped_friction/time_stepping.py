@@ -1,9 +1,10 @@
 """Compass biped with Coulomb friction by complementarity time-stepping: a second, independent computation of the
 stick-slip gaits of 002 (Gamus & Or) Secs. 4-5.
 
-:mod:`.compass_biped_friction` is event-driven: eq 27's matrices in the stance-foot coordinates (theta1, theta2, x,
-y), a stick / slip+ / slip- mode per phase with its own force law (002 eqs 31-35), event functions for every mode
-switch, and the impact law split into its sticking and slipping cases (eqs 37-40). Nothing of that is used here.
+:mod:`~mjpoincare.analysis.theory.compass_biped_friction` is event-driven: eq 27's matrices in the stance-foot
+coordinates (theta1, theta2, x, y), a stick / slip+ / slip- mode per phase with its own force law (002 eqs 31-35), event
+functions for every mode switch, and the impact law split into its sticking and slipping cases (eqs 37-40). Nothing of
+that is used here.
 
 * **Coordinates and equations.** Floating base q = (x_h, y_h, phi1, phi2): the hip in the slope frame (x downhill,
   y along the slope normal) and the absolute angle of each leg, hip -> foot direction (sin phi, -cos phi) from the
@@ -37,14 +38,17 @@ switch, and the impact law split into its sticking and slipping cases (eqs 37-40
 
 The scheme is first order in h (:func:`stride` at several h; :func:`richardson`), so these modules check the
 event-driven gaits' fixed points, multipliers, step lengths, work and phase times to the accuracy its step allows.
-They import no MuJoCo and nothing of :mod:`.compass_biped_friction` but the parameter record and, for Gait III, the
-reference trajectory that defines the controller.
+They import no MuJoCo and nothing of :mod:`~mjpoincare.analysis.theory.compass_biped_friction` but the parameter record
+and, for Gait III, the reference trajectory that defines the controller.
 
 Modules (each imports only those above it); this module re-exports their public API:
 
-* :mod:`.compass_biped_time_stepping_model`: the floating-base equations and the actuation as couples (002 Sec. 5)
-* :mod:`.compass_biped_time_stepping_contacts`: the Signorini-Coulomb complementarity problem, enumerated
-* :mod:`.compass_biped_time_stepping_stride`: one stride, its return map, Jacobian and Richardson extrapolation
+* :mod:`~mjpoincare.analysis.theory.compass_biped_friction.time_stepping_model`: the floating-base equations and the
+  actuation as couples (002 Sec. 5)
+* :mod:`~mjpoincare.analysis.theory.compass_biped_friction.time_stepping_contacts`: the Signorini-Coulomb
+  complementarity problem, enumerated
+* :mod:`~mjpoincare.analysis.theory.compass_biped_friction.time_stepping_stride`: one stride, its return map, Jacobian
+  and Richardson extrapolation
 """
 
 from __future__ import annotations

@@ -44,7 +44,8 @@ def pd_tracking(reference: ReferenceTrajectory, kp: float = 15.0, kd: float = 15
 
 
 def mass_matrix(bp: FrictionBiped, q: ArrayLike) -> Matrix:
-    """M(q) of the floating-base Lagrangian (:mod:`.compass_biped_time_stepping`), (4, 4)."""
+    """M(q) of the floating-base Lagrangian (:mod:`~mjpoincare.analysis.theory.compass_biped_friction.time_stepping`),
+    (4, 4)."""
     p1, p2 = float(np.asarray(q)[2]), float(np.asarray(q)[3])
     mt, mb = bp.total_mass, bp.m * bp.b
     c1, s1, c2, s2 = math.cos(p1), math.sin(p1), math.cos(p2), math.sin(p2)
@@ -54,7 +55,7 @@ def mass_matrix(bp: FrictionBiped, q: ArrayLike) -> Matrix:
 
 def free_force(bp: FrictionBiped, q: ArrayLike, v: ArrayLike, ankle: float = 0.0, hip: float = 0.0) -> Vector:
     """F(q, q_dot): gravity, the velocity terms and the couples' generalised force
-    (:mod:`.compass_biped_time_stepping`), (4,)."""
+    (:mod:`~mjpoincare.analysis.theory.compass_biped_friction.time_stepping`), (4,)."""
     p1, p2 = float(np.asarray(q)[2]), float(np.asarray(q)[3])
     w1, w2 = float(np.asarray(v)[2]), float(np.asarray(v)[3])
     mt, mb, g, a = bp.total_mass, bp.m * bp.b, bp.g, bp.slope

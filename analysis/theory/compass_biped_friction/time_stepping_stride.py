@@ -166,9 +166,9 @@ def _fraction(fun: Callable[[float], float], f0: float, f1: float, tol: float) -
 
 
 def stride(bp: FrictionBiped, z: ArrayLike, h: float, control: Controller | None = None) -> Stride:
-    """One stride of the time-stepping scheme (:mod:`.compass_biped_time_stepping`) from the post-impact
-    section state z of 002 Sec. 4.2 to the next one, with step ``h`` (s). ValueError if the stance foot lifts off,
-    the biped falls or stalls (no heel strike within :data:`T_MAX`)."""
+    """One stride of the time-stepping scheme (:mod:`~mjpoincare.analysis.theory.compass_biped_friction.time_stepping`)
+    from the post-impact section state z of 002 Sec. 4.2 to the next one, with step ``h`` (s). ValueError if the stance
+    foot lifts off, the biped falls or stalls (no heel strike within :data:`T_MAX`)."""
     q, v = from_section(bp, z)
     e0 = energy(bp, q, v)
     t, work, drift, max_ratio = 0.0, 0.0, 0.0, 0.0

@@ -14,9 +14,9 @@ import numpy as np
 from mjpoincare.analysis.theory import stick_slip as ss
 from mjpoincare.analysis.theory.compass_biped_friction.actuation import PASSIVE, Actuation, ReferenceTrajectory
 from mjpoincare.analysis.theory.compass_biped_friction.dynamics import _model, section_state
+from mjpoincare.analysis.theory.compass_biped_friction.one_step import T_MAX, _phase_solutions, _stance
 from mjpoincare.analysis.theory.compass_biped_friction.params import NQ, FrictionBiped, Vector
 from mjpoincare.analysis.theory.compass_biped_friction.shooting import Gait
-from mjpoincare.analysis.theory.compass_biped_friction.step import T_MAX, _phase_solutions, _stance
 from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 

@@ -23,10 +23,14 @@ rolling multiplier is beta^2 (003 gives no number).
 
 Modules (each imports only those above it); this module re-exports their public API:
 
-* :mod:`.rimless_wheel_params`: the wheel and its admissible parameters (003 Sec. 3.1, 002 Sec. 3.1)
-* :mod:`.rimless_wheel_map`: the return map, its fixed points and the regions (003 eqs 3.13-3.16, Table 1)
-* :mod:`.rimless_wheel_stance`: speeds, forces, contact validity, period and friction along a stance (002 eq 19)
-* :mod:`.rimless_wheel_basins`: basins of attraction and probing starts (003 Def. 3.20, eqs 3.17-3.18)
+* :mod:`~mjpoincare.analysis.theory.rimless_wheel.params`: the wheel and its admissible parameters (003 Sec. 3.1, 002
+  Sec. 3.1)
+* :mod:`~mjpoincare.analysis.theory.rimless_wheel.map`: the return map, its fixed points and the regions (003 eqs
+  3.13-3.16, Table 1)
+* :mod:`~mjpoincare.analysis.theory.rimless_wheel.stance`: speeds, forces, contact validity, period and friction along a
+  stance (002 eq 19)
+* :mod:`~mjpoincare.analysis.theory.rimless_wheel.basins`: basins of attraction and probing starts (003 Def. 3.20, eqs
+  3.17-3.18)
 """
 
 from __future__ import annotations

@@ -25,10 +25,14 @@ contact simulator should use; its map is conjugate to the post-impact map (same 
 
 Modules (each imports only those above it); this module re-exports their public API:
 
-* :mod:`.rimless_wheel_3d_hybrid_euler`: the 3-1-2 Euler angles, rates and state in scalar form (001 Sec. 2, eq 2)
-* :mod:`.rimless_wheel_3d_hybrid_dynamics`: the stance ODE, its events and the angular-momentum impact (001 Sec. 3)
-* :mod:`.rimless_wheel_3d_hybrid_maps`: the post-impact and mid-stance maps, fixed points and Jacobians (001 Sec. 4)
-* :mod:`.rimless_wheel_3d_hybrid_eigen`: the named eigenvalues (001 Sec. 8.1, Table 2) and the analytic summary
+* :mod:`~mjpoincare.analysis.theory.rimless_wheel_3d.hybrid_euler`: the 3-1-2 Euler angles, rates and state in scalar
+  form (001 Sec. 2, eq 2)
+* :mod:`~mjpoincare.analysis.theory.rimless_wheel_3d.hybrid_dynamics`: the stance ODE, its events and the angular-
+  momentum impact (001 Sec. 3)
+* :mod:`~mjpoincare.analysis.theory.rimless_wheel_3d.hybrid_maps`: the post-impact and mid-stance maps, fixed points and
+  Jacobians (001 Sec. 4)
+* :mod:`~mjpoincare.analysis.theory.rimless_wheel_3d.hybrid_eigen`: the named eigenvalues (001 Sec. 8.1, Table 2) and
+  the analytic summary
 """
 
 from __future__ import annotations

@@ -55,14 +55,20 @@ mu = tan(alpha) exactly (:func:`d_sign_boundary`).
 
 Modules (each imports only those above it); this module re-exports their public API:
 
-* :mod:`.rimless_wheel_friction_params`: the wheel, its units and its admissible slopes (002 eqs 11, 14, 18/21)
-* :mod:`.rimless_wheel_friction_sticking`: the sticking gait in closed form (002 eqs 15-26)
-* :mod:`.rimless_wheel_friction_slip`: slipping stance and frictional impact in closed form (002 eqs 42-45)
-* :mod:`.rimless_wheel_friction_phases`: the fast method's stick and slip phases, integrated in theta
-* :mod:`.rimless_wheel_friction_step`: one step by the fast or the generic method (002 Sec. 3.3, Appendix A)
-* :mod:`.rimless_wheel_friction_gaits`: gait types A-D, settling, period-1 gaits (002 Sec. 3.3)
-* :mod:`.rimless_wheel_friction_boundaries`: the gait-type boundaries in mu (002 Fig. 3.5)
-* :mod:`.rimless_wheel_friction_basins`: attraction window, stable gaits and basins (002 Sec. 3.4, Fig. 3.8)
+* :mod:`~mjpoincare.analysis.theory.rimless_wheel_friction.params`: the wheel, its units and its admissible slopes (002
+  eqs 11, 14, 18/21)
+* :mod:`~mjpoincare.analysis.theory.rimless_wheel_friction.sticking`: the sticking gait in closed form (002 eqs 15-26)
+* :mod:`~mjpoincare.analysis.theory.rimless_wheel_friction.slip`: slipping stance and frictional impact in closed form
+  (002 eqs 42-45)
+* :mod:`~mjpoincare.analysis.theory.rimless_wheel_friction.phases`: the fast method's stick and slip phases, integrated
+  in theta
+* :mod:`~mjpoincare.analysis.theory.rimless_wheel_friction.one_step`: one step by the fast or the generic method (002
+  Sec. 3.3, Appendix A)
+* :mod:`~mjpoincare.analysis.theory.rimless_wheel_friction.gaits`: gait types A-D, settling, period-1 gaits (002 Sec.
+  3.3)
+* :mod:`~mjpoincare.analysis.theory.rimless_wheel_friction.boundaries`: the gait-type boundaries in mu (002 Fig. 3.5)
+* :mod:`~mjpoincare.analysis.theory.rimless_wheel_friction.basins`: attraction window, stable gaits and basins (002 Sec.
+  3.4, Fig. 3.8)
 """
 
 from __future__ import annotations
@@ -85,6 +91,7 @@ from mjpoincare.analysis.theory.rimless_wheel_friction.gaits import (
     midstance_x_dot,
     settle,
 )
+from mjpoincare.analysis.theory.rimless_wheel_friction.one_step import StepRecord, contact_model, step
 from mjpoincare.analysis.theory.rimless_wheel_friction.params import (
     ATOL,
     RTOL,
@@ -107,7 +114,6 @@ from mjpoincare.analysis.theory.rimless_wheel_friction.slip import (
     sticking_impact,
     type_d_linear,
 )
-from mjpoincare.analysis.theory.rimless_wheel_friction.step import StepRecord, contact_model, step
 from mjpoincare.analysis.theory.rimless_wheel_friction.sticking import (
     attraction_upper_limit,
     attraction_window_rigid,

@@ -16,8 +16,8 @@ from functools import lru_cache
 import numpy as np
 from mjpoincare.analysis.theory.rimless_wheel_friction.boundaries import _bisect, gait_boundaries
 from mjpoincare.analysis.theory.rimless_wheel_friction.gaits import _GAIT_KINDS, Gait, classify_record, find_gait
+from mjpoincare.analysis.theory.rimless_wheel_friction.one_step import step
 from mjpoincare.analysis.theory.rimless_wheel_friction.params import FrictionWheel, validate
-from mjpoincare.analysis.theory.rimless_wheel_friction.step import step
 from mjpoincare.analysis.theory.rimless_wheel_friction.sticking import sticking_fixed_point
 from numpy.typing import ArrayLike, NDArray
 

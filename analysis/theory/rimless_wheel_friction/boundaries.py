@@ -14,9 +14,9 @@ from functools import lru_cache
 
 import numpy as np
 from mjpoincare.analysis.theory.rimless_wheel_friction.gaits import _c_fixed_point, classify_record, find_gait
+from mjpoincare.analysis.theory.rimless_wheel_friction.one_step import StepRecord, step
 from mjpoincare.analysis.theory.rimless_wheel_friction.params import X_NEUTRAL, FrictionWheel, validate
 from mjpoincare.analysis.theory.rimless_wheel_friction.slip import type_d_linear
-from mjpoincare.analysis.theory.rimless_wheel_friction.step import StepRecord, step
 from mjpoincare.analysis.theory.rimless_wheel_friction.sticking import (
     critical_friction,
     impulse_ratio,

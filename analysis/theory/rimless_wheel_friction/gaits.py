@@ -14,9 +14,9 @@ from dataclasses import dataclass
 
 import numpy as np
 from mjpoincare.analysis.eigenvalues import sort_eigenvalues
+from mjpoincare.analysis.theory.rimless_wheel_friction.one_step import StepRecord, step
 from mjpoincare.analysis.theory.rimless_wheel_friction.params import X_NEUTRAL, FrictionWheel, validate
 from mjpoincare.analysis.theory.rimless_wheel_friction.slip import type_d_linear
-from mjpoincare.analysis.theory.rimless_wheel_friction.step import StepRecord, step
 from mjpoincare.analysis.theory.rimless_wheel_friction.sticking import sticking_fixed_point
 from mjpoincare.analysis.theory.shooting import central_jacobian, chord_newton
 from numpy.typing import NDArray

@@ -69,9 +69,9 @@ def sticking_impact(w: FrictionWheel, theta_dot_minus: float, x_dot_minus: float
 
 
 def slipping_impact(w: FrictionWheel, theta_dot_minus: float, x_dot_minus: float, sign: float) -> ImpactValues:
-    """Slipping impact (002 eq 45, corrected; see :mod:`.rimless_wheel_friction`), F_t = sign mu F_n with sign = s_F =
-    sgn(F_t of the sticking candidate) (-1 for forward slip): with D_s = 2kappa + 1 - cos2phi + s_F mu sin2phi,
-    theta_dot^+ = (2kappa - 1 + cos2phi - s_F mu sin2phi)/D_s theta_dot^-,
+    """Slipping impact (002 eq 45, corrected; see :mod:`~mjpoincare.analysis.theory.rimless_wheel_friction`), F_t = sign
+    mu F_n with sign = s_F = sgn(F_t of the sticking candidate) (-1 for forward slip): with D_s = 2kappa + 1 - cos2phi +
+    s_F mu sin2phi, theta_dot^+ = (2kappa - 1 + cos2phi - s_F mu sin2phi)/D_s theta_dot^-,
     x_dot^+ = x_dot^- + 2 sin(phi)(2 s_F mu (kappa + cos^2 phi) + sin 2phi)/D_s theta_dot^-,
     F_n = 2 kappa sin(phi) theta_dot^-/(kappa + sin^2 phi + s_F mu sin(phi) cos(phi))."""
     p, k, smu = w.phi, w.kappa, sign * w.mu

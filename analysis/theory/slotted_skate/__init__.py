@@ -30,11 +30,14 @@ runs over (0, Delta) whatever the direction, reversal stances give 2 H |int_{D+}
 
 Modules (each imports only those above it); this module re-exports their public API:
 
-* :mod:`.slotted_skate_params`: the skate, its validation and the section state (000 Sec. 3, eqs 3.3-3.5)
-* :mod:`.slotted_skate_map`: stance closed forms, peg impact and the exact return map (000 eqs 3.5-3.8, B.1-B.5)
-* :mod:`.slotted_skate_stability`: sigma4, the stability criteria and the smooth-sleigh limit (000 eqs 3.9-3.12, 4.1)
-* :mod:`.slotted_skate_final`: reversals and final states (000 eqs B.6-B.12)
-* :mod:`.slotted_skate_exact`: the independent rigid-body reference
+* :mod:`~mjpoincare.analysis.theory.slotted_skate.params`: the skate, its validation and the section state (000 Sec. 3,
+  eqs 3.3-3.5)
+* :mod:`~mjpoincare.analysis.theory.slotted_skate.map`: stance closed forms, peg impact and the exact return map (000
+  eqs 3.5-3.8, B.1-B.5)
+* :mod:`~mjpoincare.analysis.theory.slotted_skate.straight_stability`: sigma4, the stability criteria and the smooth-
+  sleigh limit (000 eqs 3.9-3.12, 4.1)
+* :mod:`~mjpoincare.analysis.theory.slotted_skate.final`: reversals and final states (000 eqs B.6-B.12)
+* :mod:`~mjpoincare.analysis.theory.slotted_skate.exact`: the independent rigid-body reference
 """
 
 from __future__ import annotations
@@ -61,7 +64,7 @@ from mjpoincare.analysis.theory.slotted_skate.map import (
     turning_points,
 )
 from mjpoincare.analysis.theory.slotted_skate.params import MapStep, SlottedSkate, stance_invariants, validate
-from mjpoincare.analysis.theory.slotted_skate.stability import (
+from mjpoincare.analysis.theory.slotted_skate.straight_stability import (
     C1,
     dtheta_dH,
     sigma4,

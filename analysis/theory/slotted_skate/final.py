@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 from mjpoincare.analysis.theory.slotted_skate.map import initial_state, return_map
 from mjpoincare.analysis.theory.slotted_skate.params import SlottedSkate, _is_front, validate
-from mjpoincare.analysis.theory.slotted_skate.stability import C1, sigma4
+from mjpoincare.analysis.theory.slotted_skate.straight_stability import C1, sigma4
 
 #: |H| below which :func:`final_state` considers the rotation decayed (relative to sqrt(2 E)).
 FINAL_H_TOL = 1e-15

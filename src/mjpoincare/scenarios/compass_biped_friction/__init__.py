@@ -63,7 +63,9 @@ from mjpoincare.scenarios.base import (
 )
 from mjpoincare.scenarios.compass_biped.controller import FrictionGaitController
 from mjpoincare.scenarios.compass_biped.runs import BIPED_FOOT, legs_parallel_figures
-from mjpoincare.scenarios.compass_biped_friction.design import (
+from mjpoincare.scenarios.compass_biped_friction.gate import GATE_CASES
+from mjpoincare.scenarios.compass_biped_friction.stance import stance_checks
+from mjpoincare.scenarios.compass_biped_friction.start_design import (
     FIT_DEGREE,
     SETTLE,
     design,
@@ -72,8 +74,6 @@ from mjpoincare.scenarios.compass_biped_friction.design import (
     post_impact_states,
     unstable,
 )
-from mjpoincare.scenarios.compass_biped_friction.gate import GATE_CASES
-from mjpoincare.scenarios.compass_biped_friction.stance import stance_checks
 from mjpoincare.simulation.simulate import KeptRows, event_rollout
 
 GAITS = ("a", "b", "c", "i", "ii", "iii")

@@ -55,8 +55,8 @@ from mjpoincare.scenarios.base import (
 from mjpoincare.scenarios.gate_cases import GateCase
 from mjpoincare.scenarios.rimless_wheel.runs import WHEEL_FOOT
 from mjpoincare.scenarios.rimless_wheel_3d import runs
-from mjpoincare.scenarios.rimless_wheel_3d.checks import fit_checks, planar_checks, return_map_plot
 from mjpoincare.scenarios.rimless_wheel_3d.ideal import IdealImpactController
+from mjpoincare.scenarios.rimless_wheel_3d.reference_checks import fit_checks, planar_checks, return_map_plot
 from mjpoincare.simulation.simulate import event_clip, plain_clip
 
 MODES = ("contact", "ideal")

@@ -47,7 +47,8 @@ def rate_unit(params: Values) -> float:
 
 
 def is_ideal(params: Values) -> bool:
-    """``impact=ideal``: the stance foot a ball joint, the impacts exact (:mod:`.rimless_wheel_3d_ideal`)."""
+    """``impact=ideal``: the stance foot a ball joint, the impacts exact
+    (:mod:`~mjpoincare.scenarios.rimless_wheel_3d.ideal`)."""
     return str(params["impact"]) == "ideal"
 
 

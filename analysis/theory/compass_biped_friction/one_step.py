@@ -214,10 +214,10 @@ def _diagnostics(bp: FrictionBiped, model: ss.ContactModel, stance: ss.StanceRes
 def step(bp: FrictionBiped, z: ArrayLike, actuation: Actuation | None = None, *, forces: bool = False,
          t_max: float = T_MAX, rtol: float = ss.RTOL) -> StepRecord:
     """One step of the (actuated) biped from the post-impact section state z = (theta*, theta1_dot+, theta2_dot+)
-    or (..., x_dot+) (002 Secs. 4-5): the stance by :func:`.stick_slip.integrate_stance` (002 eqs 2,
-    31-35) until the heel strike theta1 = theta2 > 0 (the swing foot's passages below the ground line are ignored,
-    002 Sec. 4.1), the frictional impact :func:`.stick_slip.impact` (002 eqs 37-40, corrected) and
-    the relabelling theta1 <-> -theta2, theta1_dot <-> -theta2_dot (002 Sec. 4).
+    or (..., x_dot+) (002 Secs. 4-5): the stance by :func:`~mjpoincare.analysis.theory.stick_slip.integrate_stance` (002
+    eqs 2, 31-35) until the heel strike theta1 = theta2 > 0 (the swing foot's passages below the ground line are
+    ignored, 002 Sec. 4.1), the frictional impact :func:`~mjpoincare.analysis.theory.stick_slip.impact` (002 eqs 37-40,
+    corrected) and the relabelling theta1 <-> -theta2, theta1_dot <-> -theta2_dot (002 Sec. 4).
     ``forces``: also compute max |f_t/f_n| and the lowest swing-foot height (re-integrates the phases; slower).
     ``rtol``: the stance integration's relative tolerance (:func:`_stance`).
     """
