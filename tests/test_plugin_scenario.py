@@ -9,11 +9,14 @@ the gate contract (tests/test_gate.py) collect and pass its items; without it, n
 
 from __future__ import annotations
 
+import dataclasses
 import importlib.util
+import inspect
 import os
 import re
 import subprocess
 import sys
+import typing
 from pathlib import Path
 
 import pytest
@@ -127,6 +130,36 @@ def test_every_public_plugin_name_resolves_and_is_documented() -> None:
         assert getattr(plugin, name) is not None, name
         assert f":func:`{name}`" in plugin.__doc__ or f":class:`{name}`" in plugin.__doc__ or (
             f":data:`{name}`" in plugin.__doc__), f"{name} is exported but not described in the module docstring"
+
+
+def _types_named(hint: object, found: set[type]) -> None:
+    """Every class of the package that ``hint`` names (through unions, containers and callables), and those the
+    fields of a named dataclass name in turn."""
+    if typing.get_origin(hint) is not None:
+        for arg in typing.get_args(hint):
+            _types_named(arg, found)
+    elif isinstance(hint, list | tuple):
+        for arg in hint:
+            _types_named(arg, found)
+    elif inspect.isclass(hint) and hint.__module__.startswith("mjpoincare") and hint not in found:
+        found.add(hint)
+        if dataclasses.is_dataclass(hint):
+            for field_hint in typing.get_type_hints(hint).values():
+                _types_named(field_hint, found)
+
+
+def test_every_type_a_scenario_field_names_is_exported_by_the_public_module() -> None:
+    """A system author builds every documented field of :class:`Scenario` from ``mjpoincare.plugin`` alone: each
+    class of the package that a field's type names (and, for a record, its fields' types) is exported there, as the
+    same object."""
+    from mjpoincare import plugin
+    from mjpoincare.plugin import Scenario
+
+    named: set[type] = set()
+    _types_named(Scenario, named)
+    missing = sorted(t.__name__ for t in named if getattr(plugin, t.__name__, None) is not t)
+    assert missing == [], f"named by Scenario's fields but not exported by mjpoincare.plugin: {missing}"
+    assert {"Foot", "Peer", "ParamSweep", "RegionMap", "Soak"} <= {t.__name__ for t in named}
 
 
 def test_sweep_on_the_plugin_shows_its_analytic_eigenvalue() -> None:

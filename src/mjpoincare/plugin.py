@@ -8,7 +8,10 @@ made). What each group is for:
 - **the scenario and its records**: :class:`Scenario` (one model, its parameters, presets, analytic reference and
   tolerances, declared once), :class:`Param` and :data:`Values` (a scenario's parameters and their checked values),
   :class:`Tolerances` and :func:`at_preset`, :class:`Evaluation` (what ``evaluate`` returns), :class:`StressCase`,
-  :class:`CoveragePoint`, and the gate's :class:`GateCase`, :class:`Watch` and :class:`Miss`;
+  :class:`CoveragePoint`, :class:`Foot` (what the ``foot_radius`` setting is in the model), :class:`Soak`,
+  :class:`ParamSweep` with its :class:`SweepPlan`, :class:`RegionMap` with its :class:`RegionMapCompute`, the outside
+  peers' :class:`Peer` and :class:`PeerRun`, a rollout's :class:`RolloutReport`, and the gate's :class:`GateCase`,
+  :class:`Watch` and :class:`Miss`: every type a field of :class:`Scenario` names;
 - **what a run reports beside its checks** (fields of :class:`Evaluation`, read by the commands):
   :class:`AnalyticValues` (the theory's eigenvalues: ``sweep``'s analytic column), :class:`FitSummary` (the fitted
   map: ``sweep``'s fitted column, the report's eigenvalue plot), :class:`ReturnMapPlot`,
@@ -48,7 +51,7 @@ from mjpoincare.core.outputs import (
     SectionConvergence,
 )
 from mjpoincare.core.params import Param, ParameterError, Values
-from mjpoincare.core.seam import Chunk
+from mjpoincare.core.seam import Chunk, RolloutReport
 from mjpoincare.core.settings import (
     Dimension,
     apply_options,
@@ -58,11 +61,18 @@ from mjpoincare.core.settings import (
     solimp,
     solref,
 )
+from mjpoincare.engines.peers import Peer, PeerRun
 from mjpoincare.scenarios.base import (
     CoveragePoint,
     Evaluation,
+    Foot,
+    ParamSweep,
+    RegionMap,
+    RegionMapCompute,
     Scenario,
+    Soak,
     StressCase,
+    SweepPlan,
     Tolerances,
     at_preset,
 )
@@ -79,16 +89,25 @@ __all__ = [
     "Dimension",
     "Evaluation",
     "FitSummary",
+    "Foot",
     "GateCase",
     "Miss",
     "Param",
+    "ParamSweep",
     "ParameterError",
+    "Peer",
+    "PeerRun",
+    "RegionMap",
+    "RegionMapCompute",
     "Reported",
     "ReturnMapFit",
     "ReturnMapPlot",
+    "RolloutReport",
     "Scenario",
     "SectionConvergence",
+    "Soak",
     "StressCase",
+    "SweepPlan",
     "Tolerances",
     "Values",
     "Watch",
