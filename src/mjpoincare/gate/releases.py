@@ -34,7 +34,7 @@ from pathlib import Path
 from typing import Any
 
 from mjpoincare.analysis.tables import markdown_table, table_cell
-from mjpoincare.core.allowance import MULTIPLE, ROUNDOFF
+from mjpoincare.core.allowance import MULTIPLE, ROUNDOFF, floor
 from mjpoincare.core.params import ParameterError
 from mjpoincare.core.result import format_value, write_json, write_text
 from mjpoincare.gate.forms import PERTURBATIONS
@@ -93,10 +93,10 @@ def distance(a: Any, b: Any) -> float:
 
 def roundoff_floor(a: Any, b: Any) -> float:
     """The smallest change between two values of one check that is not roundoff: :data:`ROUNDOFF` of max(1, the
-    largest magnitude of their finite numbers)."""
+    largest magnitude of their finite numbers) (:func:`mjpoincare.core.allowance.floor` without a tolerance)."""
     magnitudes = [abs(x) for value in (a, b) if isinstance(flat := _flat(value), list) for x in flat
                   if math.isfinite(x)]
-    return ROUNDOFF * max([1.0, *magnitudes])
+    return floor(0.0, max(magnitudes, default=0.0))
 
 
 def is_real(change: float, spread: float, floor: float) -> bool:
