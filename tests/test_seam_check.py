@@ -18,7 +18,7 @@ from conftest import BACKEND_DISTRIBUTIONS, required_in_ci
 from mjpoincare import cli
 from mjpoincare.core.mjcompat import efc_diag_inverse_inertia
 from mjpoincare.engines.backends import LACKS, REQUIRES, _importable
-from mjpoincare.engines.backends.mujoco_c import MujocoBatch
+from mjpoincare.engines.backends.mujoco_c import MujocoBatch, switch_contact_filter
 from mjpoincare.scenarios import REGISTRY
 from mjpoincare.simulation import seam_check
 
@@ -97,6 +97,16 @@ def _advance_of_trajectory_0(self: MujocoBatch, index: int, state: np.ndarray, s
     return _ADVANCE(self, 0, state, seconds)
 
 
+def _contact_keyed_by_geom(self: MujocoBatch, index: int, geom: int, on: bool) -> None:
+    """Keeps a released contact by geom only: a second trajectory's release of the same geom finds it released."""
+    switch_contact_filter(self._released, self._model(index), 0, geom, on)
+
+
+def _advance_from_current_state(self: MujocoBatch, index: int, state: np.ndarray, seconds: float) -> np.ndarray:
+    """Steps from the batch's current state of trajectory ``index``, not from ``state``."""
+    return _ADVANCE(self, index, self.states()[index], seconds)
+
+
 def _actuator_without_gear(self: MujocoBatch, index: int, actuator: int, *, bias: float | None = None,
                            gear: float | None = None) -> None:
     """Sets the bias force and leaves the gear as it was."""
@@ -133,6 +143,9 @@ PLANTED: dict[str, tuple[str, Callable[..., object], str, list[str]]] = {
     "contact switched on every geom": ("set_contact", _contact_of_every_geom, "contact", ["compass-biped"]),
     "fractional step ignoring the trajectory": ("advance", _advance_of_trajectory_0, "fractional_step",
                                                 ["slotted-skate"]),
+    "contact release kept by geom only": ("set_contact", _contact_keyed_by_geom, "contact", ["compass-biped"]),
+    "fractional step from the current state": ("advance", _advance_from_current_state, "fractional_step",
+                                               ["slotted-skate"]),
     "actuator ignoring the gear": ("set_actuator", _actuator_without_gear, "actuator", ["compass-biped"]),
     "control ignored": ("run_chunk", _chunk_without_control, "control",
                         ["compass-biped-friction", "--set", "gait=iii"]),
