@@ -17,12 +17,15 @@ import numpy as np
 import pytest
 from mjpoincare.analysis.rigid_body_kinematics import matrix_to_quat
 from mjpoincare.analysis.theory import rimless_wheel_3d as theory
+from mjpoincare.analysis.theory.rimless_wheel_3d import hybrid
 
 from mjpoincare.cli import main
 from mjpoincare.commands.validation import resolve_inputs
 from mjpoincare.core.params import ParameterError
+from mjpoincare.core.seam import RolloutReport
 from mjpoincare.gate import forms as gate
 from mjpoincare.scenarios import rimless_wheel_3d as rw3
+from mjpoincare.scenarios.rimless_wheel_3d import reference_checks
 from mjpoincare.scenarios.rimless_wheel_3d import runs as rw3_runs
 
 pytestmark = pytest.mark.mujoco
@@ -41,7 +44,7 @@ def ideal() -> dict:
 
 
 NAMES = {"pitch_rate", "bank", "heading_eigenvalue", "wobble_modulus", "wobble_angle", "lambda5", "lambda2",
-         "planar_pitch_rate", "planar_bank", "stable"}
+         "planar_pitch_rate", "planar_bank", "heading_drift", "stable"}
 
 
 @pytest.mark.parametrize("mode", ["contact", "ideal"])
@@ -65,9 +68,9 @@ def test_ideal_mode_isolates_the_integration(ideal: dict) -> None:
 
 
 def test_contact_mode_reports_heading_drift(contact: dict) -> None:
-    """The heading is neutral: its drift is reported (per 100 impacts), never compared with the start heading. The
-    soft impact biases it away from straight downhill (measured at the fast preset: fit 5.5e-3 rad per 100 impacts;
-    planar runs 0, 1.8e-3, 3.1e-3 at psi = 0, 0.314, 0.5, while the ideal mode's impacts give ~1e-9)."""
+    """The heading is neutral: the soft impact biases it away from straight downhill. The 5-D fit's drift is
+    reported (per 100 impacts); the planar runs' drift is judged (the ``heading_drift`` check, exact value 0), and
+    vanishes at psi = 0 by symmetry."""
     drift = contact["extras"]["heading_drift"]
     reported = contact["reported"]["heading_drift_per_100_impacts"]  # also printed under the check table
     assert reported["value"] == pytest.approx(drift["per_100_impacts_fit"]) and reported["unit"] == "rad"
@@ -76,6 +79,39 @@ def test_contact_mode_reports_heading_drift(contact: dict) -> None:
     assert set(planar) == {"0", "0.314159", "0.5"}
     assert planar["0"] == pytest.approx(0.0, abs=1e-9)  # symmetric
     assert 0 < planar["0.314159"] < planar["0.5"]
+    judged = next(c for c in contact["checks"] if c["name"] == "heading_drift")
+    assert judged["analytic"] == 0.0 and judged["error"] == pytest.approx(planar["0.5"] / 100.0)
+
+
+def _planar_samples(params: dict, heading: float, drift: float) -> np.ndarray:
+    """Mid-stance samples (rates in rad/s) of a wheel that rolls on the exact planar cycle of each heading it passes
+    through, its heading moving by ``drift`` rad per impact from ``heading``."""
+    unit = rw3_runs.rate_unit(params)
+    rows = []
+    for k in range(rw3_runs.PLANAR_IMPACTS):
+        x = hybrid.midstance_fixed_point(rw3_runs.wheel(params, heading + drift * k))
+        rows.append([x[0], x[1], x[2] * unit, x[3] * unit, x[4] * unit])
+    return np.array(rows)
+
+
+@pytest.mark.parametrize("drift", [0.0, 0.002])
+def test_a_heading_that_drifts_fails_the_planar_checks(drift: float) -> None:
+    """Samples on the exact planar cycles pass; a heading that drifts 0.002 rad per impact along the family of
+    cycles (each sample on the exact cycle of its own heading) fails the heading drift (5 x its tolerance), the bank
+    and the pitch rate, judged at the commanded headings."""
+    params = {p.name: p.default for p in rw3.PARAMS}
+    headings = rw3_runs.planar_headings(params)
+    run = rw3_runs.Run(sequences=[_planar_samples(params, h, drift) for h in headings],
+                       report=RolloutReport(diverged=np.zeros(len(headings), bool)))
+    tol = rw3.TOLERANCES["contact"]["fast"]
+    planar, _ = reference_checks.planar_checks(params, headings, run, tol)
+    by_name = {c.name: c for c in planar}
+    assert set(by_name) == {"planar_pitch_rate", "planar_bank", "heading_drift"}
+    if drift == 0.0:
+        assert all(c.error < 1e-9 for c in planar)
+    else:
+        assert by_name["heading_drift"].error == pytest.approx(drift)
+        assert all(c.error > c.tolerance for c in planar), [(c.name, c.error, c.tolerance) for c in planar]
 
 
 @pytest.mark.parametrize(("assignments", "name"), [

@@ -89,7 +89,7 @@ UNSTABLE = ("C", "II")
 #: The actuated gaits (002 Sec. 5), whose cost of transport is checked (eq 29).
 ACTUATED = ("I", "II", "III")
 #: Every check :func:`evaluate` reports for some gait, in its order; :func:`checks_at`: those of one gait.
-CHECKS = ("fixed_point", "eigenvalues", "step_period", "step_length", "speed", "cost_of_transport",
+CHECKS = ("fixed_point", "eigenvalues", "gait_stability", "step_period", "step_length", "speed", "cost_of_transport",
           "friction_ratio_window", "critical_friction", "phase_sequence", "phase_times", "impact_kind", "impact_slip")
 
 PARAMS: tuple[Param, ...] = (
@@ -238,6 +238,11 @@ def _run(params: Values, settings: Values, model: mujoco.MjModel, starts: np.nda
     return controller, report, kept
 
 
+def stability_class(radius: float) -> str:
+    """``"stable"`` when a map's spectral radius ``radius`` is below 1 (002 Sec. 4.2), else ``"unstable"``."""
+    return "stable" if radius < 1.0 else "unstable"
+
+
 def checks_at(params: Values, settings: Values) -> tuple[str, ...]:
     """The checks :func:`evaluate` reports for the gait at ``params``: every gait's map, step and stance checks, the
     actuated gaits' cost of transport (002 eq 29), Gait A's friction ratio and mu_c (002 Sec. 4.1), and the phase
@@ -292,6 +297,12 @@ def evaluate(params: Values, settings: Values, preset: str, seed: int) -> Evalua
                             f"differences) vs the degree-{degree} fit of the MuJoCo legs-parallel samples (bootstrap "
                             f"std of the fitted multipliers {float(np.max(np.abs(fit.eigenvalue_std))):.2g}: an "
                             "error well above it is MuJoCo's map, not the sampling); " + why))
+    radius, radius_fit = float(np.max(np.abs(lam))), float(np.max(np.abs(fit.eigenvalues)))
+    kind, kind_fit = stability_class(radius), stability_class(radius_fit)
+    out.append(checks.categorical("gait_stability", kind, kind_fit, int(kind != kind_fit), 1,
+                                  why=f"stable when every multiplier lies inside the unit circle (002 Sec. 4.2): "
+                                  f"|lambda|max {radius:.4g} analytic, {radius_fit:.4g} of the fitted map; an "
+                                  "eigenvalue error that reads an unstable gait as stable, or the reverse, fails here"))
     ys, dts, lengths, works = crossing_steps(c.samples, c.sample_times, c.strikes, first=1, step_work=c.step_work)
     rec = g.record
     # quadratic where the map is fitted as a cubic over the full design; affine for a type-B gait's narrow starts and

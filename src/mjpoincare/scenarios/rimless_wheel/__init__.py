@@ -190,8 +190,10 @@ def _fit_checks(w: theory.RimlessWheel, rec: Recorder, batch: int, tol: Toleranc
                         "return-map multiplier beta^2 (002 eq 17) from a quadratic fit of the samples; the fit's "
                         "own bias is ~1e-3 (synthetic tests) on top of the simulation error"),
         checks.relative("impact_coefficient", w.beta, beta_sim, tol["impact_coefficient"], "",
-                        "omega+/omega- across each impact (003 eq 3.11, 002 eq 14): isolates the contact model "
-                        "from the swing; the foot sphere adds ~+0.7 r/l"),
+                        "omega+/omega- (003 eq 3.11, 002 eq 14) estimated from consecutive mid-stance samples, each "
+                        "carried to its impact by the exact stance energy integral (003 eqs 3.3-3.5): the contact "
+                        "model's error and the stance's integration error together, not the contact alone; the foot "
+                        "sphere adds ~+0.7 r/l"),
         checks.relative("step_period", theory.step_period(w, star), period_sim, tol["step_period"], "s",
                         "time between mid-stance crossings, regressed (quadratic) on the two post-impact speeds "
                         "it spans and taken at the fitted fixed point; same error sources as omega_post_impact"),

@@ -103,8 +103,10 @@ REASONS: dict[str, str] = {
                       "for A, B, C: the 0.5 mm foot's rolling alone gives +6e-4, the rest grows with the contact time "
                       "constant",
     "eigenvalue": "multiplier of a quadratic fit of the mid-stance map theta_dot_k -> theta_dot_k+1 (a conjugate "
-                  "of the post-impact map, 002 eq 17 / Sec. 3.3; C: lambda_max, its other multiplier is 0); 0.02 as "
-                  "the rigid wheel's fast preset",
+                  "of the post-impact map, 002 eq 17 / Sec. 3.3; C: lambda_max, its other multiplier is 0); 0.02: "
+                  "the Type C fit (mu = 0.24) moves by 7.4e-3 over the gate's environments, and the sticking "
+                  "impact's beta^2 = 0.734 (Type A) is 0.028 from the Type B multiplier 0.762 at the defaults, "
+                  "beyond 0.02 plus the measured error 4.7e-3",
     "dx_per_step": "change of the slip speed per step of a D gait (002 Sec. 3.3, Fig. 3.6), from mid-stance x_dot; "
                    "relative, 10 %: the slip speeds are small and their change per step a small difference of them",
     "slip_onset": "theta where the last slip phase of a B step starts (friction reaches the cone, 002 eq 22), "
