@@ -12,7 +12,9 @@
 #                     spread over the environments this machine emulates (every OpenBLAS kernel the CPU runs crossed
 #                     with numpy's dispatch levels, one BLAS thread, each in its own process), under seed, threads,
 #                     starts x(1+1e-12) and x(1+1e-9) and
-#                     the oldest numpy/scipy allowed, and resolution, into docs/results/gate/ (JSON and page)
+#                     the oldest numpy/scipy allowed, and resolution, into docs/results/gate/ (JSON and page); then
+#                     docs/results/discrimination.md (each check's distance to its rival physics against what it lets
+#                     through)
 #   make baseline     the gate's regression baseline (docs/results/gate/baseline.json): every gate check's error and
 #                     resolution (its spread over the environments make margins measured and the rounding
 #                     perturbations); refuses when an error left that measurement's range (run make margins first)
@@ -106,7 +108,7 @@ margins: $(STAMP)
 	$(OLDEST)/bin/python -m pip install --quiet "numpy==1.26.4" "scipy==1.11.4" -e .
 	$(OLDEST)/bin/mjpoincare margins --base-only --json renders/margins-oldest.json
 	$(BIN)/mjpoincare margins --compare renders/margins-oldest.json --json docs/results/gate/margins.json; \
-		status=$$?; $(BIN)/python -m mjpoincare.pages.gate_page && exit $$status
+		status=$$?; $(BIN)/python -m mjpoincare.pages.gate_page && $(BIN)/python -m mjpoincare.pages.discrimination_page && exit $$status
 
 baseline: $(STAMP)
 	$(BIN)/python -m mjpoincare.pages.gate_baseline

@@ -164,6 +164,32 @@ class Soak:
 
 
 @dataclass(frozen=True)
+class Rival:
+    """The nearest plausible wrong physics a simulator or a model could have for one check, and how far from the
+    theory it puts the check: the check tells the right physics from this one only where the distance exceeds the
+    tolerance plus the measured error and its spread (``docs/results/discrimination.md``).
+
+    Attributes:
+        physics: what is wrong, in the papers' terms (one line: the asymptotic row of a table, a sticking impact law
+            where the paper slips, a hub inertia the wheel does not have, ...).
+        distance: ``(params) -> error``: the check's error, in the check's own measure (its ``kind``: relative,
+            absolute, max-abs over matched eigenvalues, ...; a category check: 1.0 where the rival's category
+            differs, 0.0 where it is the same), that a simulator reproducing the rival physics exactly would show at
+            the scenario's parameters ``params``, computed from the theory under both physics. None: no check can
+            tell them apart (``indistinct`` says why).
+        indistinct: one line: why no check at any parameter the scenario offers can tell the rival from the theory.
+    """
+
+    physics: str
+    distance: Callable[[Values], float] | None = None
+    indistinct: str = ""
+
+    def __post_init__(self) -> None:
+        if (self.distance is None) == (not self.indistinct):
+            raise ValueError(f"rival {self.physics!r}: give its distance, or why no check can tell it apart")
+
+
+@dataclass(frozen=True)
 class CoveragePoint:
     """A parameter point the preset search (``mjpoincare tune``) judges every trial at: a preset holds only where it
     holds at all of a scenario's coverage points.
@@ -358,6 +384,8 @@ class Scenario:
         checks_at: ``(params, settings) -> checks``, in ``checks``' order, where a run reports fewer than all of
             ``checks``: the paper has the quantity at some parameters only (a gait, a friction regime), or the
             settings decide it (an exact step's phases as classified on the timestep's grid); None: all of ``checks``.
+        rivals: check name -> its :class:`Rival`: every check of ``checks`` has one (the contract test holds the
+            scenarios to it).
     """
 
     name: str
@@ -390,6 +418,7 @@ class Scenario:
     mechanisms_at: Callable[[Values], tuple[str, ...]] | None = None
     checks: tuple[str, ...] = ()
     checks_at: Callable[[Values, Values], tuple[str, ...]] | None = None
+    rivals: Mapping[str, Rival] = field(default_factory=dict)
     check_inputs: Callable[[Values, Values], None] | None = None
     default: bool = False
     foot: Foot | None = None
