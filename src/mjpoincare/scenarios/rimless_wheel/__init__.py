@@ -46,6 +46,7 @@ from mjpoincare.scenarios.base import (
 )
 from mjpoincare.scenarios.gate_cases import GateCase, Watch
 from mjpoincare.scenarios.rimless_wheel.drake import drake_peer
+from mjpoincare.scenarios.rimless_wheel.rivals import RIVALS
 from mjpoincare.scenarios.rimless_wheel.runs import (
     FIT_STEPS,
     WHEEL_FOOT,
@@ -384,6 +385,7 @@ RIMLESS_WHEEL = Scenario(
     checks=CHECKS,
     tolerances=TOLERANCES,
     gate_cases=GATE_CASES,
+    rivals=RIVALS,
     peers=(drake_peer(wheel),),
     coverage=COVERAGE,
     search_space=search_space("timestep", "solref_timeconst", "solref_dampratio", "integrator", "foot_radius"),

@@ -51,6 +51,7 @@ from mjpoincare.scenarios.base import (
 from mjpoincare.scenarios.gate_cases import GateCase, Watch
 from mjpoincare.scenarios.rimless_wheel.runs import WHEEL_FOOT
 from mjpoincare.scenarios.rimless_wheel_friction.basins import REGION_MAP
+from mjpoincare.scenarios.rimless_wheel_friction.rivals import RIVALS
 from mjpoincare.scenarios.rimless_wheel_friction.rollout import (
     D_SIM_STEPS,
     FIT_OFFSETS,
@@ -382,6 +383,7 @@ RIMLESS_WHEEL_FRICTION = Scenario(
     checks_at=checks_at,
     tolerances=TOLERANCES,
     gate_cases=GATE_CASES,
+    rivals=RIVALS,
     coverage=COVERAGE,
     search_space=search_space("timestep", "solref_timeconst", "solref_dampratio", "integrator", "foot_radius",
                               "cone", "impratio", "noslip_iterations"),

@@ -43,6 +43,7 @@ from mjpoincare.scenarios.base import (
 from mjpoincare.scenarios.gate_cases import GateCase
 from mjpoincare.scenarios.slotted_skate.pegs import PegController, build
 from mjpoincare.scenarios.slotted_skate.regions import REGION_MAP
+from mjpoincare.scenarios.slotted_skate.rivals import RIVALS
 from mjpoincare.simulation.simulate import event_clip, event_rollout, initial_states
 
 PARAMS: tuple[Param, ...] = (
@@ -484,6 +485,7 @@ SLOTTED_SKATE = Scenario(
     mechanisms=("rollout", "fractional_step"),
     checks=CHECKS,
     checks_at=checks_at,
+    rivals=RIVALS,
     tolerances=TOLERANCES,
     gate_cases=GATE_CASES,
     coverage=COVERAGE,
