@@ -55,6 +55,7 @@ from mjpoincare.scenarios.base import (
 )
 from mjpoincare.scenarios.compass_biped.controller import GaitController
 from mjpoincare.scenarios.compass_biped.drake import drake_peer
+from mjpoincare.scenarios.compass_biped.rivals import RIVALS
 from mjpoincare.scenarios.compass_biped.runs import (
     BIPED_FOOT,
     CHUNK_SECONDS,
@@ -380,6 +381,7 @@ COMPASS_BIPED = Scenario(
     soak=soak,
     mechanisms=("rollout", "contact", "actuator"),
     checks=CHECKS,
+    rivals=RIVALS,
     tolerances=TOLERANCES,
     gate_cases=GATE_CASES,
     peers=(drake_peer(biped),),

@@ -64,6 +64,7 @@ from mjpoincare.scenarios.base import (
 from mjpoincare.scenarios.compass_biped.controller import FrictionGaitController
 from mjpoincare.scenarios.compass_biped.runs import BIPED_FOOT, legs_parallel_figures
 from mjpoincare.scenarios.compass_biped_friction.gate import GATE_CASES
+from mjpoincare.scenarios.compass_biped_friction.rivals import RIVALS
 from mjpoincare.scenarios.compass_biped_friction.stance import stance_checks
 from mjpoincare.scenarios.compass_biped_friction.start_design import (
     FIT_DEGREE,
@@ -420,6 +421,7 @@ COMPASS_BIPED_FRICTION = Scenario(
     mechanisms=("rollout", "contact", "actuator", "control"),
     checks=CHECKS,
     checks_at=checks_at,
+    rivals=RIVALS,
     tolerances=TOLERANCES,
     gate_cases=GATE_CASES,
     coverage=COVERAGE,
