@@ -7,7 +7,8 @@ made). What each group is for:
 
 - **the scenario and its records**: :class:`Scenario` (one model, its parameters, presets, analytic reference and
   tolerances, declared once), :class:`Param` and :data:`Values` (a scenario's parameters and their checked values),
-  :class:`Tolerances` and :func:`at_preset`, :class:`Evaluation` (what ``evaluate`` returns), :class:`StressCase`,
+  :class:`Tolerances` and :func:`at_preset`, :class:`Rival` (a check's nearest wrong physics and its distance),
+  :class:`Evaluation` (what ``evaluate`` returns), :class:`StressCase`,
   :class:`CoveragePoint`, :class:`Foot` (what the ``foot_radius`` setting is in the model), :class:`Soak`,
   :class:`ParamSweep` with its :class:`SweepPlan`, :class:`RegionMap` with its :class:`RegionMapCompute`, the outside
   peers' :class:`Peer` and :class:`PeerRun`, a rollout's :class:`RolloutReport`, and the gate's :class:`GateCase`,

@@ -33,7 +33,6 @@ from __future__ import annotations
 
 import math
 import time
-from functools import lru_cache
 
 import mujoco
 import numpy as np
@@ -63,7 +62,9 @@ from mjpoincare.scenarios.base import (
 )
 from mjpoincare.scenarios.compass_biped.controller import FrictionGaitController
 from mjpoincare.scenarios.compass_biped.runs import BIPED_FOOT, legs_parallel_figures
+from mjpoincare.scenarios.compass_biped_friction.gait_choice import friction, gait, gait_name
 from mjpoincare.scenarios.compass_biped_friction.gate import GATE_CASES
+from mjpoincare.scenarios.compass_biped_friction.presets import PRESETS
 from mjpoincare.scenarios.compass_biped_friction.rivals import RIVALS
 from mjpoincare.scenarios.compass_biped_friction.stance import stance_checks
 from mjpoincare.scenarios.compass_biped_friction.start_design import (
@@ -78,10 +79,6 @@ from mjpoincare.scenarios.compass_biped_friction.start_design import (
 from mjpoincare.simulation.simulate import KeptRows, event_rollout
 
 GAITS = ("a", "b", "c", "i", "ii", "iii")
-#: 002's friction per gait when ``mu`` = 0: A above mu_c (any mu >= 0.175 is the same gait), B 0.14 (Fig. 4.2a),
-#: C 0.2 (Fig. 4.2b, the less unstable end of its branch: |lambda|max 1.53 vs 1.82 at 0.14), I 0.2 (Fig. 5.1),
-#: II 0.2 (Sec. 5), III 0.2 (Fig. 5.2).
-PAPER_MU = {"a": 1.0, "b": 0.14, "c": 0.2, "i": 0.2, "ii": 0.2, "iii": 0.2}
 #: 002 types of each named gait (classify: A stick throughout, B sticking impact with slip, C slipping impact);
 #: Gait I, like the passive A/B branch, slips during the stance below its mu_c (type B from mu ~0.17 down).
 KIND = {"A": ("A",), "B": ("B",), "C": ("C",), "I": ("A", "B"), "II": ("C",), "III": ("C",)}
@@ -102,19 +99,6 @@ PARAMS: tuple[Param, ...] = (
     Param("kd", 15.0, "Gait III PD damping, N m s/rad (002 eq 30)", float, 0.0, 1e4),
 )
 
-#: Not searched yet (``mjpoincare tune compass-biped-friction`` runs its six gaits per trial): the settings the compass
-#: biped's presets had before their search, which this scenario's gate and findings were measured at.
-#: Read off the preset search's studies (docs/results/tune/compass-biped-friction.md; judged at Gaits A and I, the
-#: others reported): neither target has a setting within half of every tolerance, and each preset is the cheapest
-#: that passes. The accurate one is the preset the scenario had before the search (nothing cheaper passed).
-PRESETS: dict[str, dict[str, float | int | str]] = {
-    "fast": {"timestep": 0.00012274320508, "solref_timeconst": 0.000296056801637, "solref_dampratio": 3.60987087888,
-             "integrator": "implicitfast", "cone": "pyramidal", "impratio": 1.17848215382, "noslip_iterations": 10,
-             "foot_radius": 0.0014960227089, "iterations": 50, "tolerance": 2.25234824327e-07},
-    "accurate": {"timestep": 2e-05, "solref_timeconst": 0.0002, "solref_dampratio": 10.0, "integrator": "implicitfast",
-                 "cone": "elliptic", "impratio": 10.0, "noslip_iterations": 0, "foot_radius": 0.0005,
-                 "iterations": 100, "tolerance": 1e-10},
-}
 #: Why each tolerance is what it is: docs/scenarios/compass-biped-friction.md, "Tolerances and start design".
 TOLERANCES: dict[str, Tolerances] = {
     "accurate": Tolerances(
@@ -138,40 +122,6 @@ CHUNK_SECONDS = 0.05
 #: A stable gait's batch stops once more steps no longer sharpen its fit (:mod:`mjpoincare.analysis.adaptive_stopping`);
 #: first look at SETTLE + 2 samples per trajectory, so that trajectory 0 has settled stances to check.
 STOPPING = StoppingRule(min_samples=SETTLE + 2)
-
-
-def gait_name(params: Values) -> str:
-    """The theory's gait name (A, B, I, III)."""
-    return str(params["gait"]).upper()
-
-
-def friction(params: Values) -> float:
-    """mu, with 0 meaning the gait's paper value."""
-    mu = float(params["mu"])
-    return PAPER_MU[str(params["gait"])] if mu == 0.0 else mu
-
-
-@lru_cache(maxsize=16)
-def _gait(name: str, mu: float, kp: float, kd: float) -> theory.Gait:
-    if name == "A":
-        # sticking throughout: the gait does not depend on mu >= its demand; Newton from the seed (002 Sec. 4.1)
-        gait = theory.paper_gait("A", math.inf)
-        demand = theory.critical_friction(gait.biped, gait.z)
-        if mu < max(demand.stance, demand.impulse):
-            raise ValueError(f"mu must be >= {demand.stance:.5f} (mu_c of Gait A, 002 Sec. 4.1; below it is Gait B)"
-                             f" (got {mu})")
-        bp = theory.FrictionBiped(mu=mu)
-        return theory.find_gait(bp, gait.z[:3], theory.PASSIVE)
-    if name == "III" and (kp, kd) != (15.0, 15.0):
-        bp = theory.FrictionBiped(slope=0.0, mu=mu)
-        base = theory.paper_gait("III", mu)
-        return theory.find_gait(bp, base.z, theory.PDTracking(theory.gait_c_reference(), kp, kd))
-    return theory.paper_gait(name, mu)
-
-
-def gait(params: Values) -> theory.Gait:
-    """The analytic gait (002 Secs. 4-5) for the scenario parameters."""
-    return _gait(gait_name(params), friction(params), float(params["kp"]), float(params["kd"]))
 
 
 def check_params(params: Values) -> None:

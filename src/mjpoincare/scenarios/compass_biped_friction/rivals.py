@@ -27,6 +27,8 @@ from mjpoincare.analysis.theory.compass_biped_friction.stance_measurements impor
     classified_pattern,
 )
 from mjpoincare.scenarios.base import Rival, Values
+from mjpoincare.scenarios.compass_biped_friction.gait_choice import friction, gait_name, solved_gait
+from mjpoincare.scenarios.compass_biped_friction.presets import PRESETS
 
 #: Relative friction error of the friction rival: a Coulomb coefficient 5% low (for a gait sticking throughout, whose
 #: gait does not depend on mu above its mu_c: 5% below its mu_c, where its stance first slips).
@@ -40,15 +42,11 @@ _Key = tuple[str, float, float, float]
 
 
 def _key(params: Values) -> _Key:
-    from mjpoincare.scenarios.compass_biped_friction import friction, gait_name
-
     return gait_name(params), friction(params), float(params["kp"]), float(params["kd"])
 
 
 def _own(key: _Key) -> theory.Gait:
-    from mjpoincare.scenarios.compass_biped_friction import _gait
-
-    return _gait(*key)
+    return solved_gait(*key)
 
 
 @lru_cache(maxsize=16)
@@ -94,8 +92,6 @@ def _stability_rival(key: _Key) -> theory.Gait:
 
 
 def _fast_dt() -> float:
-    from mjpoincare.scenarios.compass_biped_friction import PRESETS
-
     return float(PRESETS["fast"]["timestep"])
 
 

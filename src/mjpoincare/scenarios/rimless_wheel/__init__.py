@@ -56,6 +56,7 @@ from mjpoincare.scenarios.rimless_wheel.runs import (
     post_impact_samples,
     post_impact_states,
     simulate,
+    wheel,
     whole_chunks,
 )
 from mjpoincare.simulation.simulate import plain_clip
@@ -95,24 +96,12 @@ TOLERANCES: dict[str, Tolerances] = {
     ),
 }
 
-#: Floor on the hub's radius of gyration / leg_length (kappa >= 1e-4; why: docs/scenarios/rimless-wheel.md).
-MIN_GYRATION = 1e-2
-
 #: The fitting batch stops once more impacts no longer sharpen the fit (:mod:`mjpoincare.analysis.adaptive_stopping`);
 #: 3 samples per trajectory give the step period's quadratic regression in two speeds 12 pairs for its 6 terms.
 STOPPING = StoppingRule(min_samples=3)
 FIT_DEGREE = 2  # the map omega+ -> omega+ is fitted as a quadratic
 FIT_BATCH = 6
 BASIN_SECONDS = 6.0  # at most; the slowest standing case of the default grid settles after 3.3 s
-
-
-def wheel(params: Values) -> theory.RimlessWheel:
-    """The analytic model of the simulated wheel: the scenario parameters, with the hub's radius of gyration
-    raised to at least MIN_GYRATION x leg_length (the model and the theory use the same value)."""
-    length = float(params["leg_length"])
-    return theory.RimlessWheel(spokes=int(params["spokes"]), slope=float(params["slope"]), leg_length=length,
-                               gyration=max(float(params["gyration"]), MIN_GYRATION * length),
-                               gravity=float(params["gravity"]), mass=float(params["mass"]))
 
 
 def check_params(params: Values) -> None:

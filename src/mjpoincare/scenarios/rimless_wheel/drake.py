@@ -2,7 +2,7 @@
 
 Drake's wheel is the point-mass wheel of 003 Sec. 3 (kappa = 0 in 002's terms, 002 eqs 12, 14). Its values are set
 beside the suite's theory for that model (003 eqs 3.11-3.13) and beside the checks' own analytic values, whose hub
-inertia is floored (:data:`mjpoincare.scenarios.rimless_wheel.MIN_GYRATION`).
+inertia is floored (:data:`mjpoincare.scenarios.rimless_wheel.runs.MIN_GYRATION`).
 """
 
 from __future__ import annotations

@@ -23,6 +23,7 @@ import numpy as np
 
 from mjpoincare.analysis.theory import rimless_wheel as theory
 from mjpoincare.scenarios.base import Rival, Values
+from mjpoincare.scenarios.rimless_wheel.runs import wheel
 
 #: Radius of the hub's drawn cylinder (models/rimless_wheel_2d.xml), m: its solid-cylinder inertia is m R^2 / 2.
 HUB_CYLINDER_RADIUS = 0.05
@@ -32,8 +33,6 @@ SPOKE_MASS_KAPPA = 1.0 / 3.0
 
 def _model(params: Values) -> theory.RimlessWheel:
     """The scenario's analytic wheel (gyration floor applied)."""
-    from mjpoincare.scenarios.rimless_wheel import wheel  # the scenario module imports this one
-
     return wheel(params)
 
 

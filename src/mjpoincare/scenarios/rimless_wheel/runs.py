@@ -20,6 +20,19 @@ from mjpoincare.core.settings import rollout_options
 from mjpoincare.scenarios.base import Foot, JointIndex
 from mjpoincare.simulation.simulate import initial_states, rollout_batch
 
+#: Floor on the hub's radius of gyration / leg_length (kappa >= 1e-4; why: docs/scenarios/rimless-wheel.md).
+MIN_GYRATION = 1e-2
+
+
+def wheel(params: Values) -> theory.RimlessWheel:
+    """The analytic model of the simulated wheel: the scenario parameters, with the hub's radius of gyration
+    raised to at least MIN_GYRATION x leg_length (the model and the theory use the same value)."""
+    length = float(params["leg_length"])
+    return theory.RimlessWheel(spokes=int(params["spokes"]), slope=float(params["slope"]), leg_length=length,
+                               gyration=max(float(params["gyration"]), MIN_GYRATION * length),
+                               gravity=float(params["gravity"]), mass=float(params["mass"]))
+
+
 #: Forward impacts with no backward motion between or after them that make rolling a settled outcome: the first
 #: of them was followed by a whole step, so its post-impact speed exceeded omega_f, and the return map (increasing,
 #: with omega* its only fixed point) keeps every later one above it (003 Sec. 3.3, Def. 3.20).

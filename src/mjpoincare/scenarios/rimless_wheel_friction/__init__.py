@@ -33,7 +33,6 @@ from mjpoincare.analysis.sections import level_crossings
 from mjpoincare.analysis.theory import rimless_wheel_friction as theory
 from mjpoincare.core.params import Param, ParameterError
 from mjpoincare.core.settings import search_space
-from mjpoincare.scenarios import rimless_wheel as rw
 from mjpoincare.scenarios.base import (
     AnalyticValues,
     CoveragePoint,
@@ -49,7 +48,7 @@ from mjpoincare.scenarios.base import (
     at_preset,
 )
 from mjpoincare.scenarios.gate_cases import GateCase, Watch
-from mjpoincare.scenarios.rimless_wheel.runs import WHEEL_FOOT
+from mjpoincare.scenarios.rimless_wheel.runs import MIN_GYRATION, WHEEL_FOOT
 from mjpoincare.scenarios.rimless_wheel_friction.basins import REGION_MAP
 from mjpoincare.scenarios.rimless_wheel_friction.rivals import RIVALS
 from mjpoincare.scenarios.rimless_wheel_friction.rollout import (
@@ -146,7 +145,7 @@ def check_params(params: Values) -> None:
         theory.validate(w)
     except ValueError as err:
         raise ParameterError(str(err)) from None
-    low = rw.MIN_GYRATION**2
+    low = MIN_GYRATION**2
     if w.kappa < low:
         raise ParameterError(
             f"kappa must be in [{low:g}, 1] (got {w.kappa:g}): slipping needs hub inertia (002 eq 42: f_n = "

@@ -36,14 +36,23 @@ from mjpoincare.scenarios.base import (
     FitSummary,
     Scenario,
     StressCase,
-    Tolerances,
     Values,
     at_preset,
 )
 from mjpoincare.scenarios.gate_cases import GateCase
+from mjpoincare.scenarios.slotted_skate.design import (
+    FINAL_SPEED_RESOLUTION,
+    IMPACTS,
+    final_impacts,
+    has_final_state,
+    initial_conditions,
+    run_duration,
+    skate,
+)
 from mjpoincare.scenarios.slotted_skate.pegs import PegController, build
 from mjpoincare.scenarios.slotted_skate.regions import REGION_MAP
 from mjpoincare.scenarios.slotted_skate.rivals import RIVALS
+from mjpoincare.scenarios.slotted_skate.tolerances import TOLERANCES
 from mjpoincare.simulation.simulate import event_clip, event_rollout, initial_states
 
 PARAMS: tuple[Param, ...] = (
@@ -65,34 +74,8 @@ PRESETS: dict[str, dict[str, float | int | str]] = {
     "accurate": {"timestep": 0.0002, "solref_timeconst": 0.0004, "integrator": "rk4", "solimp_dmin": 0.9999,
         "solimp_dmax": 0.9999, "solimp_width": 0.001, "iterations": 200, "tolerance": 1e-14, "solref_dampratio": 1.0},
 }
-TOLERANCES: dict[str, Tolerances] = {
-    "accurate": Tolerances(
-        bounds={"sigma4": 1e-6, "energy_loss": 1e-5, "heading": 1e-4, "final_speed": 1e-4},
-        why="the suite's targets (1e-6 on sigma4, 1e-5 on the energy per impact), with the stance ended by a "
-            "fractional step; the preset is the cheapest setting a search found to hold them at every coverage point "
-            "(docs/results/tune/slotted-skate.md)"
-    ),
-    "fast": Tolerances(
-        bounds={"sigma4": 1e-3, "energy_loss": 1e-3, "heading": 0.01, "final_speed": 0.01},
-        why="RK4 at 0.49 ms with a 3.9 ms peg contact: at the defaults (V0 = 1) it errs by 1e-8 on sigma4 and 4e-6 "
-            "on the energy, but the bounds hold the preset at every coverage point, and the fast slide (V0 = 20: a "
-            "few steps per stance) errs by 3.7e-4 on sigma4_backward (the search's worst ratio, 0.374); the preset "
-            "is the cheapest setting a search found within half of the bounds there (docs/results/tune/"
-            "slotted-skate.md)"
-    ),
-}
 #: H_k+1/H_k is judged only while |H_k| >= RATIO_FLOOR x the run's largest |H| (why: docs/scenarios/slotted-skate.md)
 RATIO_FLOOR = 1e-4
-IMPACTS = 14  # enough for P1's backward starts to reach their reversal (B.6: 11 impacts at Omega0 = 0.1)
-SCALES = (0.5, 1.0, 1.5)  # the batch: Omega0 x these, in the given direction and mirrored
-
-
-def skate(params: Values) -> theory.SlottedSkate:
-    """The nondimensional analytic model (lengths / rho)."""
-    return theory.SlottedSkate(L0=float(params["l0"]) / float(params["rho"]),
-                               Delta=float(params["delta"]) / float(params["rho"]))
-
-
 def check_params(params: Values) -> None:
     """Refuse a skate at rest or sliding nowhere: the peg protocol needs slot motion (V0 != 0)."""
     if float(params["V0"]) == 0.0:
@@ -109,29 +92,10 @@ def start_states(model: mujoco.MjModel, params: Values, V0: np.ndarray, Omega0: 
     return initial_states(model, qpos, qvel)
 
 
-def initial_conditions(params: Values) -> tuple[np.ndarray, np.ndarray]:
-    """The batch: Omega0 scaled by SCALES, in the given direction and mirrored (V0 -> -V0)."""
-    v0, om0 = float(params["V0"]), float(params["Omega0"])
-    V = np.array([v0] * len(SCALES) + [-v0] * len(SCALES))
-    Om = np.array([om0 * k for k in SCALES] * 2)
-    return V, Om
-
-
 def _nondim(params: Values) -> tuple[float, float, float]:
     """Scales (energy, momentum, time) of the paper's units: m v0^2, m rho v0, rho / v0 (v0 = |V0|)."""
     m, rho, v0 = float(params["mass"]), float(params["rho"]), abs(float(params["V0"]))
     return m * v0 * v0, m * rho * v0, rho / v0
-
-
-def _duration(params: Values, V: np.ndarray, Om: np.ndarray) -> float:
-    """Time (s) of IMPACTS + 1 stances of the slowest trajectory, by the analytic map, plus 10 %."""
-    sk = skate(params)
-    rho, v0 = float(params["rho"]), abs(float(params["V0"]))
-    worst = 0.0
-    for v, om in zip(V, Om, strict=True):
-        steps = theory.iterate(sk, v / v0, om * rho / v0, 0.0, IMPACTS + 1)
-        worst = max(worst, sum(st.duration for st in steps))
-    return 1.1 * worst * rho / v0
 
 
 def _simulate(params: Values, settings: Values) -> tuple[PegController, object]:
@@ -139,7 +103,7 @@ def _simulate(params: Values, settings: Values) -> tuple[PegController, object]:
     V, Om = initial_conditions(params)
     controller = PegController(model, params, np.where(V > 0, float(params["l0"]),
                                                        float(params["l0"]) + float(params["delta"])))
-    nstep = math.ceil(_duration(params, V, Om) / model.opt.timestep)
+    nstep = math.ceil(run_duration(params, V, Om) / model.opt.timestep)
     report = event_rollout(model, start_states(model, params, V, Om), nstep, controller, **rollout_options(settings),
                            chunk_steps=max(10, min(2000, nstep // 20)))
     return controller, report
@@ -263,7 +227,7 @@ def _reversal_predicted(params: Values, sk: theory.SlottedSkate) -> bool:
         return False
     V, Om = initial_conditions(params)
     rho, v0 = float(params["rho"]), abs(float(params["V0"]))
-    horizon = _duration(params, V, Om) * v0 / rho
+    horizon = run_duration(params, V, Om) * v0 / rho
     for v, om in zip(V, Om, strict=True):
         q = theory.initial_state(sk, v / v0, om * rho / v0, 0.0)
         if abs(q.H_plus) < 1e-12:
@@ -281,52 +245,9 @@ def _reversal_predicted(params: Values, sk: theory.SlottedSkate) -> bool:
     return False
 
 
-FINAL_DECAY = 1e-6  # a final state exists where |H| decays to this fraction of its initial value (B.10/B.12)
-FINAL_IMPACTS_MAX = 400
-#: The final-state run ends at the first impact where the map's own slot speed is within this of its limit V_f, in
-#: units of v0: a thousandth of the tightest final_speed tolerance, so that stopping there moves the check's error by
-#: at most 0.1 % of any preset's tolerance.
-FINAL_SPEED_RESOLUTION = 1e-3 * min(t.bounds["final_speed"] for t in TOLERANCES.values())
-
-
-def _has_final_state(params: Values, sk: theory.SlottedSkate) -> bool:
-    """Whether the user's start has a final state: its rotation decays by FINAL_DECAY within FINAL_IMPACTS_MAX
-    impacts of the map (not an unstable, spinning motion)."""
-    rho, v0 = float(params["rho"]), abs(float(params["V0"]))
-    q = theory.initial_state(sk, float(params["V0"]) / v0, float(params["Omega0"]) * rho / v0, 0.0)
-    h0, n = abs(q.H_plus), 0
-    while abs(q.H_plus) > FINAL_DECAY * h0 and n < FINAL_IMPACTS_MAX:
-        q = theory.return_map(sk, q.D_plus, q.E_plus, q.theta_plus, q.H_plus)
-        n += 1
-    return h0 != 0.0 and abs(q.H_plus) <= FINAL_DECAY * h0
-
-
-def _slot_speed(q: theory.MapStep) -> float:
-    """The map state's slot speed (paper units), signed by the end its peg went in (front: forward)."""
-    return math.copysign(math.sqrt(2.0 * q.E_plus), 1.0 if q.D_plus == 0.0 else -1.0)
-
-
-def _final_impacts(params: Values, sk: theory.SlottedSkate
-                   ) -> tuple[theory.MapStep, int, float, int, float] | None:
-    """The map from the user's start to the first impact whose slot speed is within FINAL_SPEED_RESOLUTION of the
-    final speed (B.10/B.12): the state there, the impacts, the time (paper units) and the reversals on the way, and
-    the final speed V_f; None where there is no final state (:func:`_has_final_state`)."""
-    if not _has_final_state(params, sk):
-        return None
-    rho, v0 = float(params["rho"]), abs(float(params["V0"]))
-    V, Om = float(params["V0"]) / v0, float(params["Omega0"]) * rho / v0
-    v_final = theory.final_state(sk, V, Om).V_f
-    q = theory.initial_state(sk, V, Om, 0.0)
-    n, duration, reversals = 0, 0.0, 0
-    while abs(_slot_speed(q) - v_final) > FINAL_SPEED_RESOLUTION and n < FINAL_IMPACTS_MAX:
-        q = theory.return_map(sk, q.D_plus, q.E_plus, q.theta_plus, q.H_plus)
-        n, duration, reversals = n + 1, duration + q.duration, reversals + int(q.reversed)
-    return q, n, duration, reversals, v_final
-
-
 def _final_run(params: Values, model: mujoco.MjModel, decay: tuple[theory.MapStep, int, float, int, float]
                ) -> tuple[np.ndarray, int]:
-    """The user's start (1, nstate) and the steps that carry it past the map's final impact (:func:`_final_impacts`)
+    """The user's start (1, nstate) and the steps that carry it past the map's final impact (:func:`final_impacts`)
     by 10 % plus two stances."""
     q, _, duration, _, _ = decay
     rho, v0 = float(params["rho"]), abs(float(params["V0"]))
@@ -338,7 +259,7 @@ def _final_state_checks(params: Values, settings: Values, sk: theory.SlottedSkat
                         ) -> tuple[list[checks.Check], RolloutReport | None]:
     """The user's start run until its rotation has died out: final slot speed (B.10/B.12) and reversal count, and
     the run's report (None when the map's rotation does not decay: no final state to check)."""
-    decay = _final_impacts(params, sk)
+    decay = final_impacts(params, sk)
     if decay is None:
         return [], None
     _, n, _, reversals, v_final = decay
@@ -371,8 +292,8 @@ def probe(params: Values, settings: Values) -> tuple[mujoco.MjModel, list[tuple[
     run to its final state (each its whole duration without pegs switched)."""
     model = build(params, settings)
     V, Om = initial_conditions(params)
-    batches = [(start_states(model, params, V, Om), math.ceil(_duration(params, V, Om) / model.opt.timestep))]
-    decay = _final_impacts(params, skate(params))
+    batches = [(start_states(model, params, V, Om), math.ceil(run_duration(params, V, Om) / model.opt.timestep))]
+    decay = final_impacts(params, skate(params))
     if decay is not None:
         batches.append(_final_run(params, model, decay))
     return model, batches
@@ -433,7 +354,7 @@ def checks_at(params: Values, settings: Values) -> tuple[str, ...]:
     inside the run, and the final state where the map's rotation decays (B.10/B.12)."""
     sk = skate(params)
     own = {"collisions_before_reversal": _reversal_predicted(params, sk),
-           "final_speed": _has_final_state(params, sk)}
+           "final_speed": has_final_state(params, sk)}
     own["final_reversals"] = own["final_speed"]
     return tuple(check for check in CHECKS if own.get(check, True))
 

@@ -26,6 +26,7 @@ from typing import NamedTuple
 
 from mjpoincare.analysis.theory import slotted_skate as theory
 from mjpoincare.scenarios.base import Rival, Values
+from mjpoincare.scenarios.slotted_skate.design import final_impacts, initial_conditions, run_duration, skate
 
 #: Relative slot-length error of the geometric rival.
 SLOT_ERROR = 0.01
@@ -50,8 +51,6 @@ def _key(params: Values) -> _Key:
 
 def _skate(params: Values) -> theory.SlottedSkate:
     """The scenario's nondimensional skate (imported lazily: the scenario module imports this one)."""
-    from mjpoincare.scenarios.slotted_skate import skate
-
     return skate(params)
 
 
@@ -81,14 +80,12 @@ def _tally(key: _Key, geometry: str, lossless: bool) -> _Tally:
     """The batch (``initial_conditions``) run under the rival for the scenario's duration, each stance ending in it
     read against the exact map: the worst energy (3.7) and heading (B.1) errors, the reversal (B.5) mismatches, and
     the starts whose first reversal differs from (B.6)'s count (where B.6 applies and the reversal is inside)."""
-    from mjpoincare.scenarios.slotted_skate import _duration, initial_conditions
-
     params = dict(key)
     sk = _skate(params)
     rival = _longer(sk) if geometry == "longer" else sk
     V, Om = initial_conditions(params)
     rho, v0 = float(params["rho"]), abs(float(params["V0"]))
-    horizon = _duration(params, V, Om) * v0 / rho
+    horizon = run_duration(params, V, Om) * v0 / rho
     b6 = not -sk.Delta <= sk.L0 <= 0.0
     energy = heading = 0.0
     reversal_mismatch = collisions_mismatch = 0
@@ -118,11 +115,9 @@ def _final(key: _Key) -> tuple[float, int] | None:
     """The user's start under the energy-conserving peg, over the impacts the final-state checks read (the map's own
     slot speed within FINAL_SPEED_RESOLUTION of V_f, B.10/B.12): its slot speed error there and its reversal-count
     error; None where the rotation does not decay (no final-state checks)."""
-    from mjpoincare.scenarios.slotted_skate import _final_impacts
-
     params = dict(key)
     sk = _skate(params)
-    decay = _final_impacts(params, sk)
+    decay = final_impacts(params, sk)
     if decay is None:
         return None
     _, impacts, _, reversals, v_final = decay
