@@ -91,4 +91,14 @@ GATE_CASES: tuple[GateCase, ...] = (
                 "friction_ratio_window "
                 "critical_friction phase_sequence impact_kind stable", watched=[
                     Watch(check="impact_slip", spread=4.3e-7, why="0.77-0.80 of its tolerance: " + _IMPACT_SLIP)]),
+    GateCase.of(NAME, "accurate", "fixed_point eigenvalues gait_stability step_period step_length speed phase_sequence "
+                "phase_times impact_kind impact_slip stable", gait="b"),
+    GateCase.of(NAME, "accurate", "fixed_point eigenvalues gait_stability step_period step_length speed phase_sequence "
+                "phase_times impact_kind impact_slip stable", gait="c"),
+    GateCase.of(NAME, "accurate", "fixed_point eigenvalues gait_stability step_period step_length speed "
+                "cost_of_transport phase_sequence impact_kind impact_slip stable", gait="i"),
+    GateCase.of(NAME, "accurate", "fixed_point eigenvalues gait_stability step_period step_length speed "
+                "cost_of_transport phase_sequence impact_kind impact_slip stable", gait="ii"),
+    GateCase.of(NAME, "accurate", "fixed_point eigenvalues gait_stability step_period step_length speed "
+                "cost_of_transport phase_sequence phase_times impact_kind impact_slip stable", gait="iii"),
 )
