@@ -43,6 +43,17 @@ def test_the_ratio_compares_the_distance_with_what_the_check_lets_through() -> N
     assert exact.ratio == math.inf
 
 
+def test_a_check_no_gate_case_tells_from_its_rival_says_why() -> None:
+    """Where no gate case of the scenario rejects a check's rival, the rival states why (its ``weak`` line); a reason
+    on a rival some gate case rejects is stale."""
+    table = discrimination_page.rows(json.loads((ROOT / discrimination_page.MARGINS).read_text()))
+    assert not discrimination_page.unexplained(table), [f"{r.case}::{r.check}" for r in
+                                                        discrimination_page.unexplained(table)]
+    told = discrimination_page.told_elsewhere(table)
+    stale = sorted({key for key in told if scenarios.REGISTRY[key[0]].rivals[key[1]].weak})
+    assert not stale, f"rivals told apart by a gate case keep a reason why not: {stale}"
+
+
 def test_the_discrimination_page_renders_from_the_committed_margins() -> None:
     """Generated, never typed: the committed page is the render of the committed margins with today's rivals, and
     every rival's distance at every gate case is a finite number."""

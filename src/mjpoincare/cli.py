@@ -598,9 +598,11 @@ def build_parser() -> argparse.ArgumentParser:
     margins.add_argument("--workers", type=int, default=2, help="environment processes at once")
     margins.set_defaults(func=_cmd_margins)
 
-    pw = sub.add_parser("power", help="the gate's power: plant physics changes of known size (gravity, timestep, a "
-                        "body's mass and inertia, friction, solref, impratio, cone, integrator, a contact pair) into "
-                        "each scenario's default gate case; which checks catch them by tolerance and by baseline")
+    pw = sub.add_parser("power", help="the gate's power: plant physics changes of known size into each scenario's "
+                        "default gate case (its theory's parameters: slope, radius of gyration, gravity, hip mass, "
+                        "friction; the simulator's: timestep, solref, impratio, cone, integrator, a contact pair; and "
+                        "controls it cannot see); what the theory says each does to the checks, and which checks "
+                        "catch it by tolerance and by baseline")
     pw.add_argument("--case", action="append", default=[], metavar="TEXT", help="only cases whose label contains TEXT")
     pw.add_argument("--change", action="append", default=[], metavar="CHANGE", help="only this change (repeatable; "
                     "the unplanted control always runs)")

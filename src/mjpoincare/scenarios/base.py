@@ -178,11 +178,15 @@ class Rival:
             the scenario's parameters ``params``, computed from the theory under both physics. None: no check can
             tell them apart (``indistinct`` says why).
         indistinct: one line: why no check at any parameter the scenario offers can tell the rival from the theory.
+        weak: one line: why none of the scenario's gate cases tells the rival apart with this check although the
+            theory puts it at a distance (the distance against what the tolerance and the measured error let
+            through, and which check does tell it); only where no gate case's ratio exceeds 1.
     """
 
     physics: str
     distance: Callable[[Values], float] | None = None
     indistinct: str = ""
+    weak: str = ""
 
     def __post_init__(self) -> None:
         if (self.distance is None) == (not self.indistinct):

@@ -79,9 +79,15 @@ _SLOPE = "a slope 1% steeper than the model's (gravity tilted by 1.01 gamma; 003
 
 RIVALS: dict[str, Rival] = {
     "fixed_point": Rival(physics=_SLOPE, distance=_fixed_point),
-    "eigenvalues": Rival(physics=_SLOPE, distance=_eigenvalues),
+    "eigenvalues": Rival(physics=_SLOPE, distance=_eigenvalues,
+                         weak="a 1 % steeper slope moves the multipliers by less than the eigenvalue tolerance the "
+                              "fit through the soft impact needs at either preset; the fixed point tells the steeper "
+                              "slope"),
     "step_period": Rival(physics="g = 9.80 instead of 9.81 m/s^2 (002's value; the swing of 003 eq 4.5 runs "
-                         "sqrt(9.81/9.80) slower)", distance=_step_period),
+                         "sqrt(9.81/9.80) slower)", distance=_step_period,
+                         weak="g 0.1 % low stretches the gait's time by 0.05 % and leaves its angles and multipliers "
+                              "as they are (003 eq 4.5 in units of sqrt(l/g)): only the period sees it, and by half "
+                              "the accurate preset's tolerance, the accuracy its preset search holds"),
     "step_length": Rival(physics=_SLOPE, distance=_step_length),
     "trailing_foot_release": Rival(
         physics="an impact law that leaves the trailing foot at rest instead of lifting it off (003 eqs 4.15-4.17 give "

@@ -21,6 +21,16 @@ _GAIT_II = ("the slipping impact and the 5 ms slip+ after it, through the fast p
             "the searched preset's 0.3 ms pyramidal-cone contact misses by as much)")
 _GAIT_II_STABLE = ("the fast preset's soft slipping impact makes the unstable Gait II (|lambda|max 1.157) a stable "
                    "gait: its fitted map's |lambda|max is 0.70; the accurate preset's fit reads it unstable (1.18)")
+_CONVERGES = ("the soft slipping impact's resolution: the error shrinks about in proportion as the step and the "
+              "contact time halve together (the ladder in docs/results/ladders/compass-biped-friction/, "
+              "docs/scenarios/compass-biped-friction.md, Findings)")
+_SLIDE = ("a model difference, not a resolution: the error does not shrink as the step and the contact time halve (the "
+          "ladder, Findings); the slipping foot slides over the first milliseconds through MuJoCo's convex contact, "
+          "which lets it rise off the slope while it slides, where the exact impulse stops it on the slope")
+_PHASE_RESET = ("a model difference, not a resolution: the smallest multiplier does not move as the step and the "
+                "contact time halve (the ladder, Findings); the tracking controller resets its phase at the heel "
+                "strike it reads from the soft contact, which starts and ends over the contact time, where the exact "
+                "map resets it at the instant of impact")
 #: The gate's runs of this scenario (:mod:`mjpoincare.gate.forms`), as measured by ``mjpoincare margins`` over its
 #: ensemble of environments (docs/results/gate/: MuJoCo 4.0.0, numpy 2.4.6, scipy 1.17.1; the OpenBLAS kernels Prescott
 #: to SkylakeX, numpy at its baseline, and the perturbations): each spread is the measured one rounded up to 2 digits,
@@ -91,14 +101,43 @@ GATE_CASES: tuple[GateCase, ...] = (
                 "friction_ratio_window "
                 "critical_friction phase_sequence impact_kind stable", watched=[
                     Watch(check="impact_slip", spread=4.3e-7, why="0.77-0.80 of its tolerance: " + _IMPACT_SLIP)]),
-    GateCase.of(NAME, "accurate", "fixed_point eigenvalues gait_stability step_period step_length speed phase_sequence "
-                "phase_times impact_kind impact_slip stable", gait="b"),
-    GateCase.of(NAME, "accurate", "fixed_point eigenvalues gait_stability step_period step_length speed phase_sequence "
-                "phase_times impact_kind impact_slip stable", gait="c"),
+    GateCase.of(NAME, "accurate", "fixed_point gait_stability step_period step_length phase_sequence phase_times "
+                "impact_kind stable", gait="b",
+                misses=[
+                    Miss(check="eigenvalues", measured=(0.03933700342, 0.05495589183), spread=0.016, tolerance=0.01,
+                         resolved=False, ceiling=0.083, mechanism=_CONVERGES + "; the fit over starts inside the "
+                         "narrow impact border is chaotic: starts x(1 + 1e-9) move it by 0.016, so the ceiling is the "
+                         "ensemble's largest error with half again for what it has not seen, and the gated "
+                         "gait_stability check holds the fit stable (|lambda|max 0.82 + 0.083 < 1)"),
+                    Miss(check="impact_slip", measured=(2.255816511e-05, 2.377762316e-05), spread=1.3e-6,
+                         tolerance=2.041e-5, mechanism=_CONVERGES)],
+                watched=[Watch(check="speed", spread=2.4e-5, why="0.71-0.74 of its tolerance: " + _CONVERGES)]),
+    GateCase.of(NAME, "accurate", "gait_stability step_period step_length speed phase_sequence phase_times "
+                "impact_kind stable", gait="c",
+                misses=[
+                    Miss(check="eigenvalues", measured=(0.01862651002, 0.01862774786), spread=1.3e-6, tolerance=0.01,
+                         mechanism=_CONVERGES),
+                    Miss(check="impact_slip", measured=(0.0001817206955, 0.0001817210117), spread=3.2e-10,
+                         tolerance=1.448e-5, mechanism=_SLIDE)],
+                watched=[Watch(check="fixed_point", spread=8.5e-10, why="0.75 of its tolerance: " + _CONVERGES)]),
     GateCase.of(NAME, "accurate", "fixed_point eigenvalues gait_stability step_period step_length speed "
-                "cost_of_transport phase_sequence impact_kind impact_slip stable", gait="i"),
-    GateCase.of(NAME, "accurate", "fixed_point eigenvalues gait_stability step_period step_length speed "
-                "cost_of_transport phase_sequence impact_kind impact_slip stable", gait="ii"),
-    GateCase.of(NAME, "accurate", "fixed_point eigenvalues gait_stability step_period step_length speed "
-                "cost_of_transport phase_sequence phase_times impact_kind impact_slip stable", gait="iii"),
+                "cost_of_transport phase_sequence impact_kind stable", gait="i",
+                watched=[Watch(check="impact_slip", spread=4.5e-7, why="0.76-0.79 of its tolerance: " + _IMPACT_SLIP)]),
+    GateCase.of(NAME, "accurate", "gait_stability cost_of_transport phase_sequence impact_kind impact_slip stable",
+                gait="ii", misses=[
+                    Miss(check=name, measured=measured, spread=spread, tolerance=tolerance, mechanism=_CONVERGES)
+                    for name, measured, spread, tolerance in (
+                        ("fixed_point", (0.00309401131, 0.003095315409), 1.4e-6, 0.001),
+                        ("eigenvalues", (0.07885413578, 0.07889770388), 4.4e-5, 0.01),
+                        ("step_period", (0.001336929786, 0.001337427055), 5.0e-7, 0.001),
+                        ("step_length", (0.009727627476, 0.00973024356), 2.7e-6, 0.001),
+                        ("speed", (0.008401930482, 0.008404056317), 2.2e-6, 0.001))]),
+    GateCase.of(NAME, "accurate", "fixed_point gait_stability step_period step_length speed cost_of_transport "
+                "phase_sequence phase_times impact_kind stable", gait="iii", misses=[
+                    Miss(check="eigenvalues", measured=(0.01668333324, 0.01668646006), spread=3.2e-6, tolerance=0.01,
+                         mechanism=_PHASE_RESET),
+                    Miss(check="impact_slip", measured=(6.589068090e-05, 7.001155977e-05), spread=4.2e-6,
+                         tolerance=1.281e-5, resolved=False, ceiling=1.05e-4,
+                         mechanism=_SLIDE + "; the seed's bootstrap and the environments move it by 4.2e-6, a band "
+                         "wider than its tolerance: the ceiling is the ensemble's largest error with half again")]),
 )

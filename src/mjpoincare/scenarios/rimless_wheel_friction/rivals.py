@@ -157,7 +157,9 @@ RIVALS: dict[str, Rival] = {
                 "eq 1 with R_n = 0): on a sliding row at rest normally jar_n = -R_n f_n < 0, so its residual is 1",
         distance=lambda _params: 1.0),
     "slip_onset": Rival(physics="slip onset read off the sticking orbit (002 eq 22 on the eq 16 orbit reaching -mu) "
-                                "instead of the Type B gait's own stance", distance=_slip_onset),
+                                "instead of the Type B gait's own stance", distance=_slip_onset,
+                       weak="the sticking orbit's onset lies inside the onset's tolerance of the slipping gait's; "
+                            "the mid-stance rate, the eigenvalue and the gait type tell sticking from slipping"),
     "dx_per_step": Rival(physics=_TILT + ": Delta x_dot of the D gait (002 Fig. 3.6)", distance=_dx_per_step),
     "critical_friction": Rival(physics=_TILT + ": mu_c of 002 eq 23", distance=_critical_friction),
 }
