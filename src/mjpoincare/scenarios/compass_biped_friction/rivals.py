@@ -232,10 +232,7 @@ RIVALS: dict[str, Rival] = {
         physics="a gait across |lambda|max = 1 (002 Sec. 4.2): A, B, I just below their stability-loss friction; C "
                 "the coexisting sticking-impact gait; II with Gait I's torques; III without its PD tracking",
         distance=_gait_stability),
-    "step_period": Rival(physics=_FRICTION, distance=_step_period,
-                         weak="5 % less friction leaves a sticking stance's period as it is until the foot slips and "
-                              "moves a slipping gait's by less than the tolerance its soft slipping impact needs; the "
-                              "fixed point, the step length and the phase times tell it"),
+    "step_period": Rival(physics=_FRICTION, distance=_step_period),
     "step_length": Rival(physics=_FRICTION, distance=_step_length),
     "speed": Rival(physics=_FRICTION, distance=_speed),
     "cost_of_transport": Rival(physics=_FRICTION, distance=_cost_of_transport),
