@@ -101,6 +101,16 @@ def render(payload: dict[str, Any]) -> str:
                   "holds: the plant did not reach the physics the checks see.", ""]
     else:
         lines += ["Every planted change was caught.", ""]
+    unseen = [(r, c) for r in rows if not r["raised"] for c in r["must_fail"] if c not in r["tolerance"]]
+    lines += ["## Where the theory says a check must fail and it passed", ""]
+    if unseen:
+        lines += ["A simulator reproducing the planted physics exactly would fail these checks; the planted run "
+                  "passed them (the simulated error and the plant's effect partly cancel, or the effect barely "
+                  "exceeds the tolerance): at this size the tolerance lets this physics through.", "",
+                  markdown_table(("case", "change", "check", "effect"),
+                                 [(r["case"], _plant(r), c, f"{r['effects'][c]:.3g}") for r, c in unseen]), ""]
+    else:
+        lines += ["None: every check the theory says must fail failed its tolerance.", ""]
     lines += ["## Which checks caught each change", "",
               "The theory's column: the checks whose computed effect exceeds their tolerance, with the effect "
               "(`?`: checks of the case whose effect the theory module does not compute).", "",
