@@ -21,7 +21,8 @@
 #   make power        the gate's power (docs/results/gate-power.md): physics changes of known size planted into each
 #                     scenario's default gate case, and which checks catch them by tolerance and by the baseline
 #   make results         every scenario's default validation at each preset into docs/results/json/, then its pages
-#   make results-render  re-render docs/results/*.md from the committed JSON (no simulation)
+#   make results-render  re-render docs/results/*.md from the committed JSON (no simulation), and the friction
+#                     biped's ladder (docs/results/ladders/compass-biped-friction/README.md) from its validations
 #   make backends     the backends' findings: every scenario on MuJoCo C, MJX (x64, float32) and MuJoCo Warp, one process
 #                     per run (resumable), into docs/results/backends/; PRESETS, BATCH (the batch setting), MAPS (the
 #                     friction wheel's basin map, MAPS x MAPS starts, and mu sweep, MAPS values; 0 = none), SCALING
@@ -122,6 +123,7 @@ results: $(STAMP)
 
 results-render: $(STAMP)
 	$(BIN)/python -m mjpoincare.pages.results_pages --render-only
+	$(BIN)/python -m mjpoincare.pages.ladder_page
 
 tune: $(STAMP)
 	set -e; for s in $(TUNE_SCENARIOS); do for t in accurate fast; do \
