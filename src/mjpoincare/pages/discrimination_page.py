@@ -29,6 +29,9 @@ from mjpoincare.gate import forms, records
 #: The gate's margins (the runs this page reads) and the page, relative to the repository root.
 MARGINS = records.SOURCE / records.MARGINS
 PAGE = Path("docs/results/discrimination.md")
+#: A tolerance more than this many times the measured error plus its spread is listed: only a rival it must still
+#: reject explains its width.
+WIDE = 100.0
 #: The check every run reports that is the run's numerical health, not physics: it has no rival.
 HEALTH = "stable"
 
@@ -155,6 +158,15 @@ def render(margins: dict[str, Any]) -> str:
            ": none") + ".",
         "",
     ]
+    wide = [r for r in table if r.tolerance > WIDE * (r.error + r.spread)]
+    lines += [f"## Tolerances more than {WIDE:g} times the measured error and spread", "",
+              "A tolerance that wide is explained only by a rival it must still reject (ratio above 1); the others "
+              "are wider than both the measurement and the nearest wrong physics ask for.", ""]
+    lines += [markdown_table(
+        ("case", "check", "tolerance", "error + spread", "tolerance / (error + spread)", "ratio", "verdict"),
+        [(r.case, r.check, _number(r.tolerance), _number(r.error + r.spread),
+          _number(r.tolerance / (r.error + r.spread)) if r.error + r.spread > 0 else "inf",
+          "—" if r.ratio is None else _number(r.ratio), _verdict(r, told)) for r in wide]), ""]
     for name in dict.fromkeys(forms.case(r.case).scenario for r in table):
         mine = [r for r in table if forms.case(r.case).scenario == name]
         lines += [f"## {name}", ""]
