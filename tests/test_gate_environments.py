@@ -7,6 +7,7 @@ comparison and one beyond the allowance fails it."""
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import sys
 from collections.abc import Callable
@@ -39,8 +40,8 @@ PLANTED_CASE = "slotted-skate[fast]"
 
 @cache
 def measured() -> dict[tuple[str, str], dict[str, Any]]:
-    """The committed ensemble measurement's rows, by (case, check)."""
-    return {(r["case"], r["check"]): r for r in json.loads(MARGINS.read_text())["rows"]}
+    """The committed ensemble measurement's rows, by (case, check), each form judged against today's declarations."""
+    return {(r["case"], r["check"]): r for r in gate.judged(json.loads(MARGINS.read_text())["rows"])}
 
 
 def _errors_here(labels: list[str]) -> gate_environments.Errors:
@@ -200,3 +201,16 @@ def test_xdist_groups_follow_the_gate_case_in_the_node_id() -> None:
     assert gate_group("tests/test_gate.py::test_gated_check[w-3d[fast]::stable]", labels, sensitive) == KERNEL_GROUP
     assert gate_group(KERNEL_TEST, labels, sensitive) == KERNEL_GROUP
     assert gate_group("tests/test_tables.py::test_rows", labels, sensitive) is None
+
+
+def test_a_declaration_is_judged_against_the_committed_measurement_without_simulating() -> None:
+    """The form is a judgement of the measurement: the committed rows judged against today's declarations hold, and
+    the same row judged against a watched check's spread declared a thirtieth of the measured one (its allowance
+    a tenth) does not."""
+    watched = next(c for c in gate.cases() if c.watched)
+    watch = watched.watched[0]
+    row = measured()[(watched.label, watch.check)]
+    assert gate.judge(watched, row)["holds"]
+    smaller = dataclasses.replace(watch, spread=row["spread"] / 30)
+    shrunk = dataclasses.replace(watched, watched=(smaller, *watched.watched[1:]))
+    assert row["spread"] > 0 and not gate.judge(shrunk, row)["holds"]

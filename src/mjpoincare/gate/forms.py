@@ -86,8 +86,6 @@ def margin_rows(cases: Iterable[GateCase], compare: Mapping[tuple[str, str], flo
     for case in cases:
         base = run_case(case)
         variants = [(label, run_case(case, seed, **extra)) for label, seed, extra in PERTURBATIONS] if perturb else []
-        misses = {m.check: m for m in case.misses}
-        watched = {w.check: w for w in case.watched}
         for check in base.checks:
             others = [(label, next((c.error for c in v.checks if c.name == check.name), math.nan))
                       for label, v in variants]
@@ -101,32 +99,58 @@ def margin_rows(cases: Iterable[GateCase], compare: Mapping[tuple[str, str], flo
             low, high = (min(finite), max(finite)) if finite else ((math.nan, ""), (math.nan, ""))
             ratio = ((check.error + spread) / check.tolerance if check.tolerance > 0
                      else (0.0 if check.error + spread == 0 else math.inf))
-            miss = misses.get(check.name)
-            status = ("gated" if check.name in case.gated else "declared miss" if miss is not None
-                      else "watched" if check.name in watched else "not in the gate")
-            if status == "gated":
-                holds, resolution = ratio <= MARGIN, spread
-            elif miss is not None:
-                band_low, band_high = miss.band
-                missing = not check.passed and not any(math.isfinite(e) and e <= check.tolerance for _, e in others)
-                inside = all(miss.matches(e) for e, _ in finite) and len(finite) == 1 + len(others)
-                holds = inside and (missing or not miss.resolved)
-                resolution = band_high - band_low
-                status = status if miss.resolved else "declared miss, unresolved"
-            else:
-                w = watched.get(check.name)
-                holds = (status == "watched" and w is not None and check.passed
-                         and high[0] <= check.tolerance and spread <= allowance(w.spread, check.tolerance))
-                resolution = spread
-            rows.append({"case": case.label, "check": check.name, "error": check.error, "spread": spread,
-                         "low": list(low), "high": list(high),
-                         "perturbations": {label: error for label, error in others[:len(variants)]},
-                         "environments": {label: errors[key] for label, errors in (environments or {}).items()
-                                          if key in errors},
-                         "tolerance": check.tolerance, "ratio": ratio, "status": status, "holds": holds,
-                         "resolution": resolution, "declared": list(miss.bounds) if miss else None,
-                         "miss": miss.reason(case.preset) if miss else ""})
+            row: dict[str, object] = {
+                "case": case.label, "check": check.name, "error": check.error, "spread": spread,
+                "low": list(low), "high": list(high),
+                "perturbations": {label: error for label, error in others[:len(variants)]},
+                "environments": {label: errors[key] for label, errors in (environments or {}).items()
+                                 if key in errors},
+                "tolerance": check.tolerance, "ratio": ratio}
+            rows.append({**row, **judge(case, row)})
     return rows
+
+
+def _number(value: object) -> float:
+    """A number of a margins row; the JSON writes a non-finite one as null (a spread or ratio that is infinite, an
+    error that is NaN): read back as infinite, which no form holds."""
+    return math.inf if value is None else float(value)  # type: ignore[arg-type]
+
+
+def judge(case: GateCase, row: Mapping[str, object]) -> dict[str, object]:
+    """The form a measured check (``row``: its error, spread, lowest and highest error over the ensemble, tolerance
+    and ratio, as :func:`margin_rows` measures them) takes in ``case`` as the case declares it today, and whether it
+    holds there: a gated check within :data:`MARGIN`; a watched check passing everywhere, its spread within its
+    declared one's allowance; a declared miss missing everywhere, every error in its band (an unresolved one: above its
+    tolerance, at most its ceiling). With it the resolution (a gated or watched check's spread, a miss's band width),
+    and a declared miss's error (``declared``) and xfail reason (``miss``). A pure function of the measurement and
+    the declaration: a declaration changed since the measurement is judged against it without simulating again."""
+    name = str(row["check"])
+    error, spread, tolerance, ratio = (_number(row[k]) for k in ("error", "spread", "tolerance", "ratio"))
+    low, high = (_number(row[side][0]) for side in ("low", "high"))  # type: ignore[index]
+    miss = next((m for m in case.misses if m.check == name), None)
+    watch = next((w for w in case.watched if w.check == name), None)
+    finite = math.isfinite(spread) and math.isfinite(error)
+    if name in case.gated:
+        status, holds, resolution = "gated", finite and ratio <= MARGIN, spread
+    elif miss is not None:
+        band_low, band_high = miss.band
+        inside = finite and miss.matches(low) and miss.matches(high)
+        holds = inside and (low > tolerance or not miss.resolved)
+        status = "declared miss" if miss.resolved else "declared miss, unresolved"
+        resolution = band_high - band_low
+    else:
+        status = "watched" if watch is not None else "not in the gate"
+        holds = (watch is not None and finite and high <= tolerance
+                 and spread <= allowance(watch.spread, tolerance))
+        resolution = spread
+    return {"status": status, "holds": holds, "resolution": resolution,
+            "declared": list(miss.bounds) if miss else None, "miss": miss.reason(case.preset) if miss else ""}
+
+
+def judged(rows: Iterable[Mapping[str, object]]) -> list[dict[str, object]]:
+    """Committed margin rows (:func:`margin_rows`) with their forms judged against today's declarations
+    (:func:`judge`)."""
+    return [{**row, **judge(case(str(row["case"])), row)} for row in rows]
 
 
 def _extreme(at: object, error: object) -> str:
