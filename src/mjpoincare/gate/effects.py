@@ -45,22 +45,31 @@ Effects = dict[str, float | None]
 #: ``(params, factor) -> effects``: the theory at the parameter x ``factor`` against the theory at ``params``.
 Effect = Callable[[Values, float], Effects]
 
+#: The integrator switch where the preset's implicitfast has nothing to treat implicitly.
+_SAME_STEP = ("no force the integrator treats implicitly (no joint damping, no actuator with a velocity gain; contact "
+              "damping is the constraint solver's): implicitfast and Euler take the same semi-implicit Euler step "
+              "(MuJoCo's Computation chapter, Integrators), equal to rounding")
+
 #: scenario -> change -> why neither the theory nor the model can see it: its effect on every check is exactly 0.
 CONTROLS: Mapping[str, Mapping[str, str]] = {
     "rimless-wheel": {
         "mass_inertia": "one rigid body: its motion does not depend on its mass scale (003 eqs 3.3-3.11 have "
                         "no m), and MuJoCo's constraint impedance is mass-normalised",
-        "friction": "the foot sticks (mu >= the friction the gait needs, 002 eqs 22-25) and the theory has no mu"},
+        "friction": "the foot sticks (mu >= the friction the gait needs, 002 eqs 22-25) and the theory has no mu",
+        "integrator": _SAME_STEP},
     "rimless-wheel-3d": {
         "mass_inertia": "one rigid body: its motion does not depend on its mass scale (001 is nondimensional in m)",
         "friction": "the foot sticks (mu >= the impact's |Pt|/Pn, 001 Sec. 3) and the theory has no mu"},
     "rimless-wheel-friction": {
-        "mass_inertia": "one rigid body: its motion does not depend on its mass scale (002 eq 11 has no m)"},
+        "mass_inertia": "one rigid body: its motion does not depend on its mass scale (002 eq 11 has no m)",
+        "integrator": _SAME_STEP},
     "compass-biped": {
-        "friction": "the feet stick (mu = 1 above the gait's demand) and the theory has no mu (003 Ch. 4)"},
+        "friction": "the feet stick (mu = 1 above the gait's demand) and the theory has no mu (003 Ch. 4)",
+        "integrator": _SAME_STEP},
     "compass-biped-friction": {
         "friction": "Gait A sticks throughout (mu = 1 above its mu_c = 0.175, 002 Sec. 4.1): its gait and every "
-                    "checked quantity are those of mu = inf"},
+                    "checked quantity are those of mu = inf",
+        "integrator": _SAME_STEP},
     "slotted-skate": {
         "gravity": "the skate moves in the horizontal plane, its pegs joint equalities: gravity does no work (000 has "
                    "no g)",
