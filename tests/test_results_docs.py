@@ -11,7 +11,7 @@ import pytest
 
 from mjpoincare import scenarios
 from mjpoincare.gate import releases
-from mjpoincare.pages import gate_power_page
+from mjpoincare.pages import discrimination_page, gate_power_page
 from mjpoincare.pages import results_pages as results
 
 RESULTS = Path(__file__).resolve().parent.parent / "docs" / "results"
@@ -36,8 +36,9 @@ def test_committed_page_reproduces_from_its_json(payload: dict[str, Any]) -> Non
 def test_committed_index_reproduces_from_the_json() -> None:
     assert (RESULTS / "README.md").read_text() == results.render_index(PAYLOADS)
     pages = {p.name for p in RESULTS.glob("*.md")}
-    # the release history (from releases/json, mjpoincare.gate.releases) and the gate's power (from gate/power.json)
-    others = {releases.PAGE.name, gate_power_page.PAGE.name}
+    # the release history (from releases/json, mjpoincare.gate.releases), the gate's power (from gate/power.json) and
+    # the discrimination of its checks (from gate/margins.json)
+    others = {releases.PAGE.name, gate_power_page.PAGE.name, discrimination_page.PAGE.name}
     assert pages == {"README.md", *others} | {f"{p['scenario']}.md" for p in PAYLOADS}, "a page without its JSON"
 
 
