@@ -34,6 +34,7 @@ from mjpoincare.analysis.theory.rimless_wheel_3d import hybrid
 from mjpoincare.core.params import Values
 from mjpoincare.scenarios.compass_biped import biped
 from mjpoincare.scenarios.compass_biped_friction.gait_choice import friction, gait_name, solved_gait
+from mjpoincare.scenarios.rimless_wheel.basin_judging import basin_flips
 from mjpoincare.scenarios.rimless_wheel.runs import wheel
 from mjpoincare.scenarios.rimless_wheel_3d import runs as wheel3d_runs
 from mjpoincare.scenarios.rimless_wheel_friction.rollout import friction_wheel, rate_unit
@@ -101,26 +102,6 @@ def _scaled(params: Values, name: str, factor: float) -> dict[str, object]:
 
 # -- rimless-wheel (003 Sec. 3; 002 Sec. 3.1 for the hub inertia) -----------------------------------------------------
 
-def _basin_outcome(w: wheel_theory.RimlessWheel, omega0: float) -> str:
-    """The end state the basin check predicts (003 Table 1; a start whose run would lift off: "flight")."""
-    outcome = wheel_theory.predicted_outcome(w, omega0)
-    return "flight" if outcome != "boundary" and not wheel_theory.flight_free(w, omega0, 6) else outcome
-
-
-def _basin_flips(right: wheel_theory.RimlessWheel, wrong: wheel_theory.RimlessWheel) -> float:
-    """Share of the basin grid's judged speeds (rolling/standing, not within 2 % of an edge; the grid and the judging
-    of the theory at ``right``) whose end state differs on ``wrong`` (003 eqs 3.17-3.18)."""
-    edges = wheel_theory.basin_edges(right)
-    judged = differ = 0
-    for omega0 in (float(v) for v in wheel_theory.basin_initial_speeds(right)):
-        outcome = _basin_outcome(right, omega0)
-        if outcome not in ("rolling", "standing") or np.min(np.abs(omega0 - edges)) < 0.02 * max(abs(omega0), 0.1):
-            continue
-        judged += 1
-        differ += _basin_outcome(wrong, omega0) != outcome
-    return differ / judged if judged else math.nan
-
-
 def _planar_wheel(field: str, power: float = 1.0) -> Effect:
     """The planar wheel with ``field`` x factor^power: the fitted map (003 eqs 3.11-3.14; 002 eqs 14, 16, 17), the
     step period (003 eq 3.5) and the basins."""
@@ -134,7 +115,7 @@ def _planar_wheel(field: str, power: float = 1.0) -> Effect:
                 "impact_coefficient": _relative(wrong.beta, right.beta),
                 "step_period": _relative(wheel_theory.step_period(wrong, star_wrong),
                                          wheel_theory.step_period(right, star)),
-                "basins": _basin_flips(right, wrong)}
+                "basins": basin_flips(right, wrong)}
 
     return effect
 

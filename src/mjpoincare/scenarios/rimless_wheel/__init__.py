@@ -45,6 +45,7 @@ from mjpoincare.scenarios.base import (
     at_preset,
 )
 from mjpoincare.scenarios.gate_cases import GateCase, Watch
+from mjpoincare.scenarios.rimless_wheel import basin_judging
 from mjpoincare.scenarios.rimless_wheel.drake import drake_peer
 from mjpoincare.scenarios.rimless_wheel.rivals import RIVALS
 from mjpoincare.scenarios.rimless_wheel.runs import (
@@ -197,16 +198,8 @@ def _fit_checks(w: theory.RimlessWheel, rec: Recorder, batch: int, tol: Toleranc
 
 def _basin_checks(w: theory.RimlessWheel, rec: Recorder, omega0: np.ndarray) -> tuple[list[checks.Check], BasinMap]:
     simulated = final_outcomes(w, rec)
-    predicted = []
-    for om in omega0:
-        outcome = theory.predicted_outcome(w, float(om))
-        if outcome != "boundary" and not theory.flight_free(w, float(om), 6):
-            outcome = "flight"
-        predicted.append(outcome)
-    edges = theory.basin_edges(w)
-    margin = 0.02
-    near = np.array([np.min(np.abs(om - edges)) < margin * max(abs(om), 0.1) for om in omega0])
-    judged = np.array([p in ("rolling", "standing") for p in predicted]) & ~near
+    predicted = [basin_judging.predicted_outcome(w, float(om)) for om in omega0]
+    judged = basin_judging.judged(w, [float(om) for om in omega0], predicted)
     agree = judged & (np.array(predicted) == simulated)
     table = [{"omega0": float(om), "predicted": p, "simulated": str(sm), "judged": bool(j), "max_clearance": float(c)}
              for om, p, sm, j, c in zip(omega0, predicted, simulated, judged, rec.max_clearance, strict=True)]

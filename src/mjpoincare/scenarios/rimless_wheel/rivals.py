@@ -19,10 +19,9 @@ from collections.abc import Callable
 from dataclasses import replace
 from functools import lru_cache
 
-import numpy as np
-
 from mjpoincare.analysis.theory import rimless_wheel as theory
 from mjpoincare.scenarios.base import Rival, Values
+from mjpoincare.scenarios.rimless_wheel.basin_judging import basin_flips
 from mjpoincare.scenarios.rimless_wheel.runs import wheel
 
 #: Radius of the hub's drawn cylinder (models/rimless_wheel_2d.xml), m: its solid-cylinder inertia is m R^2 / 2.
@@ -58,29 +57,11 @@ def _map_distance(index: int, relative: bool) -> Callable[[Values], float]:
     return distance
 
 
-def _outcome(w: theory.RimlessWheel, omega0: float) -> str:
-    """The end state the basin check predicts for a start (003 Table 1; a run that would lift off: "flight")."""
-    outcome = theory.predicted_outcome(w, omega0)
-    if outcome != "boundary" and not theory.flight_free(w, omega0, 6):
-        return "flight"
-    return outcome
-
-
 @lru_cache(maxsize=32)
 def _basin_flips(spokes: int, slope: float, leg_length: float, gyration: float, gravity: float) -> float:
-    """Share of the judged grid speeds (the scenario's rule: rolling/standing, not within 2 % of an edge) whose end
-    state differs on the wheel with its mass along the spokes."""
+    """Share of the judged grid speeds whose end state differs on the wheel with its mass along the spokes."""
     w = theory.RimlessWheel(spokes, slope, leg_length, gyration, gravity)
-    rival = replace(w, gyration=math.sqrt(SPOKE_MASS_KAPPA) * leg_length)
-    edges = theory.basin_edges(w)
-    judged = differ = 0
-    for omega0 in (float(v) for v in theory.basin_initial_speeds(w)):
-        right = _outcome(w, omega0)
-        if right not in ("rolling", "standing") or np.min(np.abs(omega0 - edges)) < 0.02 * max(abs(omega0), 0.1):
-            continue
-        judged += 1
-        differ += _outcome(rival, omega0) != right
-    return differ / judged if judged else math.nan
+    return basin_flips(w, replace(w, gyration=math.sqrt(SPOKE_MASS_KAPPA) * leg_length))
 
 
 def _basins(params: Values) -> float:
