@@ -34,3 +34,10 @@ def match_eigenvalues(reference: np.ndarray, values: np.ndarray) -> np.ndarray:
     cost = np.abs(reference[:, None] - values[None, :])
     _, cols = linear_sum_assignment(cost)
     return values[cols]
+
+
+def eigenvalue_error(reference: np.ndarray, values: np.ndarray) -> float:
+    """max |lambda - lambda_ref| over ``values`` matched to ``reference`` (:func:`match_eigenvalues`): the max-abs
+    error of an eigenvalue check."""
+    reference = np.asarray(reference)
+    return float(np.max(np.abs(match_eigenvalues(reference, np.asarray(values)) - reference)))

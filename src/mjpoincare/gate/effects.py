@@ -23,7 +23,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from mjpoincare.analysis.eigenvalues import match_eigenvalues
+from mjpoincare.analysis.eigenvalues import eigenvalue_error
 from mjpoincare.analysis.theory import compass_biped as biped_theory
 from mjpoincare.analysis.theory import compass_biped_friction as friction_biped_theory
 from mjpoincare.analysis.theory import rimless_wheel as wheel_theory
@@ -88,7 +88,7 @@ def _relative(wrong: float, right: float) -> float:
 
 def _matched(wrong: np.ndarray, right: np.ndarray) -> float:
     """max |lambda_wrong - lambda| over the multipliers matched to the theory's."""
-    return float(np.max(np.abs(match_eigenvalues(right, wrong) - right)))
+    return eigenvalue_error(right, wrong)
 
 
 def _differs(wrong: object, right: object) -> float:

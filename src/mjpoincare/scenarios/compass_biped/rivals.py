@@ -14,7 +14,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from mjpoincare.analysis.eigenvalues import match_eigenvalues
+from mjpoincare.analysis.eigenvalues import eigenvalue_error
 from mjpoincare.analysis.theory import compass_biped as theory
 from mjpoincare.analysis.theory.compass_biped import flight
 from mjpoincare.scenarios.base import Rival, Values
@@ -52,7 +52,7 @@ def _eigenvalues(params: Values) -> float:
     """max |lambda_rival - lambda| over the matched multipliers, slope 1% steeper."""
     bp = _biped(params)
     lam = _gait(bp)[1]
-    return float(np.max(np.abs(match_eigenvalues(lam, _gait(_steeper(bp))[1]) - lam)))
+    return eigenvalue_error(lam, _gait(_steeper(bp))[1])
 
 
 def _step_period(params: Values) -> float:

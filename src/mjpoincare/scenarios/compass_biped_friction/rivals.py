@@ -17,7 +17,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from mjpoincare.analysis.eigenvalues import match_eigenvalues
+from mjpoincare.analysis.eigenvalues import eigenvalue_error
 from mjpoincare.analysis.theory import compass_biped_friction as theory
 from mjpoincare.analysis.theory import stick_slip as ss
 from mjpoincare.analysis.theory.compass_biped_friction.dynamics import _model
@@ -109,7 +109,7 @@ def _eigenvalues(params: Values) -> float:
     """max |lambda_rival - lambda| over the 3 largest multipliers, matched; friction 5% low."""
     key = _key(params)
     lam = _own(key).eigenvalues[:3]
-    return float(np.max(np.abs(match_eigenvalues(lam, _friction_rival(key).eigenvalues[:3]) - lam)))
+    return eigenvalue_error(lam, _friction_rival(key).eigenvalues[:3])
 
 
 def _category(changed: bool) -> float:
