@@ -272,6 +272,20 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
                      resume=args.resume)
 
 
+def _cmd_reproduce(args: argparse.Namespace) -> int:
+    from mjpoincare.commands.reproduce import list_results, run_reproduce
+    from mjpoincare.core.result import check_output_path
+
+    check_output_path(args.json, "--json")
+    check_output_path(args.output, "--output", directory=True)
+    if args.list:
+        return list_results(args.ids, args.paper, args.json)
+    if args.output:
+        _require_viz("reproduce -o", "matplotlib")
+    return run_reproduce(args.ids, args.paper, args.preset, args.json, args.output, workers=args.workers,
+                         engine=args.engine, scheduler=args.scheduler, resume=args.resume)
+
+
 def _cmd_converge(args: argparse.Namespace) -> int:
     from mjpoincare.commands.converge import DEFAULT_AXES, run_converge
     from mjpoincare.core.result import check_output_path, distinct_outputs
@@ -572,6 +586,22 @@ def build_parser() -> argparse.ArgumentParser:
     conv.add_argument("--scheduler", metavar="ADDRESS", help="Dask scheduler address")
     conv.add_argument("--resume", action="store_true", help="skip the rungs the --json file already holds")
     conv.set_defaults(func=_cmd_converge)
+
+    rep = sub.add_parser("reproduce", help="run every result of the papers in MuJoCo (fixed points, multipliers, "
+                         "bounds, figures' curves, bifurcations): paper value, analytic, MuJoCo, error, verdict")
+    rep.add_argument("ids", nargs="*", help="result ids (default: all; --list shows them)")
+    rep.add_argument("--paper", help="only this paper's results: 000, 001, 002 or 003")
+    rep.add_argument("--list", action="store_true", help="print the ids and where each is in its paper; no simulation")
+    rep.add_argument("--preset", default="fast", help="fast (default) or accurate (figures and brackets run at fast "
+                     "only)")
+    rep.add_argument("--json", metavar="PATH|-", help="write every result (and the resumable rows) as JSON")
+    rep.add_argument("-o", "--output", metavar="DIR", help="write each figure's plot (theory curve, MuJoCo points with "
+                     "their spread) into DIR")
+    rep.add_argument("--workers", type=int, default=1, help="jobs run at once (processes or Dask workers)")
+    rep.add_argument("--engine", default="local", help="local (process pool) or dask")
+    rep.add_argument("--scheduler", metavar="ADDRESS", help="Dask scheduler address")
+    rep.add_argument("--resume", action="store_true", help="skip the rows the --json file already holds")
+    rep.set_defaults(func=_cmd_reproduce)
 
     stress = sub.add_parser("stress", help="push settings and parameters to the edges: stable or not, largest "
                             "stable timestep, soak drift")

@@ -31,6 +31,7 @@ from mjpoincare.core.seam import RolloutReport
 from mjpoincare.core.settings import SEARCH_SPACE, Dimension
 from mjpoincare.engines.peers import Peer
 from mjpoincare.scenarios.gate_cases import GateCase
+from mjpoincare.scenarios.paper_results import PaperResult
 
 T = TypeVar("T")
 
@@ -390,6 +391,9 @@ class Scenario:
             settings decide it (an exact step's phases as classified on the timestep's grid); None: all of ``checks``.
         rivals: check name -> its :class:`Rival`: every check of ``checks`` has one (the contract test holds the
             scenarios to it).
+        paper_results: the papers' results the scenario covers
+            (:class:`~mjpoincare.scenarios.paper_results.PaperResult`), each with how MuJoCo is run for it
+            (``mjpoincare reproduce``, ``docs/results/papers/``).
     """
 
     name: str
@@ -426,6 +430,7 @@ class Scenario:
     check_inputs: Callable[[Values, Values], None] | None = None
     default: bool = False
     foot: Foot | None = None
+    paper_results: tuple[PaperResult, ...] = ()
 
     def mechanisms_for(self, params: Values) -> tuple[str, ...]:
         """The seam mechanisms a run at ``params`` uses: ``mechanisms_at(params)``, or all of ``mechanisms``."""

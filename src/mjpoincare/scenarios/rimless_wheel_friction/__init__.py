@@ -50,6 +50,7 @@ from mjpoincare.scenarios.base import (
 from mjpoincare.scenarios.gate_cases import GateCase, Watch
 from mjpoincare.scenarios.rimless_wheel.runs import MIN_GYRATION, WHEEL_FOOT
 from mjpoincare.scenarios.rimless_wheel_friction.basins import REGION_MAP
+from mjpoincare.scenarios.rimless_wheel_friction.paper_results import PAPER_RESULTS
 from mjpoincare.scenarios.rimless_wheel_friction.rivals import RIVALS
 from mjpoincare.scenarios.rimless_wheel_friction.rollout import (
     D_SIM_STEPS,
@@ -382,6 +383,7 @@ RIMLESS_WHEEL_FRICTION = Scenario(
     checks_at=checks_at,
     tolerances=TOLERANCES,
     gate_cases=GATE_CASES,
+    paper_results=PAPER_RESULTS,
     rivals=RIVALS,
     coverage=COVERAGE,
     search_space=search_space("timestep", "solref_timeconst", "solref_dampratio", "integrator", "foot_radius",
