@@ -21,6 +21,9 @@
 #   make power        the gate's power (docs/results/gate-power.md): physics changes of known size planted into each
 #                     scenario's default gate case, and which checks catch them by tolerance and by the baseline
 #   make results         every scenario's default validation at each preset into docs/results/json/, then its pages
+#   make papers       every result of the papers (000-003) run in MuJoCo: mjpoincare reproduce at the fast preset (with
+#                     the figures' plots) and the accurate one, PAPER_WORKERS jobs at once, into docs/results/papers/json/,
+#                     then docs/results/papers/*.md; papers-render: the pages only (no simulation)
 #   make results-render  re-render docs/results/*.md from the committed JSON (no simulation), and the friction
 #                     biped's ladder (docs/results/ladders/compass-biped-friction/README.md) from its validations
 #   make backends     the backends' findings: every scenario on MuJoCo C, MJX (x64, float32) and MuJoCo Warp, one process
@@ -64,12 +67,13 @@ WORKERS ?= 1
 RELEASE_WORKERS ?= 2
 #: pytest-xdist workers of make test; --dist loadgroup keeps each gate case's tests (and its cached run) on one.
 TEST_WORKERS ?= 2
+PAPER_WORKERS ?= 2
 PRESET ?= fast
 TUNE_SCENARIOS ?= rimless-wheel rimless-wheel-friction slotted-skate rimless-wheel-3d compass-biped compass-biped-friction
 TUNE_TRIALS ?= 16
 BACKENDS_OUT ?= docs/results/backends
 
-.PHONY: validate test test-latest lock margins baseline power results results-render backends gpu-check bench gate \
+.PHONY: validate test test-latest lock margins baseline power results results-render papers papers-render backends gpu-check bench gate \
 	clean releases releases-render bisect tune tune-render engines engines-render
 
 PYTHON_CHECK := $(PYTHON) -c 'import sys; sys.exit(0 if sys.version_info >= (3, 10) else "mjpoincare needs Python >= 3.10")'
@@ -120,6 +124,16 @@ power: $(STAMP)
 
 results: $(STAMP)
 	$(BIN)/python -m mjpoincare.pages.results_pages
+
+papers: $(STAMP)
+	-$(BIN)/mjpoincare reproduce --preset fast --workers $(PAPER_WORKERS) --json docs/results/papers/json/fast.json \
+		-o docs/results/papers/figures
+	-$(BIN)/mjpoincare reproduce --preset accurate --workers $(PAPER_WORKERS) \
+		--json docs/results/papers/json/accurate.json
+	$(BIN)/python -m mjpoincare.pages.papers_page
+
+papers-render: $(STAMP)
+	$(BIN)/python -m mjpoincare.pages.papers_page
 
 results-render: $(STAMP)
 	$(BIN)/python -m mjpoincare.pages.results_pages --render-only

@@ -237,14 +237,14 @@ def run_reproduce(ids: Sequence[str], paper: str | None, preset: str, json_path:
     counts = {v: sum(r["verdict"] == v for r in results) for v in ("pass", "miss", "FAIL", "refused")}
     print(f"\n{len(results)} results at the {preset} preset: " + ", ".join(f"{n} {v}" for v, n in counts.items())
           + f"; {len(pending)} jobs run in {wall:.1f} s wall ({engine} engine, {workers} worker(s))")
+    if json_path:
+        write_json(jsonable({**header, "mjpoincare": _version(), "environment": environment(), "wall_s": wall,
+                             "workers": workers, "rows": held.ordered(), "results": results}), json_path)
     if plots:
         from mjpoincare.commands.reproduce_plots import plot_figures
 
         for path in plot_figures(chosen, results, Path(plots)):
             print(f"wrote {path}")
-    if json_path:
-        write_json(jsonable({**header, "mjpoincare": _version(), "environment": environment(), "wall_s": wall,
-                             "workers": workers, "rows": held.ordered(), "results": results}), json_path)
     return 1 if counts["FAIL"] else 0
 
 

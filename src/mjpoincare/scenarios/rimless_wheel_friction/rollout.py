@@ -172,14 +172,14 @@ class FrictionRun:
 
 
 def run_batch(params: Values, settings: Values, preset: str, starts: np.ndarray, steps: int,
-              mus: np.ndarray | None = None, extra: float = 0.0) -> FrictionRun:
-    """Simulate ``starts`` for ``steps`` gait periods plus ``extra`` seconds (one rollout; ``mus`` gives each
-    trajectory its own friction) and measure them."""
+              mus: np.ndarray | None = None, extra: float = 0.0, seconds: float | None = None) -> FrictionRun:
+    """Simulate ``starts`` for ``steps`` gait periods plus ``extra`` seconds, or for ``seconds`` where given (a run
+    where the theory has no gait to size it by), in one rollout (``mus`` gives each trajectory its own friction), and
+    measure up to ``steps`` steps."""
     model = build(params, settings)
     mu_all = np.full(len(starts), float(params["mu"])) if mus is None else np.asarray(mus, float)
-    period = period_seconds(params, mu_all)
-    rec, report = simulate(model, mu_all, start_states(model, params, settings, starts), steps * period + extra,
-                           settings)
+    duration = seconds if seconds is not None else steps * period_seconds(params, mu_all) + extra
+    rec, report = simulate(model, mu_all, start_states(model, params, settings, starts), duration, settings)
     cls = classifier(mu_all, settings, preset, len(starts))
     rows = row_signals(rec, model, params, settings, rate_unit(params), cls)
     table = step_table(rows, cls, steps + 2, backward_rate=BACKWARD_RATE, flight_clearance=FLIGHT_CLEARANCE)
