@@ -38,7 +38,7 @@ def figure_png(pr: PaperResult, row: Mapping[str, Any]) -> bytes:
     fig = row["figure"]
     x = np.asarray(fig["x"], float)
     pad = 0.04 * (x.max() - x.min())
-    dense = np.linspace(x.min() - pad, x.max() + pad, 400)
+    dense = np.linspace(x.min() - pad, x.max() + pad, run.dense)
     y_theory = run.theory(dense)
     y = np.asarray([np.nan if v is None else v for v in fig["mujoco"]], float)
     err = np.asarray([0.0 if s is None else s for s in fig["spread"]], float)
@@ -51,6 +51,10 @@ def figure_png(pr: PaperResult, row: Mapping[str, Any]) -> bytes:
     if (~ok).any():
         ax.errorbar(x[~ok], y[~ok], yerr=err[~ok], fmt="s", ms=5, color="tab:red", capsize=3,
                     label="MuJoCo, outside tolerance")
+    missing = x[~np.isfinite(y)]
+    if missing.size:
+        ax.annotate("no MuJoCo value at x = " + ", ".join(f"{v:g}" for v in missing), (0.02, 0.02),
+                    xycoords="axes fraction", fontsize=8, color="tab:red")
     for label, level in run.lines.items():
         ax.axhline(level, ls="--", lw=0.9, color="0.5")
         ax.annotate(label, (dense[0], level), xytext=(3, 3), textcoords="offset points", fontsize=8, color="0.35")

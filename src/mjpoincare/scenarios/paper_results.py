@@ -150,6 +150,7 @@ class Curve:
         x_label: the paper's x axis, with its unit.
         y_label: the paper's y axis, with its unit.
         lines: horizontal reference lines of the figure (e.g. abs(lambda) = 1), by label.
+        dense: the theory curve's points (fewer where each costs a shooting solve).
     """
 
     x: tuple[float, ...]
@@ -158,6 +159,7 @@ class Curve:
     x_label: str
     y_label: str
     lines: Mapping[str, float] = field(default_factory=dict)
+    dense: int = 200
 
     def __post_init__(self) -> None:
         if len(self.x) < 8:

@@ -215,14 +215,15 @@ PAPER_RESULTS = (
         quantity="the stable gait's fixed point over mu (mid-stance theta_dot; the paper plots post-impact)",
         paper_value="", independent=GAITS, presets=("fast",),
         run=Curve(x=runs.FIG35_MU, point=runs.fig35_fixed_point, theory=runs.fig35_fixed_point_theory,
-                  x_label="friction coefficient mu", y_label="mid-stance theta_dot of the gait (units of omega_c)"),
+                  x_label="friction coefficient mu", y_label="mid-stance theta_dot of the gait (units of omega_c)",
+                  dense=60),
         miss=D_PLUS, why="each point is the validation's midstance_rate check at that mu (its own tolerance and why)"),
     PaperResult(
         id="002-wheel-fig35b", paper="002", location="Fig. 3.5(b)",
         quantity="the stable gait's multiplier over mu (largest modulus)", paper_value="", independent=GAITS,
         presets=("fast",),
         run=Curve(x=runs.FIG35_MU, point=runs.fig35_multiplier, theory=runs.fig35_multiplier_theory,
-                  x_label="friction coefficient mu", y_label="multiplier lambda (largest modulus)"),
+                  x_label="friction coefficient mu", y_label="multiplier lambda (largest modulus)", dense=60),
         miss=D_PLUS, why="each point is the validation's eigenvalue check at that mu (its own tolerance and why)"),
     PaperResult(
         id="002-wheel-fig37-lower", paper="002", location="Fig. 3.7, eq (26)",
