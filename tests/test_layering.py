@@ -188,8 +188,9 @@ def test_no_import_cycles() -> None:
 
 
 #: The scenarios layer's framework modules, which a command may import (the records, the gate's case records, the
-#: registry); every other module of ``mjpoincare.scenarios`` is one system's.
-SCENARIO_FRAMEWORK = ("mjpoincare.scenarios.base", "mjpoincare.scenarios.gate_cases", "mjpoincare.scenarios.__init__")
+#: papers' result records, the registry); every other module of ``mjpoincare.scenarios`` is one system's.
+SCENARIO_FRAMEWORK = ("mjpoincare.scenarios.base", "mjpoincare.scenarios.gate_cases",
+                      "mjpoincare.scenarios.paper_results", "mjpoincare.scenarios.__init__")
 
 
 def seam_reaches(edges: Mapping[str, Mapping[str, int]]) -> list[str]:

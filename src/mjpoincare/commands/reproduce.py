@@ -19,11 +19,13 @@ from typing import Any
 from mjpoincare import scenarios
 from mjpoincare.analysis.checks import jsonable
 from mjpoincare.analysis.tables import markdown_table
-from mjpoincare.commands.validation import run_validation
+from mjpoincare.commands.validation import resolve_values, run_validation
+from mjpoincare.core import settings as sim_settings
 from mjpoincare.core.parallel import ResumableRows, check_engine
-from mjpoincare.core.params import ParameterError
-from mjpoincare.core.result import write_json
+from mjpoincare.core.params import ParameterError, Values, resolve, unknown
+from mjpoincare.core.result import Result, write_json
 from mjpoincare.core.stamp import environment
+from mjpoincare.core.version import VERSION
 from mjpoincare.scenarios.paper_results import (
     PAPERS,
     AtValidation,
@@ -39,6 +41,30 @@ from mjpoincare.scenarios.paper_results import (
 )
 
 SCHEMA = "mjpoincare.reproduce/1"
+
+
+class ScenarioRunner:
+    """The :class:`~mjpoincare.scenarios.paper_results.Runner` of one scenario at one preset."""
+
+    def __init__(self, scenario: str, preset: str) -> None:
+        self.scenario = scenario
+        self.preset = preset
+
+    def validate(self, assignments: Mapping[str, str]) -> Result:
+        """The scenario's validation at ``assignments`` (:func:`run_validation`)."""
+        return run_validation(self.scenario, dict(assignments), self.preset)
+
+    def inputs(self, assignments: Mapping[str, str], *, checked: bool = True) -> tuple[Values, Values]:
+        """Resolved parameters and settings (:func:`resolve_values`; unchecked: the declared bounds only)."""
+        if checked:
+            _, _, params, settings = resolve_values(self.scenario, assignments, self.preset)
+            return params, settings
+        scenario = scenarios.get(self.scenario)
+        unknown(assignments, scenario.params, sim_settings.SETTINGS)
+        _, overrides = scenario.preset(self.preset)
+        params = resolve(scenario.params, {p.name: p.default for p in scenario.params}, assignments)
+        settings = resolve(sim_settings.SETTINGS, {**sim_settings.DEFAULTS, **overrides}, assignments)
+        return params, settings
 
 
 def declared() -> dict[str, tuple[str, PaperResult]]:
@@ -111,17 +137,17 @@ def experiment_job(rid: str, preset: str) -> dict[str, Any]:
     scenario, pr = declared()[rid]
     assert isinstance(pr.run, Experiment)
     start = time.perf_counter()
-    reading = pr.run.run(preset)
+    reading = pr.run.run(ScenarioRunner(scenario, preset))
     return _reading_row(pr, scenario, preset, reading, time.perf_counter() - start)
 
 
 def curve_point_job(rid: str, preset: str, index: int) -> dict[str, Any]:
     """One point of a figure's curve (a partial row, key ``id@preset#index``)."""
-    _, pr = declared()[rid]
+    scenario, pr = declared()[rid]
     assert isinstance(pr.run, Curve)
     start = time.perf_counter()
     x = pr.run.x[index]
-    reading = pr.run.point(x, preset)
+    reading = pr.run.point(x, ScenarioRunner(scenario, preset))
     return jsonable({"key": f"{rid}@{preset}#{index}", "x": x, "analytic": reading.analytic,
                      "mujoco": reading.mujoco, "error": reading.error, "tolerance": reading.tolerance,
                      "spread": reading.spread, "passed": reading.passed, "detail": reading.detail,
@@ -134,8 +160,9 @@ def bracket_job(rid: str, preset: str) -> dict[str, Any]:
     run = pr.run
     assert isinstance(run, Bracket)
     start = time.perf_counter()
-    theory = run.theory()
-    low, high, runs = bisect(lambda v: run.below(v, preset), run.low, run.high, run.tolerance / 4)
+    runner = ScenarioRunner(scenario, preset)
+    theory = run.theory(runner)
+    low, high, runs = bisect(lambda v: run.below(v, runner), run.low, run.high, run.tolerance / 4)
     located = (low + high) / 2
     reading = Reading(analytic=theory, mujoco=located, error=abs(located - theory), tolerance=run.tolerance,
                       spread=abs(high - low) / 2, detail=f"bracket [{low:.6g}, {high:.6g}] {run.unit} after "
@@ -238,20 +265,14 @@ def run_reproduce(ids: Sequence[str], paper: str | None, preset: str, json_path:
     print(f"\n{len(results)} results at the {preset} preset: " + ", ".join(f"{n} {v}" for v, n in counts.items())
           + f"; {len(pending)} jobs run in {wall:.1f} s wall ({engine} engine, {workers} worker(s))")
     if json_path:
-        write_json(jsonable({**header, "mjpoincare": _version(), "environment": environment(), "wall_s": wall,
+        write_json(jsonable({**header, "mjpoincare": VERSION, "environment": environment(), "wall_s": wall,
                              "workers": workers, "rows": held.ordered(), "results": results}), json_path)
     if plots:
         from mjpoincare.commands.reproduce_plots import plot_figures
 
-        for path in plot_figures(chosen, results, Path(plots)):
+        for path in plot_figures(chosen, results, Path(plots), runner=ScenarioRunner):
             print(f"wrote {path}")
     return 1 if counts["FAIL"] else 0
-
-
-def _version() -> str:
-    from mjpoincare import __version__
-
-    return __version__
 
 
 def _job_keys(job: tuple[Any, ...], chosen: Sequence[tuple[str, PaperResult]]) -> set[str]:

@@ -3,30 +3,31 @@ spread as error bars, in the paper's axes and units (one PNG per figure result, 
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from mjpoincare.core.result import write_bytes
-from mjpoincare.scenarios.paper_results import Curve, PaperResult
+from mjpoincare.scenarios.paper_results import Curve, PaperResult, Runner
 
 
-def plot_figures(chosen: Iterable[tuple[str, PaperResult]], results: Sequence[Mapping[str, Any]], folder: Path
-                 ) -> list[str]:
-    """Write a PNG per figure result held in ``results``; return their paths."""
+def plot_figures(chosen: Iterable[tuple[str, PaperResult]], results: Sequence[Mapping[str, Any]], folder: Path, *,
+                 runner: Callable[[str, str], Runner]) -> list[str]:
+    """Write a PNG per figure result held in ``results`` (``runner(scenario, preset)`` gives each theory curve its
+    scenario's parameters); return their paths."""
     rows = {r["id"]: r for r in results if r.get("figure")}
     paths = []
-    for _, pr in chosen:
+    for scenario, pr in chosen:
         if isinstance(pr.run, Curve) and pr.id in rows:
             path = str(folder / f"{pr.id}.png")
-            write_bytes(figure_png(pr, rows[pr.id]), path)
+            write_bytes(figure_png(pr, rows[pr.id], runner(scenario, rows[pr.id]["preset"])), path)
             paths.append(path)
     return paths
 
 
-def figure_png(pr: PaperResult, row: Mapping[str, Any]) -> bytes:
+def figure_png(pr: PaperResult, row: Mapping[str, Any], runner: Runner) -> bytes:
     """One figure: the theory's curve (a line on a dense grid), MuJoCo's points with error bars, and the
     reference lines, titled with the paper's location."""
     import io
@@ -39,7 +40,7 @@ def figure_png(pr: PaperResult, row: Mapping[str, Any]) -> bytes:
     x = np.asarray(fig["x"], float)
     pad = 0.04 * (x.max() - x.min())
     dense = np.linspace(x.min() - pad, x.max() + pad, run.dense)
-    y_theory = run.theory(dense)
+    y_theory = run.theory(dense, runner)
     y = np.asarray([np.nan if v is None else v for v in fig["mujoco"]], float)
     err = np.asarray([0.0 if s is None else s for s in fig["spread"]], float)
     ok = np.asarray(fig["passed"], bool)

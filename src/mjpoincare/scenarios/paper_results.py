@@ -22,9 +22,11 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
+
+from mjpoincare.core.params import Values
 
 if TYPE_CHECKING:
     from mjpoincare.core.result import Result
@@ -59,6 +61,24 @@ class Reading:
     def passed(self) -> bool:
         """Whether the error is finite and within the tolerance."""
         return math.isfinite(self.error) and self.error <= self.tolerance
+
+
+class Runner(Protocol):
+    """What a result's MuJoCo run may ask of the command that runs it (:mod:`mjpoincare.commands.reproduce` passes one
+    in): the preset, the scenario's validation at some parameters, and the scenario's resolved inputs. A scenario's
+    runs reach the validation and the registry through it, never by importing them (they are layers above)."""
+
+    preset: str
+
+    def validate(self, assignments: Mapping[str, str]) -> Result:
+        """The scenario's validation at ``--set``-style ``assignments`` and this preset."""
+        ...
+
+    def inputs(self, assignments: Mapping[str, str], *, checked: bool = True) -> tuple[Values, Values]:
+        """The scenario's parameters (its defaults updated by ``assignments``) and this preset's simulator settings;
+        ``checked=False`` skips the scenario's own cross-checks of the parameters (a run outside the theory's range,
+        e.g. a slope where no gait exists)."""
+        ...
 
 
 #: ``(result) -> Reading``: reads one result off a validation's :class:`~mjpoincare.core.result.Result`.
@@ -133,10 +153,10 @@ class AtValidation:
 
 @dataclass(frozen=True)
 class Experiment:
-    """A dedicated MuJoCo experiment: ``run(preset) -> Reading`` (a module-level function of the scenario's
-    package, so that worker processes can run it)."""
+    """A dedicated MuJoCo experiment: ``run(runner) -> Reading`` (a module-level function of the scenario's package,
+    so that worker processes can run it; :class:`Runner`)."""
 
-    run: Callable[[str], Reading]
+    run: Callable[[Runner], Reading]
 
 
 @dataclass(frozen=True)
@@ -145,8 +165,10 @@ class Curve:
 
     Attributes:
         x: the values at which MuJoCo is run, in the paper's units (at least 8).
-        point: ``(x, preset) -> Reading``: MuJoCo's point at ``x`` beside the theory's value there (module level).
-        theory: ``(xs) -> ys``: the theory's curve on a dense grid of the paper's x axis.
+        point: ``(x, runner) -> Reading``: MuJoCo's point at ``x`` beside the theory's value there (module level;
+            :class:`Runner`).
+        theory: ``(xs, runner) -> ys``: the theory's curve on a dense grid of the paper's x axis (the runner gives the
+            scenario's parameters: ``runner.inputs({}, checked=False)``).
         x_label: the paper's x axis, with its unit.
         y_label: the paper's y axis, with its unit.
         lines: horizontal reference lines of the figure (e.g. abs(lambda) = 1), by label.
@@ -154,8 +176,8 @@ class Curve:
     """
 
     x: tuple[float, ...]
-    point: Callable[[float, str], Reading]
-    theory: Callable[[np.ndarray], np.ndarray]
+    point: Callable[[float, Runner], Reading]
+    theory: Callable[[np.ndarray, Runner], np.ndarray]
     x_label: str
     y_label: str
     lines: Mapping[str, float] = field(default_factory=dict)
@@ -173,16 +195,17 @@ class Bracket:
     Attributes:
         low: a value on the ``below`` side.
         high: a value on the other side.
-        below: ``(value, preset) -> bool``: whether MuJoCo's run at ``value`` is on ``low``'s side (module level).
-        theory: the theory's location (``() -> value``).
+        below: ``(value, runner) -> bool``: whether MuJoCo's run at ``value`` is on ``low``'s side (module level;
+            :class:`Runner`).
+        theory: the theory's location (``(runner) -> value``).
         tolerance: the bound on abs(located - theory) for a pass; also where the bisection stops (a quarter of it).
         unit: the parameter's unit.
     """
 
     low: float
     high: float
-    below: Callable[[float, str], bool]
-    theory: Callable[[], float]
+    below: Callable[[float, Runner], bool]
+    theory: Callable[[Runner], float]
     tolerance: float
     unit: str = ""
 
