@@ -11,6 +11,7 @@ each; a bracket's bisection is one job.
 from __future__ import annotations
 
 import math
+import sys
 import time
 from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
@@ -260,10 +261,11 @@ def run_reproduce(ids: Sequence[str], paper: str | None, preset: str, json_path:
              engine=engine, scheduler=scheduler)
     wall = time.perf_counter() - start
     results = assemble(chosen, preset, held.rows)
-    print(summary_table(results))
+    out = sys.stderr if json_path == "-" else sys.stdout  # stdout carries the JSON alone
+    print(summary_table(results), file=out)
     counts = {v: sum(r["verdict"] == v for r in results) for v in ("pass", "miss", "FAIL", "refused")}
     print(f"\n{len(results)} results at the {preset} preset: " + ", ".join(f"{n} {v}" for v, n in counts.items())
-          + f"; {len(pending)} jobs run in {wall:.1f} s wall ({engine} engine, {workers} worker(s))")
+          + f"; {len(pending)} jobs run in {wall:.1f} s wall ({engine} engine, {workers} worker(s))", file=out)
     if json_path:
         write_json(jsonable({**header, "mjpoincare": VERSION, "environment": environment(), "wall_s": wall,
                              "workers": workers, "rows": held.ordered(), "results": results}), json_path)
@@ -271,7 +273,7 @@ def run_reproduce(ids: Sequence[str], paper: str | None, preset: str, json_path:
         from mjpoincare.commands.reproduce_plots import plot_figures
 
         for path in plot_figures(chosen, results, Path(plots), runner=ScenarioRunner):
-            print(f"wrote {path}")
+            print(f"wrote {path}", file=out)
     return 1 if counts["FAIL"] else 0
 
 
