@@ -355,3 +355,18 @@ def test_fig4_350_impacts():
     assert final[4] == pytest.approx(th.planar_pitch_rate(settled), abs=5e-5)
     linear = x_star + np.linalg.matrix_power(hy.jacobian(w), 350) @ (x0 - x_star)  # eq 20
     assert linear[[0, 1, 4]] == pytest.approx([0.2872, -0.0356, 0.7529], abs=5e-5)
+
+
+def test_minimum_stable_slope_exact_eqs_33_36():
+    """The exact least stable slope (transverse modulus = 1 of the solve_ivp map) against the derivation page's
+    thresholds, above eq 34's asymptotic slope at finite n, with lambda5 the eigenvalue that crosses (J > 0)."""
+    J = 0.5
+    assert hy.minimum_stable_slope(16, J, math.pi / 10) == pytest.approx(0.086051, abs=1e-5)
+    for n, n_alpha in [(8, 1.48537), (16, 1.30927)]:
+        assert n * hy.minimum_stable_slope(n, J) == pytest.approx(n_alpha, abs=1e-4)
+    alpha = hy.minimum_stable_slope(16, J, math.pi / 10)
+    assert alpha > th.minimum_stable_slope_asymptotic(16, J, math.pi / 10)
+    at = hy.eigenvalues_3d(RimlessWheel3D(16, alpha, J, math.pi / 10))
+    assert at.lambda5 == pytest.approx(1.0, abs=1e-6) and at.wobble_modulus < 1.0
+    assert hy.transverse_modulus(RimlessWheel3D(16, 0.98 * alpha, J, math.pi / 10)) > 1.0
+    assert hy.transverse_modulus(RimlessWheel3D(16, 1.02 * alpha, J, math.pi / 10)) < 1.0

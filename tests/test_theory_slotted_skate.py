@@ -364,3 +364,126 @@ def test_smooth_limit() -> None:
         assert ss.smooth_limit_series(sk, order=4) == pytest.approx(ss.smooth_limit_rate(sk), abs=1e-11)
     with pytest.raises(ValueError, match="sigma4 must be > 0"):
         ss.smooth_limit_rate(P["P3"])
+
+
+# ------------------------------------------------------------- figures.py: Fig 2(b) bands, Fig 3, (3.8), (B.8), Fig 10
+
+
+def test_band_edges_against_exact_reference() -> None:
+    """Fig. 2(b): sigma4 = -1 at band_edge_delta and at the ends of unstable_band; just past the edge the solve_ivp
+    reference's H ratio leaves the unit circle, just before it stays inside."""
+    from mjpoincare.analysis.theory.slotted_skate.figures import band_edge_delta, unstable_band
+
+    assert band_edge_delta(-0.75, True) == pytest.approx(4.0, rel=1e-14)
+    assert band_edge_delta(-0.25, False) == pytest.approx(4.0, rel=1e-14)
+    for x, fwd in ((-0.75, True), (-0.6, True), (-0.9, True), (-0.25, False), (-0.4, False)):
+        edge = band_edge_delta(x, fwd)
+        assert ss.sigma4(SlottedSkate(x * edge, edge), fwd) == pytest.approx(-1.0, abs=1e-12)
+        for factor, outside in ((0.99, False), (1.01, True)):
+            d = edge * factor
+            steps = ss.simulate_exact(SlottedSkate(x * d, d), 1.0 if fwd else -1.0, 1e-4, 0.0, 2)
+            assert (abs(steps[1].H_plus / steps[0].H_plus) > 1.0) == outside, (x, fwd, factor)
+    for fwd in (True, False):
+        lo, hi = unstable_band(10.0, fwd)
+        for x in (lo, hi):
+            assert ss.sigma4(SlottedSkate(x * 10.0, 10.0), fwd) == pytest.approx(-1.0, abs=1e-12)
+        assert unstable_band(4.0, fwd) is None
+    with pytest.raises(ValueError, match="no unstable band"):
+        band_edge_delta(-0.25, True)
+
+
+def test_symmetric_basins_against_exact_reference() -> None:
+    """Fig. 3 (B.13): V_n = 0.6^n/sqrt 5 at L0 = -1/2, Delta = 1, Omega0 = 0.8 (the caption's 1/sqrt 5 is V_0); in
+    each interval the solve_ivp reference ends in symmetric_final_speed's direction, with |V_f| = V0 (B.12)."""
+    from mjpoincare.analysis.theory.slotted_skate.figures import spin_boundary_speeds, symmetric_final_speed
+
+    sk = P["P6"]
+    speeds = spin_boundary_speeds(sk, 0.8, 6)
+    assert speeds == pytest.approx([0.6**n / math.sqrt(5.0) for n in range(6)], rel=1e-12)
+    for v0 in (0.6, *(v * math.sqrt(0.6) for v in speeds[:4])):
+        vf = symmetric_final_speed(sk, v0, 0.8)
+        last = ss.simulate_exact(sk, v0, 0.8, 0.0, 45)[-1]
+        v_exact = math.copysign(math.sqrt(2.0 * last.E_plus), 1.0 if last.D_plus == 0.0 else -1.0)
+        assert v_exact == pytest.approx(vf, rel=1e-6), v0
+    with pytest.raises(ValueError, match="symmetric"):
+        spin_boundary_speeds(P["P1"], 0.8, 2)
+    with pytest.raises(ValueError, match="V0 must be"):
+        symmetric_final_speed(sk, 0.0, 0.8)
+
+
+def test_two_turning_points_against_stance_ode() -> None:
+    """(B.8) read with max: for r in two_turning_point_range both directions turn (the stance ODE 3.1 by solve_ivp
+    stops at V = 0 inside the slot), at -+sqrt(1/r - 1); in (min, max) only the backward start is feasible (3.15)."""
+    from mjpoincare.analysis.theory.slotted_skate.figures import two_turning_point_range
+    from scipy.integrate import solve_ivp
+
+    sk = SlottedSkate(-0.3, 1.0)
+    low, high = two_turning_point_range(sk)
+    assert (low, high) == (pytest.approx(1.0 / 1.09), 1.0)
+    assert two_turning_point_range(P["P1"]) == (1.0, 1.0)
+
+    def rhs(_t: float, y: np.ndarray) -> list[float]:
+        L = sk.L0 + y[0]
+        return [y[1], L * y[3] ** 2, y[3], -2.0 * L * y[1] * y[3] / (1.0 + L * L)]
+
+    def turn(_t: float, y: np.ndarray) -> float:
+        return float(y[1])
+
+    turn.terminal = True  # type: ignore[attr-defined]
+    H = 0.5
+    for r in (0.8, 0.95, 0.99, 1.02):
+        for d0, sign in ((0.0, 1.0), (sk.Delta, -1.0)):
+            la = sk.L0 + d0
+            v2 = r * H * H - H * H / (1.0 + la * la)
+            if v2 <= 0.0:
+                assert r < low and sign > 0  # the forward start is infeasible below the max (3.15)
+                continue
+            sol = solve_ivp(rhs, (0.0, 50.0), [d0, sign * math.sqrt(v2), 0.0, H / (1.0 + la * la)],
+                            method="DOP853", rtol=1e-12, atol=1e-14, events=turn)
+            d_turn = sol.y_events[0][0][0] if sol.t_events[0].size else math.nan
+            inside = 0.0 < d_turn < sk.Delta
+            assert inside == (r < 1.0), (r, d0)
+            if inside:
+                assert sk.L0 + d_turn == pytest.approx(-sign * math.sqrt(1.0 / r - 1.0), abs=1e-9)
+                assert (r > low) or sign < 0
+
+
+def test_spin_saddle_against_stance_ode() -> None:
+    """(3.8) and Sec. 3.1.2: the spinning equilibrium's eigenvalues 0, 0, -+Omega_eq; a peg 1e-7 off the mass centre
+    (solve_ivp of 3.1) moves away as cosh(Omega_eq tau)."""
+    from mjpoincare.analysis.theory.slotted_skate.figures import spin_saddle_eigenvalues
+    from scipy.integrate import solve_ivp
+
+    assert spin_saddle_eigenvalues(1.5) == pytest.approx([-1.5, 0.0, 0.0, 1.5], abs=1e-14)
+    sk, om, eps = P["P6"], 1.5, 1e-7
+
+    def rhs(_t: float, y: np.ndarray) -> list[float]:
+        L = sk.L0 + y[0]
+        return [y[1], L * y[3] ** 2, y[3], -2.0 * L * y[1] * y[3] / (1.0 + L * L)]
+
+    t = 6.0
+    sol = solve_ivp(rhs, (0.0, t), [-sk.L0 + eps, 0.0, 0.0, om / (1.0 + eps * eps)], method="DOP853", rtol=1e-12,
+                    atol=1e-16)
+    assert math.acosh((sol.y[0, -1] + sk.L0) / eps) / t == pytest.approx(om, rel=1e-6)
+
+
+def test_period2_flip_flop_against_exact_reference() -> None:
+    """Fig. 10 (B.15-B.16): at l0/delta = -2/3 the solve_ivp reference reverses every stance and H returns after two
+    impacts multiplied by period2_multiplier, which tends to 1 as rho/delta -> 0, each impact's C2 to L0/(L0 + 1)."""
+    from mjpoincare.analysis.theory.slotted_skate.figures import period2_multiplier, period2_rho0_ratios
+
+    x = -2.0 / 3.0
+    for rho in (0.05, 0.01):
+        sk = SlottedSkate(x / rho, 1.0 / rho)
+        steps = ss.simulate_exact(sk, 1.0, 0.5 * rho, 0.0, 6)
+        assert all(s.reversed for s in steps)
+        for a, b in itertools.pairwise(steps[::2]):
+            assert b.H_plus / a.H_plus == pytest.approx(period2_multiplier(sk), rel=1e-9)
+    for rho in (1e-3, 1e-4):  # 1 - multiplier = rho^2 (1/x - 1/(1 + x))^2 + O(rho^4): neutral at rho = 0
+        gap = 1.0 - period2_multiplier(SlottedSkate(x / rho, 1.0 / rho))
+        assert gap == pytest.approx(rho**2 * (1.0 / x - 1.0 / (1.0 + x)) ** 2, rel=1e-4)
+    ratios = period2_rho0_ratios(x)
+    assert ratios == pytest.approx((-2.0, -0.5), rel=1e-14)
+    sk = SlottedSkate(x / 1e-4, 1e4)
+    assert sk.c / (1.0 + sk.L_front**2) == pytest.approx(ratios[1], rel=1e-6)
+    assert sk.c / (1.0 + sk.L_rear**2) == pytest.approx(ratios[0], rel=1e-6)

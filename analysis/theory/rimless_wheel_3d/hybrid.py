@@ -45,6 +45,8 @@ from mjpoincare.analysis.theory.rimless_wheel_3d.hybrid_eigen import (
     family_tangent,
     identify_eigenvalues,
     midstance_eigenvalues,
+    minimum_stable_slope,
+    transverse_modulus,
 )
 from mjpoincare.analysis.theory.rimless_wheel_3d.hybrid_euler import (
     angular_velocity,
@@ -70,5 +72,5 @@ from mjpoincare.analysis.theory.rimless_wheel_3d.hybrid_maps import (
 __all__ = ["ATOL", "FALLEN_HEIGHT", "MAX_STANCE_TIME", "RTOL", "Eigen3D", "StepRecord", "analytic_summary",
            "angular_velocity", "eigenvalues_3d", "euler_angles", "euler_rates", "euler_state", "family_tangent",
            "identify_eigenvalues", "impact_rates", "jacobian", "midstance_eigenvalues", "midstance_fixed_point",
-           "midstance_jacobian", "midstance_map", "midstance_state", "planar_fixed_point", "pose", "simulate", "step",
-           "step_record"]
+           "midstance_jacobian", "midstance_map", "midstance_state", "minimum_stable_slope", "planar_fixed_point",
+           "pose", "simulate", "step", "step_record", "transverse_modulus"]

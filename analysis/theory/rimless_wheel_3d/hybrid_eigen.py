@@ -20,6 +20,7 @@ from mjpoincare.analysis.theory.rimless_wheel_3d import (
     existence_threshold,
     impact_friction_ratio,
     midstance_pitch_rate,
+    minimum_stable_slope_asymptotic,
     planar_pitch_rate,
     stability_thresholds,
     step_period,
@@ -33,6 +34,7 @@ from mjpoincare.analysis.theory.rimless_wheel_3d.hybrid_maps import (
     step_record,
 )
 from numpy.typing import NDArray
+from scipy.optimize import brentq
 
 
 @dataclass(frozen=True)
@@ -156,3 +158,31 @@ def analytic_summary(w: RimlessWheel3D, ref: Eigen3D) -> dict[str, object]:
         "stance_max_friction_ratio": record.max_friction_ratio, "min_normal_force": record.min_normal_force,
         "units": "m = l = g = 1: rates in sqrt(g/l), times in sqrt(l/g)",
     }
+
+
+def transverse_modulus(w: RimlessWheel3D) -> float:
+    """The largest modulus of the transverse eigenvalues lambda2, lambda3,4, lambda5 of the exact post-impact map
+    (001 Sec. 8.1: the planar cycle is stable in the weak sense iff it is below 1; lambda1 = 1 is the heading)."""
+    e = eigenvalues_3d(w)
+    return max(abs(e.lambda2), e.wobble_modulus, abs(e.lambda5))
+
+
+def minimum_stable_slope(spokes: int, J: float, heading: float = 0.0) -> float:
+    """The least slope alpha at which the planar cycle at ``heading`` is stable in 3D, exactly at finite n: the root of
+    :func:`transverse_modulus` = 1 (001 eqs 33-36 give it for many spokes, alpha ~ pi/((2+J) n cos psi), eq 34).
+
+    Bracketed between the asymptotic slope of eq 34, below which the exact map is unstable at finite n (the
+    derivation page: n alpha_crit = 1.48537, 1.30927 at n = 8, 16 against pi/2.5 at psi = 0, J = 1/2), and twice it.
+
+    Raises:
+        ValueError: the bracket does not hold the crossing (the asymptotic slope is already stable).
+    """
+    low = minimum_stable_slope_asymptotic(spokes, J, heading)
+
+    def excess(slope: float) -> float:
+        return transverse_modulus(RimlessWheel3D(spokes, slope, J, heading)) - 1.0
+
+    if not excess(low) > 0.0 > excess(2.0 * low):
+        raise ValueError(f"no stability crossing in [{low:.6g}, {2.0 * low:.6g}] for spokes={spokes}, J={J:g}, "
+                         f"heading={heading:g}")
+    return float(brentq(excess, low, 2.0 * low, xtol=1e-9, rtol=1e-12))

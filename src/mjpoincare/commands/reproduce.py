@@ -17,6 +17,8 @@ from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
+import mujoco
+
 from mjpoincare import scenarios
 from mjpoincare.analysis.checks import jsonable
 from mjpoincare.analysis.tables import markdown_table
@@ -27,6 +29,7 @@ from mjpoincare.core.params import ParameterError, Values, resolve, unknown
 from mjpoincare.core.result import Result, write_json
 from mjpoincare.core.stamp import environment
 from mjpoincare.core.version import VERSION
+from mjpoincare.scenarios.base import at_preset
 from mjpoincare.scenarios.paper_results import (
     PAPERS,
     AtValidation,
@@ -66,6 +69,16 @@ class ScenarioRunner:
         params = resolve(scenario.params, {p.name: p.default for p in scenario.params}, assignments)
         settings = resolve(sim_settings.SETTINGS, {**sim_settings.DEFAULTS, **overrides}, assignments)
         return params, settings
+
+    def build(self, params: Values, settings: Values) -> mujoco.MjModel:
+        """The scenario's ``build``."""
+        return scenarios.get(self.scenario).build(params, settings)
+
+    def tolerance(self, check: str, mode: str | None = None) -> float:
+        """The scenario's bound of ``check`` at this preset (:func:`at_preset`), in ``mode``'s table where given."""
+        scenario = scenarios.get(self.scenario)
+        table = scenario.tolerances if mode is None else scenario.tolerances[mode]  # type: ignore[index]
+        return float(at_preset(table, self.scenario, self.preset)[check])  # type: ignore[arg-type]
 
 
 def declared() -> dict[str, tuple[str, PaperResult]]:

@@ -24,6 +24,7 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Protocol
 
+import mujoco
 import numpy as np
 
 from mjpoincare.core.params import Values
@@ -65,8 +66,9 @@ class Reading:
 
 class Runner(Protocol):
     """What a result's MuJoCo run may ask of the command that runs it (:mod:`mjpoincare.commands.reproduce` passes one
-    in): the preset, the scenario's validation at some parameters, and the scenario's resolved inputs. A scenario's
-    runs reach the validation and the registry through it, never by importing them (they are layers above)."""
+    in): the preset, the scenario's validation at some parameters, its resolved inputs, its model and its tolerances.
+    A scenario's runs reach the validation, the registry and their own package's ``Scenario`` through it, never by
+    importing them (layers above, or the package that imports them)."""
 
     preset: str
 
@@ -78,6 +80,15 @@ class Runner(Protocol):
         """The scenario's parameters (its defaults updated by ``assignments``) and this preset's simulator settings;
         ``checked=False`` skips the scenario's own cross-checks of the parameters (a run outside the theory's range,
         e.g. a slope where no gait exists)."""
+        ...
+
+    def build(self, params: Values, settings: Values) -> mujoco.MjModel:
+        """The scenario's model at resolved inputs (its ``build``)."""
+        ...
+
+    def tolerance(self, check: str, mode: str | None = None) -> float:
+        """The scenario's tolerance of ``check`` at this preset (``mode``: the table of a scenario with one per
+        mode)."""
         ...
 
 

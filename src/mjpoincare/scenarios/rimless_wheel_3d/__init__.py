@@ -56,6 +56,7 @@ from mjpoincare.scenarios.gate_cases import GateCase, Watch
 from mjpoincare.scenarios.rimless_wheel.runs import WHEEL_FOOT
 from mjpoincare.scenarios.rimless_wheel_3d import runs
 from mjpoincare.scenarios.rimless_wheel_3d.ideal import IdealImpactController
+from mjpoincare.scenarios.rimless_wheel_3d.paper_results import PAPER_RESULTS
 from mjpoincare.scenarios.rimless_wheel_3d.reference_checks import fit_checks, planar_checks, return_map_plot
 from mjpoincare.scenarios.rimless_wheel_3d.rivals import RIVALS
 from mjpoincare.simulation.simulate import event_clip, plain_clip
@@ -398,4 +399,5 @@ RIMLESS_WHEEL_3D = Scenario(
     search_space=search_space("timestep", "solref_timeconst", "solref_dampratio", "integrator", "foot_radius",
                               "cone", "impratio", "noslip_iterations"),
     default=True, foot=WHEEL_FOOT,
+    paper_results=PAPER_RESULTS,
 )

@@ -49,6 +49,7 @@ from mjpoincare.scenarios.slotted_skate.design import (
     run_duration,
     skate,
 )
+from mjpoincare.scenarios.slotted_skate.paper_results import PAPER_RESULTS
 from mjpoincare.scenarios.slotted_skate.pegs import PegController, build
 from mjpoincare.scenarios.slotted_skate.regions import REGION_MAP
 from mjpoincare.scenarios.slotted_skate.rivals import RIVALS
@@ -410,6 +411,7 @@ SLOTTED_SKATE = Scenario(
     tolerances=TOLERANCES,
     gate_cases=GATE_CASES,
     coverage=COVERAGE,
+    paper_results=PAPER_RESULTS,
     search_space=search_space("timestep", "solref_timeconst", "solref_dampratio", "integrator", "iterations",
                               "tolerance"),
     default=True,
