@@ -480,3 +480,30 @@ def test_release_acceleration_is_the_released_foots_second_derivative(bp):
     rest = np.array([*x_minus[:2], 0.0, 0.0])
     assert flight.release_acceleration(replace(bp, tau_ankle=0.0, tau_hip=0.0), rest, radius) == pytest.approx(
         -bp.gravity * math.cos(bp.slope), rel=1e-14)
+
+
+def test_stance_phase_curve_against_rk45_events(kisa_gait):
+    # 003 Fig. 18 (top): dtheta_st where theta_st crosses a level, by an independent RK45 integration of the passive
+    # swing with an event at that level; the curve starts at the post-impact rate and ends at the pre-impact one
+    from mjpoincare.analysis.theory.compass_biped.dynamics import swing_dynamics
+    from mjpoincare.analysis.theory.compass_biped.figures import stance_phase_curve
+
+    bp, x_star, step = kisa_gait
+    x_minus = step.x_minus
+    levels = np.linspace(x_star[0], x_minus[0], 9)[1:-1]
+
+    def rhs(_t, y):
+        return [y[2], y[3], *swing_dynamics(bp, y[:2], y[2:])]
+
+    expected = []
+    for level in levels:
+        def cross(_t, y, lv=level):
+            return y[0] - lv
+        cross.terminal, cross.direction = True, 1.0
+        sol = solve_ivp(rhs, (0.0, 2.0), x_star, method="RK45", events=cross, rtol=1e-11, atol=1e-12)
+        expected.append(sol.y_events[0][0][2])
+    np.testing.assert_allclose(stance_phase_curve(bp, x_star, levels), expected, atol=1e-8)
+    ends = stance_phase_curve(bp, x_star, [x_star[0], x_minus[0]])
+    np.testing.assert_allclose(ends, [x_star[2], x_minus[2]], atol=1e-10)
+    with pytest.raises(ValueError, match="outside"):
+        stance_phase_curve(bp, x_star, [0.5])

@@ -422,3 +422,69 @@ def test_start_speeds_and_band_table() -> None:
     omega1, omega2 = rw.basin_band_edges(w, 8)
     assert edges.size == 2 + omega1.size + omega2.size and edges[0] == omega_f and edges[1] == 0.0
     assert min(abs(om - e) for om in probes for e in edges) > 0.0
+
+
+# --- 003 figure runs from mid-swing states, Fig. 14's curve, the gamma > alpha branch run in MuJoCo ----------------
+FIGURE_RUNS = [  # derivation page Sec. 1.8: (gamma, theta(0), theta_dot(0), theta_dot_0 .. theta_dot_5)
+    (0.025, -0.132, 2.0, [1.660746, 1.251689, 0.985418, -0.696796, 0.492709, -0.348398]),
+    (math.pi / 7, 0.292, 5.0, [3.918914, 3.307060, 2.953986, 2.760566, 2.658584, 2.606097]),
+    (math.pi / 15, -0.105, -5.0, [-3.551090, -2.178088, -0.900545, 0.636781, 1.328081, 1.562994]),
+    (math.pi / 15, -0.105, -4.85, [-3.445503, -2.091577, -0.791387, 0.559595, -0.395694, 0.279798]),
+]
+
+
+@pytest.mark.parametrize(("gamma", "theta", "omega", "seq"), FIGURE_RUNS)
+def test_figure_sequence_from_mid_swing_state(gamma, theta, omega, seq):
+    from mjpoincare.analysis.theory.rimless_wheel.figures import figure_sequence
+
+    np.testing.assert_allclose(figure_sequence(RimlessWheel(8, gamma), theta, omega, 6), seq, atol=6e-6)
+
+
+def _first_impact_by_ode(w: RimlessWheel, theta: float, omega: float) -> float:
+    """theta'' = (g/l) sin theta from (theta, omega) until a spoke lands (theta = gamma +- alpha), times beta."""
+    from scipy.integrate import solve_ivp
+
+    def lands(_t, y, edge):
+        return y[0] - edge
+
+    events = []
+    for edge in (w.slope + w.alpha, w.slope - w.alpha):
+        ev = lambda t, y, e=edge: lands(t, y, e)  # noqa: E731
+        ev.terminal = True
+        events.append(ev)
+    sol = solve_ivp(lambda _t, y: [y[1], w.rate2 * math.sin(y[0])], (0.0, 20.0), [theta, omega], events=events,
+                    rtol=1e-12, atol=1e-12)
+    hit = next(e for e in sol.y_events if e.size)
+    return w.beta * float(hit[0, 1])
+
+
+@pytest.mark.parametrize(("gamma", "theta", "omega"), [(g, t, o) for g, t, o, _ in FIGURE_RUNS]
+                         + [(0.025, -0.132, 0.3), (0.025, 0.2, -0.4), (math.pi / 15, 0.3, 0.5)])
+def test_first_post_impact_speed_against_ode(gamma, theta, omega):
+    from mjpoincare.analysis.theory.rimless_wheel.figures import first_post_impact_speed
+
+    w = RimlessWheel(8, gamma, gyration=0.01)
+    assert first_post_impact_speed(w, theta, omega) == pytest.approx(_first_impact_by_ode(w, theta, omega), abs=1e-9)
+
+
+def test_existence_bound_curve_matches_spoke_counts():
+    from mjpoincare.analysis.theory.rimless_wheel.figures import existence_bound_curve
+
+    for n in (5, 6, 8, 12, 20):
+        assert existence_bound_curve(math.pi / n) == pytest.approx(rw.existence_bound(n), rel=1e-12)
+        assert existence_bound_curve(math.pi / n, 1e-4) == pytest.approx(rw.existence_bound(n, 0.01), rel=1e-12)
+    with pytest.raises(ValueError, match="alpha"):
+        existence_bound_curve(1.0)
+
+
+def test_steep_branch_at_twelve_spokes():
+    # the gamma > alpha starts of the paper result 003-wheel-steep-branch: between omega_b and -sqrt(K) the wheel
+    # completes a backward step (corrected map), where (3.14) as printed has it rock back (-beta omega > 0)
+    w = RimlessWheel(12, math.pi / 6, gyration=0.01)
+    omega_b = -math.sqrt(2.0 * w.rate2 * (1.0 - math.cos(w.slope + w.alpha)))
+    for f in (0.25, 0.5, 0.75):
+        om = -math.sqrt(w.K + f * (omega_b**2 - w.K))
+        assert omega_b < om < rw.backward_threshold(w)
+        assert rw.return_map(w, om) == pytest.approx(hy.hybrid_return_map(w, om), abs=1e-9)
+        assert rw.return_map(w, om) < 0 < -w.beta * om
+        assert rw.flight_free(w, om, 1)

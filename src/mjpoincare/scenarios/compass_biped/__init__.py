@@ -55,12 +55,14 @@ from mjpoincare.scenarios.base import (
 )
 from mjpoincare.scenarios.compass_biped.controller import GaitController
 from mjpoincare.scenarios.compass_biped.drake import drake_peer
+from mjpoincare.scenarios.compass_biped.paper_results import PAPER_RESULTS
 from mjpoincare.scenarios.compass_biped.rivals import RIVALS
 from mjpoincare.scenarios.compass_biped.runs import (
     BIPED_FOOT,
     CHUNK_SECONDS,
     RELEASE_FALL_STEPS,
     STEPS,
+    biped,
     initial_section_states,
     legs_parallel_figures,
     post_impact_states,
@@ -110,14 +112,6 @@ FIT_DEGREE = 3  # cubic: over the +-0.03 spread a quadratic fit's Jacobian absor
 #: first look at 4 samples per trajectory: 48 pairs for the cubic fit's 20 coefficients per coordinate.
 STOPPING = StoppingRule(min_samples=4)
 STEP_REGRESSION_DEGREE = 2  # per-step quantities regressed on the section state (an affine one is biased by the spread)
-
-
-def biped(params: Values) -> theory.CompassBiped:
-    """The analytic model for the scenario parameters."""
-    return theory.CompassBiped(m_h=float(params["m_h"]), m_l=float(params["m_l"]), a=float(params["a"]),
-                               b=float(params["b"]),
-                               slope=float(params["slope"]), gravity=float(params["gravity"]),
-                               tau_ankle=float(params["tau_ankle"]), tau_hip=float(params["tau_hip"]))
 
 
 def check_params(params: Values) -> None:
@@ -387,5 +381,6 @@ COMPASS_BIPED = Scenario(
     peers=(drake_peer(biped),),
     coverage=COVERAGE,
     search_space=search_space("timestep", "solref_timeconst", "solref_dampratio", "integrator", "foot_radius"),
+    paper_results=PAPER_RESULTS,
     default=True, foot=BIPED_FOOT,
 )

@@ -19,17 +19,12 @@ from mjpoincare.analysis.theory import compass_biped as theory
 from mjpoincare.analysis.theory.compass_biped import flight
 from mjpoincare.scenarios.base import Rival, Values
 from mjpoincare.scenarios.compass_biped.controller import RELEASE_WINDOW
+from mjpoincare.scenarios.compass_biped.runs import biped
 
 #: Relative slope error of the slope rival (a gravity vector tilted 1% too far: 0.023 deg at 0.04 rad).
 SLOPE_ERROR = 0.01
 #: g of the gravity rival: 9.80 instead of 9.81 m/s^2 (002's value, which the friction biped's build passes).
 RIVAL_GRAVITY = 9.80
-
-def _biped(params: Values) -> theory.CompassBiped:
-    return theory.CompassBiped(m_h=float(params["m_h"]), m_l=float(params["m_l"]), a=float(params["a"]),
-                               b=float(params["b"]), slope=float(params["slope"]), gravity=float(params["gravity"]),
-                               tau_ankle=float(params["tau_ankle"]), tau_hip=float(params["tau_hip"]))
-
 
 @lru_cache(maxsize=32)
 def _gait(bp: theory.CompassBiped) -> tuple[np.ndarray, np.ndarray, float, float]:
@@ -44,33 +39,33 @@ def _steeper(bp: theory.CompassBiped) -> theory.CompassBiped:
 
 def _fixed_point(params: Values) -> float:
     """max |x*_rival - x*| on the post-impact state (003 eq 4.18), slope 1% steeper."""
-    bp = _biped(params)
+    bp = biped(params)
     return float(np.max(np.abs(_gait(_steeper(bp))[0] - _gait(bp)[0])))
 
 
 def _eigenvalues(params: Values) -> float:
     """max |lambda_rival - lambda| over the matched multipliers, slope 1% steeper."""
-    bp = _biped(params)
+    bp = biped(params)
     lam = _gait(bp)[1]
     return eigenvalue_error(lam, _gait(_steeper(bp))[1])
 
 
 def _step_period(params: Values) -> float:
     """|T_rival/T - 1| with g = 9.80 (the swing time scales with sqrt(l/g))."""
-    bp = _biped(params)
+    bp = biped(params)
     return abs(_gait(replace(bp, gravity=RIVAL_GRAVITY))[2] / _gait(bp)[2] - 1.0)
 
 
 def _step_length(params: Values) -> float:
     """|S_rival/S - 1| (S = 2 l sin alpha*, 003 eqs 4.15-4.17), slope 1% steeper."""
-    bp = _biped(params)
+    bp = biped(params)
     return abs(_gait(_steeper(bp))[3] / _gait(bp)[3] - 1.0)
 
 
 def _trailing_foot_release(params: Values) -> float:
     """Depth the released trailing foot falls from rest over the check's window, |a| W^2/2, a = its slope-normal
     acceleration at the exact pre-impact state (point foot, r = 0)."""
-    bp = _biped(params)
+    bp = biped(params)
     x_minus = theory.step(bp, _gait(bp)[0]).x_minus
     return max(0.0, -flight.release_acceleration(bp, x_minus, 0.0)) * RELEASE_WINDOW**2 / 2.0
 

@@ -20,6 +20,13 @@ from mjpoincare.scenarios.base import Foot, ReturnMapPlot, SectionConvergence
 from mjpoincare.scenarios.compass_biped.controller import GaitController
 from mjpoincare.simulation.simulate import event_rollout, initial_states
 
+
+def biped(params: Values) -> theory.CompassBiped:
+    """The analytic model for the scenario parameters (003 Ch. 4)."""
+    return theory.CompassBiped(m_h=float(params["m_h"]), m_l=float(params["m_l"]), a=float(params["a"]),
+                               b=float(params["b"]), slope=float(params["slope"]), gravity=float(params["gravity"]),
+                               tau_ankle=float(params["tau_ankle"]), tau_hip=float(params["tau_hip"]))
+
 #: ``foot_radius`` in the bipeds' models (passive, actuated, with friction).
 BIPED_FOOT = Foot(meaning="spheres at the leg tips, standing for the point feet (lowest point at the leg's length); "
                           "the controller switches their contacts at each heel strike")

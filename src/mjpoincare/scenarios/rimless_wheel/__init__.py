@@ -47,6 +47,7 @@ from mjpoincare.scenarios.base import (
 from mjpoincare.scenarios.gate_cases import GateCase, Watch
 from mjpoincare.scenarios.rimless_wheel import basin_judging
 from mjpoincare.scenarios.rimless_wheel.drake import drake_peer
+from mjpoincare.scenarios.rimless_wheel.paper_results import PAPER_RESULTS
 from mjpoincare.scenarios.rimless_wheel.rivals import RIVALS
 from mjpoincare.scenarios.rimless_wheel.runs import (
     FIT_STEPS,
@@ -371,5 +372,6 @@ RIMLESS_WHEEL = Scenario(
     peers=(drake_peer(wheel),),
     coverage=COVERAGE,
     search_space=search_space("timestep", "solref_timeconst", "solref_dampratio", "integrator", "foot_radius"),
+    paper_results=PAPER_RESULTS,
     default=True, foot=WHEEL_FOOT,
 )
