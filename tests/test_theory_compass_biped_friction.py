@@ -344,3 +344,27 @@ def test_classify_and_failures():
     assert cf.describe(cf.paper_gait("B", 0.14).record) == "sticking impact; slip+ -> stick -> slip-"
     with pytest.raises(ValueError, match="did not converge"):
         cf.fixed_point(PAPER, [0.15, 0.05, -0.5])
+
+
+def test_gait_ii_energy_split():
+    """002 Sec. 5 splits Gait II's W = 0.1 J into 0.078 J of slippage and 0.022 J at the slipping impact. The exact
+    step (mu = 0.2) loses 0.1155 J at the impact and 0.0048 J in the 5.2 ms slip+ after it, then sticks: the friction
+    work re-integrated as int f_t v_t dt over the slip phases (the contact force of eq 33) equals the record's energy
+    balance, and none of it lies after the slip+ (the split 002-biped-ii-energy-split checks in MuJoCo)."""
+    g = cf.paper_gait("II", 0.2)
+    rec = g.record
+    assert rec.phases == ("slip+", "stick") and rec.phase_times[1] == pytest.approx(0.0052294, abs=1e-6)
+    assert rec.impact_loss == pytest.approx(0.11552, rel=1e-4)
+    assert rec.friction_work == pytest.approx(-0.0047702, rel=1e-3)
+    model = cf.contact_model(g.biped, g.actuation)
+    q0, qd0 = cf.section_state(g.z)
+    stance = cf.ss.integrate_stance(model, q0, qd0, 0.2)
+    power = 0.0
+    for mode, t0, t1, sol in cf._phase_solutions(model, stance, 0.2):
+        if mode != "stick" and sol is not None:
+            ts = np.linspace(t0, t1, 2001)
+            vals = [cf.ss.contact_state(model, sol(t)[:6], sol(t)[6:], mode, 0.2).force[0] * sol(t)[8] for t in ts]
+            power += float(np.trapezoid(vals, ts))
+    assert power == pytest.approx(rec.friction_work, rel=1e-5)
+    assert rec.actuator_work + rec.friction_work - rec.impact_loss == pytest.approx(0.0, abs=1e-8)
+    assert rec.impact_loss - 0.022 > 0.09 and 0.078 + rec.friction_work > 0.07

@@ -38,15 +38,13 @@ import mujoco
 import numpy as np
 
 from mjpoincare.analysis import checks
-from mjpoincare.analysis.adaptive_stopping import FitSettling, StoppingRule, return_map_settling
+from mjpoincare.analysis.adaptive_stopping import StoppingRule, return_map_settling
 from mjpoincare.analysis.eigenvalues import eigenvalue_error, match_eigenvalues
 from mjpoincare.analysis.returnmap import fit_return_map, regress_at, sample_pairs
 from mjpoincare.analysis.theory import compass_biped_friction as theory
 from mjpoincare.analysis.theory.compass_biped.step_measurements import crossing_steps, swing_foot_report
 from mjpoincare.analysis.theory.compass_biped_friction.stance_measurements import classified_pattern, stance_rows
 from mjpoincare.core.params import Param, ParameterError
-from mjpoincare.core.seam import RolloutReport
-from mjpoincare.core.settings import rollout_options
 from mjpoincare.scenarios import compass_biped as cb
 from mjpoincare.scenarios.base import (
     AnalyticValues,
@@ -60,10 +58,10 @@ from mjpoincare.scenarios.base import (
     Values,
     at_preset,
 )
-from mjpoincare.scenarios.compass_biped.controller import FrictionGaitController
 from mjpoincare.scenarios.compass_biped.runs import BIPED_FOOT, legs_parallel_figures
 from mjpoincare.scenarios.compass_biped_friction.gait_choice import friction, gait, gait_name
 from mjpoincare.scenarios.compass_biped_friction.gate import GATE_CASES
+from mjpoincare.scenarios.compass_biped_friction.paper_results import PAPER_RESULTS
 from mjpoincare.scenarios.compass_biped_friction.presets import PRESETS
 from mjpoincare.scenarios.compass_biped_friction.rivals import RIVALS
 from mjpoincare.scenarios.compass_biped_friction.stance import stance_checks
@@ -76,7 +74,7 @@ from mjpoincare.scenarios.compass_biped_friction.start_design import (
     post_impact_states,
     unstable,
 )
-from mjpoincare.simulation.simulate import KeptRows, event_rollout
+from mjpoincare.scenarios.compass_biped_friction.walk import build, run_gait
 
 GAITS = ("a", "b", "c", "i", "ii", "iii")
 #: 002 types of each named gait (classify: A stick throughout, B sticking impact with slip, C slipping impact);
@@ -116,9 +114,6 @@ TOLERANCES: dict[str, Tolerances] = {
     ),
 }
 
-ENABLE_AHEAD = 0.05  # swing-foot contact on once the foot is this far (x l) ahead of the stance foot ...
-ENABLE_CLEAR = 2e-4  # ... and this high (x l) above the ground (Gait III's swing foot clears only ~1 mm)
-CHUNK_SECONDS = 0.05
 #: A stable gait's batch stops once more steps no longer sharpen its fit (:mod:`mjpoincare.analysis.adaptive_stopping`);
 #: first look at SETTLE + 2 samples per trajectory, so that trajectory 0 has settled stances to check.
 STOPPING = StoppingRule(min_samples=SETTLE + 2)
@@ -138,55 +133,6 @@ def check_params(params: Values) -> None:
     if g.kind not in expected:
         raise ParameterError(f"mu={mu:g}: the gait found is of type {g.kind}, not Gait {name}'s {'/'.join(expected)} "
                              f"({theory.describe(g.record)}); mu_c of the A/B branch is 0.1749")
-
-
-def _torques(params: Values) -> tuple[float, float]:
-    """(tau_ankle, tau_hip) of the compass-biped model for Gaits I and II: stance hinge = Q1 = tau_ankle - tau_hip,
-    swing hinge = -Q2 = tau_hip (002 eq 28 with E_eff; II: Q = (0.57, 0.12), tau_ankle 0.45, tau_hip -0.12)."""
-    act = gait(params).actuation
-    if gait_name(params) not in ("I", "II") or not isinstance(act, theory.ConstantTorque):
-        return 0.0, 0.0
-    q1, q2 = act.generalised_force(np.zeros(4), np.zeros(4), 0.0)
-    return q1 - q2, -q2
-
-
-def model_params(params: Values) -> dict[str, float]:
-    """compass-biped parameters for 002's biped (l = 1.6, d = 0.8, m = 4, m_h = 2, g = 9.8)."""
-    bp = gait(params).biped
-    tau_ankle, tau_hip = _torques(params)
-    return {"m_h": bp.m_h, "m_l": bp.m, "a": bp.d, "b": bp.b, "slope": bp.slope, "mu": friction(params),
-            "gravity": bp.g, "tau_ankle": tau_ankle, "tau_hip": tau_hip}
-
-
-def build(params: Values, settings: Values) -> mujoco.MjModel:
-    """compass_biped.xml rebuilt with 002's parameters; Gait III's ankle actuators become PD servos on ctrl."""
-    model = cb.build(model_params(params), settings)
-    if gait_name(params) == "III":
-        for i in (0, 1):
-            a = model.actuator(f"ankle{i}").id
-            model.actuator_gainprm[a, 0] = 1.0
-            model.actuator_biasprm[a, :3] = (0.0, -float(params["kp"]), -float(params["kd"]))
-    return model
-
-
-def _run(params: Values, settings: Values, model: mujoco.MjModel, starts: np.ndarray, steps: int,
-         wrap: bool = False, settling: FitSettling | None = None
-         ) -> tuple[FrictionGaitController, RolloutReport, KeptRows | None]:
-    g = gait(params)
-    pd = (float(params["kp"]), float(params["kd"])) if gait_name(params) == "III" else None
-    radius = float(settings["foot_radius"])
-    controller = FrictionGaitController(model, g, len(starts), radius, _torques(params), pd, (ENABLE_AHEAD,
-                                                                                              ENABLE_CLEAR))
-    chunk = max(10, round(CHUNK_SECONDS / model.opt.timestep))
-    nstep = horizon(g, steps, model.opt.timestep)
-    kept = KeptRows(controller) if wrap else None
-    report = event_rollout(model, post_impact_states(model, g.biped, starts, radius),
-                           nstep, kept if kept is not None else controller, **rollout_options(settings),
-                           chunk_steps=chunk,
-                           control=(lambda t0: controller.control(t0, chunk)) if pd is not None else None,
-                           setup=controller.configure,
-                           stop=None if settling is None else lambda: settling(controller.samples))
-    return controller, report, kept
 
 
 def stability_class(radius: float) -> str:
@@ -221,7 +167,7 @@ def evaluate(params: Values, settings: Values, preset: str, seed: int) -> Evalua
     settling = None if unstable(g) or not settings["adaptive_stopping"] else return_map_settling(
         STOPPING, degree=degree, seed=seed, fixed_point_tolerance=tol["fixed_point"],
         eigenvalue_tolerance=tol["eigenvalues"])
-    c, report, _ = _run(params, settings, model, initial_section_states(g, model.opt.timestep), steps,
+    c, report, _ = run_gait(params, settings, model, initial_section_states(g, model.opt.timestep), steps,
                         settling=settling)
     out: list[checks.Check] = []
     extras: dict[str, object] = {"gait": name, "mu": friction(params), "analytic_pattern": theory.describe(g.record)}
@@ -325,7 +271,7 @@ def clip(params: Values, settings: Values, model: mujoco.MjModel, nstep: int) ->
     """States of a clip from the analytic fixed point, with the gait's contact switching and actuation."""
     g = gait(params)
     steps = math.ceil(nstep * model.opt.timestep / g.record.period)
-    _, _, kept = _run(params, settings, model, g.z[None, :], steps, wrap=True)
+    _, _, kept = run_gait(params, settings, model, g.z[None, :], steps, wrap=True)
     assert kept is not None
     return kept.states(nstep)
 
@@ -376,4 +322,5 @@ COMPASS_BIPED_FRICTION = Scenario(
     gate_cases=GATE_CASES,
     coverage=COVERAGE,
     foot=BIPED_FOOT,
+    paper_results=PAPER_RESULTS,
 )
