@@ -176,7 +176,13 @@ def bracket_job(rid: str, preset: str) -> dict[str, Any]:
     start = time.perf_counter()
     runner = ScenarioRunner(scenario, preset)
     theory = run.theory(runner)
-    low, high, runs = bisect(lambda v: run.below(v, runner), run.low, run.high, run.tolerance / 4)
+    try:
+        low, high, runs = bisect(lambda v: run.below(v, runner), run.low, run.high, run.tolerance / 4)
+    except ValueError:  # MuJoCo reads both ends on one side: no crossing located, and the result fails
+        reading = Reading(analytic=theory, mujoco=None, error=math.nan, tolerance=run.tolerance,
+                          detail=f"MuJoCo reads both ends of [{run.low:g}, {run.high:g}] {run.unit} on one side")
+        return _reading_row(pr, scenario, preset, reading, time.perf_counter() - start,
+                            bracket={"low": run.low, "high": run.high, "runs": 2})
     located = (low + high) / 2
     reading = Reading(analytic=theory, mujoco=located, error=abs(located - theory), tolerance=run.tolerance,
                       spread=abs(high - low) / 2, detail=f"bracket [{low:.6g}, {high:.6g}] {run.unit} after "
