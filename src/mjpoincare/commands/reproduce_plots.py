@@ -3,6 +3,7 @@ spread as error bars, in the paper's axes and units (one PNG per figure result, 
 
 from __future__ import annotations
 
+import textwrap
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
@@ -61,7 +62,7 @@ def figure_png(pr: PaperResult, row: Mapping[str, Any], runner: Runner) -> bytes
         ax.annotate(label, (dense[0], level), xytext=(3, 3), textcoords="offset points", fontsize=8, color="0.35")
     ax.set_xlabel(run.x_label)
     ax.set_ylabel(run.y_label)
-    ax.set_title(f"{pr.paper} {pr.location}: {pr.quantity}", fontsize=9)
+    ax.set_title(textwrap.fill(f"{pr.paper} {pr.location}: {pr.quantity}", 90), fontsize=8)
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8, loc="best")
     f.tight_layout()
