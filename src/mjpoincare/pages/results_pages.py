@@ -117,7 +117,8 @@ def render_index(payloads: Sequence[dict[str, Any]]) -> str:
               "expected miss that the regression gate declares with its mechanism (`src/mjpoincare/gate/forms.py`, "
               "`mjpoincare margins`). Regenerate with `make results` (runs everything) or `make results-render` "
               "(re-renders these pages from `json/`). The presets come from the studies in [tune/](tune/) "
-              "(`make tune`); the MuJoCo release history is [mujoco-releases.md](mujoco-releases.md).", ""]
+              "(`make tune`); the MuJoCo release history is [mujoco-releases.md](mujoco-releases.md); every result of "
+              "the papers, run in MuJoCo, is in [papers/](papers/README.md) (`make papers`).", ""]
     return "\n".join(lines)
 
 
