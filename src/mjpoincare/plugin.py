@@ -15,9 +15,9 @@ made). What each group is for:
   :class:`Watch` and :class:`Miss`: every type a field of :class:`Scenario` names;
 - **the papers' results a scenario covers** (``mjpoincare reproduce``): :class:`PaperResult` with its MuJoCo run, one
   of :class:`AtValidation` (read off the validation by :func:`check_reader`, :func:`largest_multiplier_reader` or the
-  plugin's own reader), :class:`Experiment`, :class:`Curve` (a figure), :class:`Bracket` (a bound located by
-  bisection) and :class:`Refusal`; a run returns a :class:`Reading` and reaches the validation, the scenario's inputs,
-  model and tolerances through the :class:`Runner` the command passes in;
+  plugin's own reader of a validation's :class:`Result`), :class:`Experiment`, :class:`Curve` (a figure),
+  :class:`Bracket` (a bound located by bisection) and :class:`Refusal`; a run returns a :class:`Reading` and reaches
+  the validation, the scenario's inputs, model and tolerances through the :class:`Runner` the command passes in;
 - **what a run reports beside its checks** (fields of :class:`Evaluation`, read by the commands):
   :class:`AnalyticValues` (the theory's eigenvalues: ``sweep``'s analytic column), :class:`FitSummary` (the fitted
   map: ``sweep``'s fitted column, the report's eigenvalue plot), :class:`ReturnMapPlot`,
@@ -57,6 +57,7 @@ from mjpoincare.core.outputs import (
     SectionConvergence,
 )
 from mjpoincare.core.params import Param, ParameterError, Values
+from mjpoincare.core.result import Result
 from mjpoincare.core.seam import Chunk, RolloutReport
 from mjpoincare.core.settings import (
     Dimension,
@@ -126,6 +127,7 @@ __all__ = [
     "RegionMap",
     "RegionMapCompute",
     "Reported",
+    "Result",
     "ReturnMapFit",
     "ReturnMapPlot",
     "Rival",

@@ -22,15 +22,13 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, Protocol
+from typing import Any, Protocol
 
 import mujoco
 import numpy as np
 
 from mjpoincare.core.params import Values
-
-if TYPE_CHECKING:
-    from mjpoincare.core.result import Result
+from mjpoincare.core.result import Result
 
 PAPERS = ("000", "001", "002", "003")
 
