@@ -76,3 +76,17 @@ def test_unwritable_output_exits_2_before_any_simulation(command: list[str], cap
     assert main(command) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "cannot be written" in err and "/proc/" in err, err
+
+
+def test_interrupt_exits_130_in_one_line(monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> None:
+    """Ctrl-C during a command: one line on stderr, no traceback, exit 130 (128 + SIGINT)."""
+    from mjpoincare import api
+
+    def interrupted(*_: object, **__: object) -> None:
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(api, "run_validation", interrupted)
+    assert main(["validate", "rimless-wheel", "--workers", "1"]) == 130
+    err = capsys.readouterr().err
+    assert err == "mjpoincare: interrupted\n", err
+

@@ -18,6 +18,8 @@ if TYPE_CHECKING:
     from mjpoincare.core.result import Result
 
 EXIT_PASS, EXIT_FAIL, EXIT_BAD_INPUT = 0, 1, 2
+#: Ctrl-C: the shell's code for SIGINT (128 + 2).
+EXIT_INTERRUPTED = 130
 
 
 def _require_viz(what: str, *modules: str) -> None:
@@ -189,13 +191,15 @@ def _cmd_bench(args: argparse.Namespace) -> int:
         raise ParameterError("bench --scaling needs --param NAME (the swept parameter or setting)")
     if args.param and not args.scaling:
         raise ParameterError(f"--param {args.param} is for bench --scaling only")
+    if args.values is not None and not args.scaling:
+        raise ParameterError(f"--values {args.values} is for bench --scaling only (with --param NAME)")
     if args.scaling:
         from mjpoincare.commands.bench_scaling import run_scaling
 
         json_path = args.json if args.json != "renders/bench-{scenario}.json" else "renders/scaling-{scenario}.json"
         check_output_path(json_path and json_path.format(scenario=args.scenario), "--json")
-        return run_scaling(args.scenario, args.param, args.values, parse_assignments(args.set), json_path,
-                           workers=args.workers, repeats=args.repeats)
+        return run_scaling(args.scenario, args.param, args.values or SCALING_VALUES, parse_assignments(args.set),
+                           json_path, workers=args.workers, repeats=args.repeats)
     if args.skips:
         json_path = args.json if args.json != "renders/bench-{scenario}.json" else "renders/skips-{scenario}.json"
         check_output_path(json_path and json_path.format(scenario=args.scenario), "--json")
@@ -216,6 +220,9 @@ def _cmd_bench(args: argparse.Namespace) -> int:
         return run_paths(args.scenario, parse_assignments(args.set), output, json_path)
     return run_bench(args.scenario, parse_assignments(args.set), args.output, args.json, quick=args.quick)
 
+
+#: bench --scaling's values when --values is not given.
+SCALING_VALUES = "0.08:0.2:16"
 
 #: The most cells a region map's --grid may have without --allow-long (100 x 100: each cell is a trajectory).
 MAX_GRID_CELLS = 10_000
@@ -537,7 +544,7 @@ def build_parser() -> argparse.ArgumentParser:
     bench.add_argument("--scaling", action="store_true", help="instead: a sweep's speedup from 1 to --workers "
                        "processes beside the machine's ceiling for independent MuJoCo work (best of --repeats)")
     bench.add_argument("--param", help="--scaling (required there): the swept parameter or setting")
-    bench.add_argument("--values", default="0.08:0.2:16", help="--scaling: its values, v1,v2,... or START:STOP:N")
+    bench.add_argument("--values", help=f"--scaling: its values, v1,v2,... or START:STOP:N (default {SCALING_VALUES})")
     bench.add_argument("--workers", type=int, default=2, help="--scaling: processes to scale to")
     bench.add_argument("--repeats", type=int, default=3, help="--scaling: best of this many runs of each")
     bench.set_defaults(func=_cmd_bench)
@@ -677,6 +684,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
     try:
         return int(args.func(args))
+    except KeyboardInterrupt:  # Ctrl-C: one line, no traceback; a results file is written whole or not at all
+        print("mjpoincare: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
     except ParameterError as err:
         print(f"mjpoincare: error: {err}", file=sys.stderr)
         return EXIT_BAD_INPUT

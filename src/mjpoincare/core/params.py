@@ -7,6 +7,7 @@ so a bad value is refused in one place with one line naming the parameter and it
 
 from __future__ import annotations
 
+import difflib
 import math
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
@@ -130,7 +131,9 @@ def unknown(names: Iterable[str], *declared: Sequence[Param]) -> None:
     known = sorted({p.name for group in declared for p in group})
     for name in names:
         if name not in known:
-            raise ParameterError(f"unknown parameter {name!r}; known: {', '.join(known)}")
+            close = difflib.get_close_matches(name, known, n=1, cutoff=0.6)
+            hint = f"; did you mean {close[0]!r}?" if close else ""
+            raise ParameterError(f"unknown parameter {name!r}{hint} (known: {', '.join(known)})")
 
 
 def _span(start: str, stop: str, count: str) -> list[str]:

@@ -171,8 +171,13 @@ def check_output_path(path: str | None, option: str, *, directory: bool = False)
     target is written). A device, FIFO or terminal that exists is written in place (never replaced) and must be
     writable; a socket is refused. Otherwise the nearest existing folder on the way to ``path`` (``path`` itself when
     ``directory``) must be a directory that takes a new file: missing folders are created when the output is written.
-    ``None`` and ``-`` (stdout) pass. Raises :class:`ParameterError` naming ``option``."""
-    if path is None or path == "-":
+    ``None`` and ``-`` (stdout) pass, except ``-`` for a folder (``directory``). Raises :class:`ParameterError`
+    naming ``option``."""
+    if path is None:
+        return
+    if path == "-":
+        if directory:
+            raise ParameterError(f"{option} -: {option} writes a folder of files, not a stream; give a folder")
         return
     target = Path(os.path.realpath(path))
     if not directory and target.is_dir():

@@ -15,6 +15,7 @@ only through this registry.
 
 from __future__ import annotations
 
+import difflib
 from collections.abc import Iterator, MutableMapping
 from importlib.metadata import EntryPoint, entry_points
 
@@ -90,7 +91,12 @@ def default_scenarios() -> tuple[str, ...]:
 def get(name: str) -> Scenario:
     """The scenario called ``name``; unknown names raise :class:`ParameterError` listing the known ones."""
     if name not in REGISTRY:
-        raise ParameterError(f"unknown scenario {name!r}; known: {', '.join(REGISTRY)}")
+        known = list(REGISTRY)
+        if "=" in name:
+            raise ParameterError(f"unknown scenario {name!r}: to set a parameter or setting, give --set {name}")
+        close = difflib.get_close_matches(name.replace("_", "-").lower(), known, n=1, cutoff=0.6)
+        hint = f"; did you mean {close[0]!r}?" if close else ""
+        raise ParameterError(f"unknown scenario {name!r}{hint} (known: {', '.join(known)})")
     return REGISTRY[name]
 
 
