@@ -46,6 +46,14 @@ def _cmd_list(_: argparse.Namespace) -> int:
             print(f"  sweep --grid {grid_syntax(axes)} with " + ", ".join(f"{a.name} = {a.doc}" for a in axes))
         for param in scenario.param_sweeps:
             print(f"  sweep --param {param}: the scenario's own sweep")
+        for preset, overrides in scenario.presets.items():
+            print(f"  preset {preset}: " + ", ".join(f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}"
+                                                   for k, v in overrides.items()))
+    from mjpoincare.core.settings import SETTINGS
+
+    print("simulator settings (--set NAME=VALUE on top of the preset; a preset's own values are listed above):")
+    for p in SETTINGS:
+        print(f"  {p.name} = {p.default}  ({p.doc}; {p.range_text()})")
     return EXIT_PASS
 
 
