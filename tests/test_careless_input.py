@@ -7,7 +7,7 @@ Each case calls :func:`mjpoincare.cli.main` in-process in an empty working direc
 of ``render`` (a subprocess, not a simulation) is answered ``egl`` without running. argparse's own refusals
 (``SystemExit``) count as their exit code.
 
-Counts: 142 cases here; tests/test_cli.py covers 21 more (11 ``--set`` bounds, the unknown scenario and preset, 8
+Counts: 143 cases here; tests/test_cli.py covers 21 more (11 ``--set`` bounds, the unknown scenario and preset, 8
 unwritable outputs under /proc), which this file does not repeat. The output paths that are legitimate (a FIFO,
 /dev/null, a symlink, a missing folder) are tests/test_output_paths.py's.
 """
@@ -90,6 +90,7 @@ CASES = [
     case(("validate", "rimless_wheel"), "unknown scenario 'rimless_wheel'", "did you mean 'rimless-wheel'?"),
     case(("validate", RW, "spokes=8"), "unknown scenario 'spokes=8'", "--set spokes=8", name="a parameter as a name"),
     case((*VAL, S, "spoke=8"), "unknown parameter 'spoke'", "did you mean 'spokes'?"),
+    case((*VAL, S, "slope=4.6"), "slope must be in (0, 1.5708) rad", "4.6 deg = 0.0802851 rad", name="degrees"),
     case(("bench", RW, "--values", "1,2"), "--values 1,2 is for bench --scaling only"),
     case((*VAL, "--json", "-", "--report", "-"), "--report -", "give a folder"),
     case((*VAL, "--preset", "Fast"), "preset must be one of fast, accurate", "'Fast'"),

@@ -13,7 +13,7 @@ from mjpoincare.cli import main
     ("assignment", "needle"),
     [
         ("spokes=2", "spokes must be in [3, 64] (got 2)"),
-        ("slope=-0.1", "slope must be in (0, 1.5708) (got -0.1)"),
+        ("slope=-0.1", "slope must be in (0, 1.5708) rad (got -0.1)"),
         ("mu=-1", "mu must be in [0, 1000] (got -1)"),
         ("slope=0.3", "slope must be in (0.0682, 0.2621) rad for spokes=8"),
         ("slope=0.05", "above the existence bound"),

@@ -81,8 +81,8 @@ def test_failing_check_reports_values_beside_project_tests(pytester: pytest.Pyte
 
 
 @pytest.mark.parametrize(("args", "message"), [
-    (["--mjpoincare", "rimless-wheel,no-such-wheel"], "unknown scenario 'no-such-wheel'; known: compass-biped"),
-    (["--mjpoincare", "rimless-wheel", "--mjpoincare-set", "timestep=1"], "timestep must be in (0, 0.05] (got 1)"),
+    (["--mjpoincare", "rimless-wheel,no-such-wheel"], "unknown scenario 'no-such-wheel' (known: compass-biped"),
+    (["--mjpoincare", "rimless-wheel", "--mjpoincare-set", "timestep=1"], "timestep must be in (0, 0.05] s (got 1)"),
     (["--mjpoincare", "rimless-wheel", "--mjpoincare-set", "timestep"], "--mjpoincare-set expects NAME=VALUE"),
     (["--mjpoincare-set", "timestep=2e-4"], "--mjpoincare-set given without --mjpoincare"),
     (["--mjpoincare", "rimless-wheel", "--mjpoincare-baseline", "absent.json"],
@@ -172,7 +172,7 @@ def test_ini_options_are_read_and_checked(pytester: pytest.Pytester) -> None:
     pytester.makeini("[pytest]\nmjpoincare = rimless-wheel\nmjpoincare_set = timestep=1\n")
     refused = run(pytester)
     assert refused.ret == pytest.ExitCode.USAGE_ERROR
-    assert "timestep must be in (0, 0.05] (got 1)" in refused.stderr.str()
+    assert "timestep must be in (0, 0.05] s (got 1)" in refused.stderr.str()
 
 
 def test_under_xdist_loadscope_each_scenario_runs_once(pytester: pytest.Pytester) -> None:

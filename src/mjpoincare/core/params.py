@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import difflib
 import math
+import re
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -78,11 +79,28 @@ class Param:
             if number != int(number):
                 raise ParameterError(f"{self.name} must be an integer {self.range_text()} (got {value!r})")
             number = int(number)
+        if not self._inside(number):
+            unit = f" {self.unit}" if self.unit else ""
+            hint = ""
+            if self.unit == "rad" and self._inside(math.radians(number)):
+                hint = f"; if that was degrees, {number:g} deg = {math.radians(number):.6g} rad"
+            raise ParameterError(f"{self.name} must be {self.range_text()}{unit} (got {value}{hint})")
+        return number
+
+    def _inside(self, number: float) -> bool:
         too_low = self.low is not None and (number <= self.low if self.low_open else number < self.low)
         too_high = self.high is not None and (number >= self.high if self.high_open else number > self.high)
-        if too_low or too_high:
-            raise ParameterError(f"{self.name} must be {self.range_text()} (got {value})")
-        return number
+        return not (too_low or too_high)
+
+    @property
+    def unit(self) -> str:
+        """The unit the description names after its last comma (``"slope gamma, rad"`` -> ``rad``; "" for none)."""
+        found = _UNIT.search(self.doc)
+        return found.group(1).strip() if found else ""
+
+
+#: A unit at the end of a parameter's description, after a comma and before any parenthesis.
+_UNIT = re.compile(r",\s*((?:rad|deg|m|kg|s|N m|m/s\^2|m/s|rad/s|1/s|J)(?:\s*[a-z]*)?)\s*(?:\(.*)?$")
 
 
 def parse_assignments(items: Iterable[str]) -> dict[str, str]:
