@@ -165,6 +165,7 @@ def test_a_check_that_disappears_fails_the_api_and_the_cli(monkeypatch: pytest.M
     assert not result.passed
     assert [(c.name, c.kind) for c in result.checks if not c.passed] == [("eigenvalue", "missing")], result.table()
     assert "did not report it" in next(c.why for c in result.checks if c.name == "eigenvalue")
+    assert f"1 of {len(result.checks)} checks failed:\n  eigenvalue: not measured; " in result.table()
     code = main(["validate", "rimless-wheel", "--set", "timestep=8e-4", "--set", "solref_timeconst=1.6e-3"])
     out = capsys.readouterr().out
     assert code == 1

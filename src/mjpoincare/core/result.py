@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 import os
 import secrets
 import stat
@@ -112,6 +113,12 @@ class Result:
         if self.diverged:
             lines.append(f"DIVERGED trajectories: {self.diverged}")
         lines.extend(f"mujoco warning: {w}" for w in self.warnings)
+        failed = [c for c in self.checks if not c.passed]
+        if failed:
+            lines.append(f"{len(failed)} of {len(self.checks)} checks failed:")
+            lines.extend(f"  {c.name}: " + (f"error {format_value(c.error)} > tolerance {c.tolerance:.3g}"
+                                             if math.isfinite(c.error) else "not measured") + f"; {c.why}"
+                         for c in failed)
         return "\n".join(lines)
 
 
