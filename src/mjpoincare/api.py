@@ -1,7 +1,8 @@
 """The Python API: ``mjpoincare.validate(scenario, preset=None, seed=0, **values) -> Result``.
 
 The command line (:mod:`mjpoincare.cli`) is a thin layer over this function: the same inputs give the same
-:class:`~mjpoincare.core.result.Result`, and ``Result.to_dict()`` is the CLI's ``--json`` output.
+:class:`~mjpoincare.core.result.Result`, and ``Result.to_document()`` is the CLI's ``--json`` output (``to_dict()`` its
+one run).
 """
 
 from __future__ import annotations

@@ -64,10 +64,15 @@ class Result:
         """All checks passed (a diverged run or a MuJoCo warning fails the ``stable`` check)."""
         return all(c.passed for c in self.checks)
 
+    def to_document(self) -> dict[str, Any]:
+        """The CLI's ``validate --json`` document of this one run (:func:`results_document`: ``schema``,
+        ``mjpoincare``, ``mujoco`` and ``results``, whose one element is :meth:`to_dict`)."""
+        return results_document([self])
+
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict (vectors as lists, complex numbers as ``[re, im]``): the run's fields, each typed output
         it has under its own key (``basins`` as ``basins`` and ``basin_bands``), and ``extras``
-        (docs/result-json.md)."""
+        (docs/result-json.md); one element of the ``validate --json`` document's ``results``."""
         out: dict[str, Any] = {
             "scenario": self.scenario,
             "preset": self.preset,
