@@ -136,6 +136,7 @@ def test_a_baseline_catches_a_timestep_one_percent_off_that_every_tolerance_pass
     base = ("--mjpoincare", scenario, "--mjpoincare-preset", "fast", "--mjpoincare-baseline", "b.json", "-v")
     recorded = run(pytester, *base, "--mjpoincare-update-baseline")
     assert recorded.ret == pytest.ExitCode.OK and (pytester.path / "b.json").is_file(), recorded.stdout.str()
+    assert "mjpoincare: recorded 1 run(s) into the baseline b.json: rimless-wheel" in recorded.stdout.str()
     again = run(pytester, *base)
     assert again.ret == pytest.ExitCode.OK, again.stdout.str()
     moved = run(pytester, *base, "--mjpoincare-set", f"timestep={timestep!r}")

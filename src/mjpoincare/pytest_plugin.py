@@ -247,7 +247,8 @@ def _against_baseline(config: pytest.Config, scenario: str, result: Result) -> N
             result, baseline.perturbation_spreads(result, request.assignments))
         return
     changes = config.stash[_CHANGES].setdefault(scenario, {})
-    for deviation in baseline.deviations(result, baseline.load(request.baseline)):
+    for deviation in baseline.deviations(result, baseline.load(request.baseline),
+                                         record_flag="--mjpoincare-update-baseline"):
         names = [c.name for c in result.checks] if deviation.check == "*" else [deviation.check]
         for name in names:
             changes[name] = f"baseline {request.baseline}: {deviation.message()}"
@@ -268,6 +269,10 @@ def pytest_sessionfinish(session: pytest.Session) -> None:
     assert path is not None
     previous = baseline.load(path) if Path(path).exists() else None
     write_json(baseline.updated(previous, records.items(), environment()), path)
+    reporter = session.config.pluginmanager.get_plugin("terminalreporter")
+    if reporter is not None:
+        reporter.write_line(f"mjpoincare: recorded {len(records)} run(s) into the baseline {path}: "
+                            + ", ".join(sorted(records)))
 
 
 class ScenarioCollector(pytest.Collector):

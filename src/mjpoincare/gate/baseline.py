@@ -155,16 +155,18 @@ def check_path(path: str, update: bool, option: str = "--baseline") -> None:
         load(path, option)
 
 
-def deviations(result: Result, baseline: Mapping[str, Any], key: str | None = None) -> list[Deviation]:
+def deviations(result: Result, baseline: Mapping[str, Any], key: str | None = None, *,
+               record_flag: str = "--update-baseline") -> list[Deviation]:
     """Every check of ``result`` that moved beyond its allowance (:func:`mjpoincare.core.allowance.allowance` of its
     recorded resolution and tolerance) from ``baseline``'s record of the
     same run (``key``: of the run recorded under that key instead, e.g. the unchanged run of a planted change of
-    a parameter), or that one of the two lacks; the run missing from the baseline is one deviation."""
+    a parameter), or that one of the two lacks; the run missing from the baseline is one deviation, whose note names
+    ``record_flag``, the flag that records it where the comparison runs (the CLI's, or the pytest plugin's)."""
     key = key or run_key(result)
     recorded = baseline["runs"].get(key)
     if recorded is None:
         return [Deviation(run=key, check="*", old=math.nan, new=math.nan, resolution=math.nan,
-                          note=f"the baseline has no run {key} (record it with --update-baseline)")]
+                          note=f"the baseline has no run {key} (record it with {record_flag})")]
     changed = sorted(k for k, v in result.settings.items() if recorded["settings"].get(k) != v)
     note = ("settings differ from the recorded run: "
             + ", ".join(f"{k} {recorded['settings'].get(k)} -> {result.settings[k]}" for k in changed)
