@@ -11,6 +11,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, NoReturn
 
+from mjpoincare.core import progress
 from mjpoincare.core.parallel import machine_cores
 from mjpoincare.core.params import ParameterError, Value, grid_syntax, parse_assignments
 
@@ -105,10 +106,21 @@ def _cmd_validate(args: argparse.Namespace) -> int:
 
         done = run_jobs(run_validation, [(name, assignments, args.preset, args.seed, args.peer) for name in names],
                         workers=workers)
-        results = sorted(done, key=lambda r: names.index(r.scenario))
+        results = []
+        with progress.bar(len(names), "validate", unit="scenario") as bar:
+            for result in done:
+                results.append(result)
+                bar.set_postfix_str(f"{result.scenario}: {'pass' if result.passed else 'FAIL'}")
+                bar.update(1)
+        results.sort(key=lambda r: names.index(r.scenario))
     else:
-        results = [validate(name, args.preset, args.seed, peer=args.peer, **typed_values(name, assignments))
-                   for name in names]
+        results = []
+        with progress.bar(len(names), "validate", unit="scenario") as bar:
+            for name in names:
+                bar.set_postfix_str(f"{name}: running")
+                results.append(validate(name, args.preset, args.seed, peer=args.peer,
+                                        **typed_values(name, assignments)))
+                bar.update(1)
     if args.extrapolate:
         from mjpoincare.commands.extrapolate import extrapolate
 
