@@ -43,9 +43,13 @@ def test_verdict_names_the_failed_checks() -> None:
 @pytest.mark.mujoco
 def test_wheel_sweep_over_slope(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     out = tmp_path / "sweep.json"
+    plot = tmp_path / "sweep.png"
     code = main(["sweep", "rimless-wheel", "--param", "slope", "--values", "0.08,0.12", *WHEEL_COARSE,
-                 "--json", str(out)])
-    rows = json.loads(out.read_text())["rows"]
+                 "--json", str(out), "-o", str(plot)])
+    document = json.loads(out.read_text())
+    rows = document["rows"]
+    assert document["schema"] == "mjpoincare.sweep/1" and set(rows[0]["tolerances"]) == set(rows[0]["errors"])
+    assert plot.read_bytes().startswith(b"\x89PNG")
     assert code == (0 if all(r["passed"] for r in rows) else 1)  # each row's verdict is the gate's to assert
     assert [r["slope"] for r in rows] == [0.08, 0.12]
     assert all(abs(r["fitted_lowest"] - 0.5) < 0.02 for r in rows)  # beta^2 = 0.5 for 8 spokes at any slope

@@ -276,8 +276,13 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
                               output, workers=args.workers)
     if not (args.param and args.values):
         raise ParameterError("sweep needs --param and --values (or --grid)")
+    if args.output and args.param in scenario.param_sweeps:
+        raise ParameterError(f"--output {args.output}: {scenario.name}'s own sweep of {args.param} prints its table "
+                             "and writes --json; the plot is for the generic one-parameter sweep and --grid")
     if args.output:
-        raise ParameterError(f"--output {args.output} is the region map's image: it goes with --grid, not --param")
+        check_plot_path(args.output, "--output")
+        distinct_outputs(json=args.json, output=args.output)
+        _require_viz("sweep -o", "matplotlib")
     values = parse_values(args.values)
     if any(a.split("=", 1)[0].strip() == args.param for a in args.set):
         raise ParameterError(f"--set {args.param} and --param {args.param}: the sweep sets {args.param} at each value; "
@@ -296,7 +301,7 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
                              workers=args.workers)
     return run_sweep(args.scenario, args.param, values, parse_assignments(args.set), args.preset,
                      args.json, args.locate, workers=args.workers, engine=args.engine, scheduler=args.scheduler,
-                     resume=args.resume)
+                     resume=args.resume, plot=args.output)
 
 
 def _cmd_reproduce(args: argparse.Namespace) -> int:
@@ -576,8 +581,9 @@ def build_parser() -> argparse.ArgumentParser:
     sweep.add_argument("--values", help="v1,v2,... or START:STOP:COUNT")
     sweep.add_argument("--grid", help="instead: the scenario's region map over two axes, AXIS=START:STOP:N,"
                        "AXIS=START:STOP:N (its axes: mjpoincare list)")
-    sweep.add_argument("-o", "--output", help="PNG of the region map (default: the scenario's, e.g. "
-                       "renders/regions-{scenario}.png)")
+    sweep.add_argument("-o", "--output", help="PNG: with --grid, the region map (default: the scenario's, e.g. "
+                       "renders/regions-{scenario}.png); with --param, each check's error over the values against "
+                       "its tolerance and abs(lambda)max fitted beside analytic")
     sweep.add_argument("--set", action="append", default=[], metavar="NAME=VALUE")
     sweep.add_argument("--preset", default=None)
     sweep.add_argument("--json", metavar="PATH|-", help="write the sweep table as JSON")

@@ -38,6 +38,9 @@ from mjpoincare.core.params import parse_grid
 from mjpoincare.core.result import write_json
 from mjpoincare.scenarios.base import ParamSweep, RegionMap
 
+#: The sweep JSON's shape (``schema``), written beside the resumable header.
+SWEEP_SCHEMA = "mjpoincare.sweep/1"
+
 
 def _lowest(values: Sequence[complex] | np.ndarray | None) -> float:
     """Real part of the eigenvalue with the smallest real part (NaN: no eigenvalues)."""
@@ -69,6 +72,7 @@ def sweep_point(name: str, param: str, value: str, assignments: Mapping[str, str
     analytic = None if result.analytic is None else result.analytic.eigenvalues
     return {param: float(value), "value": value, "passed": result.passed,
             "errors": {c.name: jsonable(c.error) for c in result.checks},
+            "tolerances": {c.name: jsonable(c.tolerance) for c in result.checks},
             "failed": [c.name for c in result.checks if not c.passed],
             "fitted_lowest": _lowest(fitted), "analytic_lowest": _lowest(analytic),
             "fitted_max_modulus": _largest_modulus(fitted), "analytic_max_modulus": _largest_modulus(analytic),
@@ -77,7 +81,7 @@ def sweep_point(name: str, param: str, value: str, assignments: Mapping[str, str
 
 def run_sweep(name: str, param: str, values: list[str], assignments: Mapping[str, str], preset: str | None,
               json_path: str | None, locate: str | None, *, workers: int = 1, engine: str = "local",
-              scheduler: str | None = None, resume: bool = False) -> int:
+              scheduler: str | None = None, resume: bool = False, plot: str | None = None) -> int:
     """Validate at each value; print the table (and the located bifurcation); exit 0, or 1 if a check failed."""
     check_engine(workers, engine, scheduler)
     point_set = point_assignments(assignments, workers)
@@ -117,9 +121,14 @@ def run_sweep(name: str, param: str, values: list[str], assignments: Mapping[str
                      "from the analytic eigenvalues on the same grid")
         lines += [f"  {r[param]:g}: |lambda|max fitted {r['fitted_max_modulus']:.4f}, analytic "
                   f"{r['analytic_max_modulus']:.4f}" for r in rows]
+    if plot:
+        from mjpoincare.commands.sweep_plot import write_sweep_plot
+
+        write_sweep_plot(rows, param, name, plot)
+        lines.append(f"wrote {plot}")
     print("\n".join(lines))
     if json_path:
-        write_json(jsonable(payload), json_path)
+        write_json(jsonable({"schema": SWEEP_SCHEMA, **payload}), json_path)
     return 0 if all(r["passed"] for r in rows) else 1
 
 
