@@ -211,7 +211,11 @@ def load(name: str, preset: str | None = None, environment_kwargs: Mapping[str, 
     Raises:
         ParameterError: any bad input (unknown scenario, preset or parameter, value out of range), one line.
     """
-    typed([*scenarios.get(name).params, *sim_settings.SETTINGS], values)
+    scenario = scenarios.get(name)
+    if preset is not None and preset not in scenario.presets:
+        raise ParameterError(f"preset must be one of {', '.join(scenario.presets)} (got {preset!r}); envs.load takes "
+                             "(name, preset): dm_control.suite.load's (domain, task) is envs.suite_load")
+    typed([*scenario.params, *sim_settings.SETTINGS], values)
     scenario, _, params, settings = resolve_inputs(name, values, preset)
     model, batches = scenario.probe(params, settings)
     _unit_gains(model)
