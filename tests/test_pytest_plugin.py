@@ -170,6 +170,11 @@ def test_ini_options_are_read_and_checked(pytester: pytest.Pytester) -> None:
     assert collected.ret == pytest.ExitCode.OK, collected.stdout.str()
     assert "mjpoincare::rimless-wheel::stable" in collected.stdout.str()
     assert "preset=fast" in run(pytester, "--collect-only").stdout.str()
+    pytester.makepyfile(test_mine="def test_x():\n    pass\n")
+    named = run(pytester, "--collect-only", "-q", "test_mine.py::test_x")
+    assert named.ret == pytest.ExitCode.OK and "mjpoincare::" not in named.stdout.str(), named.stdout.str()
+    assert "mjpoincare::rimless-wheel::stable" in run(pytester, "--collect-only", "-q", "test_mine.py",
+                                                      "--mjpoincare", "rimless-wheel").stdout.str()
     pytester.makeini("[pytest]\nmjpoincare = rimless-wheel\nmjpoincare_set = timestep=1\n")
     refused = run(pytester)
     assert refused.ret == pytest.ExitCode.USAGE_ERROR

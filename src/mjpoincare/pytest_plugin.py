@@ -47,7 +47,9 @@ fails each of its items with the traceback, so the other scenarios and the proje
 
 Settings in ``pytest.ini``, ``pyproject.toml`` (``[tool.pytest.ini_options]``) or ``tox.ini``, each used where its
 option is not given on the command line: ``mjpoincare`` (scenario names, comma- or space-separated),
-``mjpoincare_preset``, ``mjpoincare_set`` (``NAME=VALUE`` items, space-separated) and ``mjpoincare_seed``.
+``mjpoincare_preset``, ``mjpoincare_set`` (``NAME=VALUE`` items, space-separated) and ``mjpoincare_seed``. The ini's
+scenarios join a plain ``pytest`` run (its testpaths or the invocation folder); a run of named files or tests
+(``pytest test_mine.py::test_x``) collects only those, unless ``--mjpoincare`` names scenarios too.
 """
 
 from __future__ import annotations
@@ -76,6 +78,8 @@ class Request:
     assignments: dict[str, str]
     baseline: str | None = None
     update_baseline: bool = False
+    #: The scenarios came from the ini file (``mjpoincare = ...``), not from ``--mjpoincare``.
+    from_ini: bool = False
 
     def describe(self, scenario: str | None = None) -> str:
         """One line: scenario(s), preset, seed and the ``--mjpoincare-set`` values."""
@@ -182,7 +186,8 @@ def _parse_request(config: pytest.Config) -> Request | None:
             resolve_inputs(name, assignments, preset)
         except ParameterError as err:
             raise pytest.UsageError(f"--mjpoincare {name}: {err}") from None
-    return Request(names, preset, 0 if seed is None else seed, assignments, baseline, update)
+    return Request(names, preset, 0 if seed is None else seed, assignments, baseline, update,
+                   from_ini=not config.getoption("mjpoincare"))
 
 
 def pytest_report_header(config: pytest.Config) -> list[str] | None:
@@ -209,6 +214,8 @@ def pytest_make_collect_report(
     """
     report = yield
     request = collector.config.stash.get(_REQUEST, None)
+    if request is not None and request.from_ini and collector.config.args_source == pytest.Config.ArgsSource.ARGS:
+        return report  # the ini's scenarios join a plain ``pytest`` run, not one of named files or tests
     if request is not None and isinstance(collector, pytest.Session) and report.passed:
         report.result.extend(
             ScenarioCollector.from_parent(collector, name=name, nodeid=f"{MARKER}::{name}")
