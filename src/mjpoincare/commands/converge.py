@@ -318,13 +318,22 @@ def write_plots(payload: Mapping[str, Any], directory: str) -> list[Path]:
     return paths
 
 
+#: Each axis's unit, for the plots' labels.
+AXIS_UNITS = {"timestep": "s", "solref_timeconst": "s", "solref_dampratio": "", "foot_radius": "m"}
+
+
 def _plot_axis(left: Any, right: Any, axis: str, h: list[float], entry: Mapping[str, Any]) -> None:
+    from matplotlib.ticker import LogLocator, NullFormatter
+
     pts = [(x, v) for x, v in zip(h, entry["ladder_values"], strict=True) if v is not None]
     xs = np.array([p[0] for p in pts])
     ys = np.array([p[1] for p in pts])
+    label = f"{axis}, {AXIS_UNITS[axis]}" if AXIS_UNITS.get(axis) else axis
     right.plot(xs, ys, "o-", label="simulated")
-    right.set_xlabel(axis)
-    left.set_xlabel(axis)
+    right.set_xlabel(label)
+    right.set_ylabel("value f (the check's unit)")
+    left.set_xlabel(label)
+    left.set_ylabel("|f - analytic|")
     if "three_grid" not in entry:
         left.set_title(entry["verdict"], fontsize=8)
         return
@@ -333,9 +342,14 @@ def _plot_axis(left: Any, right: Any, axis: str, h: list[float], entry: Mapping[
     left.loglog(xs[keep], err[keep], "o", label="|f - analytic|")
     if entry["error_slope"] is not None and keep.sum() >= 2:
         coef = np.polyfit(np.log(xs[keep]), np.log(err[keep]), 1)
-        left.loglog(xs, np.exp(np.polyval(coef, np.log(xs))), "--", label=f"slope {entry['error_slope']:.2f}")
+        left.loglog(xs, np.exp(np.polyval(coef, np.log(xs))), "--",
+                    label=f"slope of |f - analytic|: {entry['error_slope']:.2f}\n(the table's p is of the rungs'\n"
+                          "differences: a bias makes them differ)")
+    for ax in (left,):
+        ax.xaxis.set_major_locator(LogLocator(base=10.0, numticks=6))
+        ax.xaxis.set_minor_formatter(NullFormatter())
     left.set_title(entry["verdict"], fontsize=8)
-    left.legend(fontsize=7)
+    left.legend(fontsize=6)
     right.axhline(analytic, color="k", lw=0.8, label="analytic")
     tg = entry["three_grid"]
     if tg["gci"] is not None:
