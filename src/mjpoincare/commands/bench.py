@@ -130,7 +130,8 @@ def run_bench(name: str, assignments: Mapping[str, str], output: str, json_path:
             by_name = {c.name: c for c in result.checks}
             rows.append({"config": label, "settings": overrides, "wall_s": result.timing["wall_s"],
                          "steps_per_s": result.timing["steps_per_s"], "stable": by_name["stable"].passed,
-                         **{f"{c}_error": by_name[c].error for c in accuracy}})
+                         **{f"{c}_error": by_name[c].error for c in accuracy},
+                         **{f"{c}_error_kind": by_name[c].kind for c in accuracy}})
             bar.set_postfix_str(f"{label}: {rows[-1]['wall_s']:.2f} s")
             bar.update(1)
     key = f"{accuracy[0]}_error"
@@ -206,8 +207,9 @@ def format_table(rows: list[dict[str, Any]], accuracy: tuple[str, ...], raw: dic
 def _plot(rows: list[dict[str, Any]], reference: list[dict[str, float]], key: str, path: str, name: str,
           peer: dict[str, Any] | None) -> None:
     from matplotlib.figure import Figure
+    from matplotlib.ticker import LogLocator, NullFormatter, ScalarFormatter
 
-    fig = Figure(figsize=(7, 4.5))
+    fig = Figure(figsize=(7.6, 4.8))
     ax = fig.subplots()
     walls = np.array([r["wall_s"] for r in rows])
     errors = np.array([r[key] for r in rows])
@@ -219,13 +221,21 @@ def _plot(rows: list[dict[str, Any]], reference: list[dict[str, float]], key: st
     ax.plot(walls[front][order], errors[front][order], "r--", lw=1, label="MuJoCo Pareto front")
     ref_key = key if key in reference[0] else next(k for k in reference[0] if k.endswith("_error"))
     ax.plot([r["wall_s"] for r in reference], [r[ref_key] for r in reference], "ks-", label="solve_ivp reference")
+    for ref in reference:
+        ax.annotate(f"rtol {ref['rtol']:g}", (ref["wall_s"], ref[ref_key]), fontsize=6, xytext=(3, -9),
+                    textcoords="offset points")
     if peer:
         ax.plot([r["wall_s"] for r in peer["rows"]], [r[ref_key] for r in peer["rows"]], "g^-",
                 label=f"Drake {peer['version']} ({peer['scheme']})")
     ax.set_xscale("log")
     ax.set_yscale("log")
+    ax.xaxis.set_major_locator(LogLocator(base=10.0, subs=(1.0, 2.0, 5.0)))
+    ax.xaxis.set_major_formatter(ScalarFormatter())
+    ax.xaxis.set_minor_formatter(NullFormatter())
+    ax.margins(x=0.12)  # room for the rightmost point's label
     ax.set_xlabel("wall time of one validation, s (2 threads)")
-    ax.set_ylabel(key.replace("_", " "))
+    kinds = {r.get(f"{key}_kind") for r in rows} - {None}
+    ax.set_ylabel(key.replace("_", " ") + (f" ({kinds.pop()})" if len(kinds) == 1 else ""))
     ax.set_title(f"{name}: run time against error (MuJoCo {mujoco.__version__})")
     ax.legend(fontsize=8)
     fig.tight_layout()
