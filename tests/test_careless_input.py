@@ -7,7 +7,7 @@ Each case calls :func:`mjpoincare.cli.main` in-process in an empty working direc
 of ``render`` (a subprocess, not a simulation) is answered ``egl`` without running. argparse's own refusals
 (``SystemExit``) count as their exit code.
 
-Counts: 143 cases here; tests/test_cli.py covers 21 more (11 ``--set`` bounds, the unknown scenario and preset, 8
+Counts: 144 cases here; tests/test_cli.py covers 21 more (11 ``--set`` bounds, the unknown scenario and preset, 8
 unwritable outputs under /proc), which this file does not repeat. The output paths that are legitimate (a FIFO,
 /dev/null, a symlink, a missing folder) are tests/test_output_paths.py's.
 """
@@ -198,7 +198,9 @@ CASES = [
     case(("render", RW, "-o", "out.png", "--seconds", "601"), "--seconds", "601"),
     case(("tune", RW, "--plot", "front.txt", "--trials", "1", "--workers", "1"), "--plot front.txt", ".txt"),
     case(("bench", RW, "--quick", "-o", "plot.txt"), "--output plot.txt", ".txt"),
-    case(("sweep", RW, "--param", "slope", "--values", "0.08,0.09", "-o", "x.png"), "--output x.png", "--grid"),
+    case(("sweep", RW, "--param", "slope", "--values", "0.08,0.09", "-o", "x.txt"), "--output x.txt"),
+    case(("sweep", "rimless-wheel-friction", "--param", "mu", "--values", "0.3,0.4", "-o", "x.png"), "--output x.png",
+         "own sweep of mu"),
     case(("sweep", RW, "--param", "slope", "--values", "0.08,0.09", "--scheduler", "tcp://127.0.0.1:1"),
          "--scheduler", "--engine dask"),
     case(("sweep", RW, "--param", "slope", "--values", "0.08,0.08"), "--values", "0.08", "more than once"),

@@ -51,6 +51,7 @@ from mjpoincare.scenarios.rimless_wheel.paper_results import PAPER_RESULTS
 from mjpoincare.scenarios.rimless_wheel.rivals import RIVALS
 from mjpoincare.scenarios.rimless_wheel.runs import (
     FIT_STEPS,
+    MIN_GYRATION,
     WHEEL_FOOT,
     Recorder,
     final_outcomes,
@@ -68,8 +69,8 @@ PARAMS: tuple[Param, ...] = (
     Param("slope", 0.08, "slope gamma, rad", float, 0.0, math.pi / 2, True, True),
     Param("leg_length", 1.0, "spoke length l, m", float, 0.0, 100.0, low_open=True),
     Param("mass", 1.0, "hub mass m, kg", float, 0.0, 1e6, low_open=True),
-    Param("gyration", 0.0, "hub radius of gyration, m (0 = point mass; kappa = (gyration/l)^2)", float, 0.0,
-          100.0),
+    Param("gyration", 0.0, f"hub radius of gyration, m (0 = point mass, modelled as {MIN_GYRATION:g} l: MuJoCo's "
+          "pitch joint needs an inertia; kappa = (gyration/l)^2)", float, 0.0, 100.0),
     Param("mu", 1.0, "Coulomb friction coefficient (sticking needs mu >= the required friction)", float, 0.0,
           1e3),
     Param("gravity", 9.81, "gravity, m/s^2", float, 0.0, 1e3, low_open=True),
@@ -106,6 +107,15 @@ FIT_BATCH = 6
 BASIN_SECONDS = 6.0  # at most; the slowest standing case of the default grid settles after 3.3 s
 
 
+def _gyration_text(params: Values, w: theory.RimlessWheel) -> str:
+    """The hub gyration as given, and the value the model and the theory use where it was raised to MIN_GYRATION l
+    (a point-mass hub has no rotational inertia for MuJoCo's pitch joint)."""
+    given = float(params["gyration"])
+    if given == w.gyration:
+        return f"gyration={given:g}"
+    return f"gyration={given:g} (modelled as {w.gyration:g} m, MuJoCo's smallest hub: {MIN_GYRATION:g} l)"
+
+
 def check_params(params: Values) -> None:
     """Refuse parameters outside the theory's assumptions, naming the bound (003 eq 3.16, no-flight, 002 eq 22)."""
     if float(params["gyration"]) > float(params["leg_length"]):
@@ -120,7 +130,7 @@ def check_params(params: Values) -> None:
             f"bound {high:.4f} rad); use spokes >= 6")
     if not low < w.slope < high:
         raise ParameterError(
-            f"slope must be in ({low:.4f}, {high:.4f}) rad for spokes={w.spokes}, gyration={w.gyration:g}: "
+            f"slope must be in ({low:.4f}, {high:.4f}) rad for spokes={w.spokes}, {_gyration_text(params, w)}: "
             f"above the existence bound (003 eq 3.16) and below the no-flight bound (got {w.slope:g})")
     need = theory.required_friction(w)
     if float(params["mu"]) < need:
