@@ -32,6 +32,7 @@ from mjpoincare import scenarios
 from mjpoincare.analysis.checks import jsonable
 from mjpoincare.analysis.tables import markdown_table
 from mjpoincare.commands.validation import resolve_inputs, run_validation
+from mjpoincare.core import progress
 from mjpoincare.core import settings as sim_settings
 from mjpoincare.core.parallel import run_jobs
 from mjpoincare.core.params import ParameterError
@@ -158,7 +159,12 @@ def stress_scenario(name: str, *, soak: int = SOAK_IMPACTS, workers: int = 1) ->
     """All of a scenario's stress cases (run ``workers`` at a time) and its soak."""
     scenario = scenarios.get(name)
     cases = generic_cases(scenario) + list(scenario.stress_cases)
-    rows = list(run_jobs(run_case, [(name, c) for c in cases], workers=workers))
+    rows = []
+    with progress.bar(len(cases), f"stress {name}", unit="case") as bar:
+        for row in run_jobs(run_case, [(name, c) for c in cases], workers=workers):
+            rows.append(row)
+            bar.set_postfix_str(str(row["case"]))
+            bar.update(1)
     order = {c.name: i for i, c in enumerate(cases)}
     rows.sort(key=lambda r: order[r["case"]])
     _, preset = scenario.preset("fast")
