@@ -117,9 +117,9 @@ def run_validation(name: str, assignments: Mapping[str, Value] | None = None, pr
     diverged = [int(i) for i in report.diverged.nonzero()[0]]
     checks = [*evaluation.checks, *missing_checks(scenario.checks_for(params, settings), evaluation.checks),
               stability_check(len(diverged), len(report.warnings))]
-    timing = {"wall_s": wall, "rollout_wall_s": report.wall_s, "steps": float(report.steps),
+    timing = {"wall_s": wall, "rollout_wall_s": report.wall_s, "steps": int(report.steps),
               "steps_per_s": report.steps / wall, "rollout_steps_per_s": report.steps_per_s,
-              "compile_s": report.compile_s, "batch_steps": float(report.batch_steps)}
+              "compile_s": report.compile_s, "batch_steps": int(report.batch_steps)}
     diagnostics = None
     if int(settings["diagnostics"]) and report.sensor_min.size >= len(sim_settings.DIAGNOSTIC_SENSORS):
         diagnostics = {"max_penetration_m": max(0.0, -float(report.sensor_min[0])),
