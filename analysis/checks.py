@@ -35,11 +35,12 @@ class Check:
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict: complex numbers as ``[re, im]`` (``complex`` says the values are complex, so that a
         reader tells an eigenvalue ``[re, im]`` from a vector of two reals), non-finite numbers as ``None``."""
+        complex_ = is_complex(self.analytic) or is_complex(self.simulated)
         return {
             "name": self.name,
-            "analytic": jsonable(self.analytic),
-            "simulated": jsonable(self.simulated),
-            "complex": is_complex(self.analytic) or is_complex(self.simulated),
+            "analytic": _json_value(self.analytic, complex_),
+            "simulated": _json_value(self.simulated, complex_),
+            "complex": complex_,
             "error": jsonable(self.error),
             "error_kind": self.kind,
             "tolerance": self.tolerance,
@@ -47,6 +48,18 @@ class Check:
             "passed": self.passed,
             "why": self.why,
         }
+
+
+def _json_value(value: Any, complex_: bool) -> Any:
+    """A check's value for its JSON: where either of the check's values is complex, both are written as ``[re, im]``
+    (a real one with im 0), so that a reader meets one shape per check."""
+    if not complex_ or value is None or isinstance(value, str):
+        return jsonable(value)
+    try:
+        array = np.asarray(value, dtype=complex)
+    except (TypeError, ValueError):  # not numeric (a category): as it is
+        return jsonable(value)
+    return jsonable(complex(array) if array.ndim == 0 else array)
 
 
 def is_complex(value: Any) -> bool:
