@@ -90,3 +90,29 @@ def test_interrupt_exits_130_in_one_line(monkeypatch: pytest.MonkeyPatch, capsys
     err = capsys.readouterr().err
     assert err == "mjpoincare: interrupted\n", err
 
+
+
+@pytest.mark.mujoco
+def test_interrupt_stops_the_worker_processes_at_once(tmp_path: Path) -> None:
+    """Ctrl-C (SIGINT to the process group) during a sweep on two worker processes: the command exits 130 within
+    seconds with one line on stderr, and no worker is left running (they leave the interrupt to the parent, which
+    stops them)."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    run = subprocess.Popen([sys.executable, "-m", "mjpoincare", "sweep", "rimless-wheel", "--param", "slope",
+                            "--values", "0.08:0.2:200", "--workers", "2", "--json", str(tmp_path / "s.json")],
+                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True,
+                           preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    time.sleep(4.0)
+    os.killpg(run.pid, signal.SIGINT)
+    start = time.perf_counter()
+    _, err = run.communicate(timeout=30)
+    assert run.returncode == 130 and time.perf_counter() - start < 10, err
+    assert err.splitlines()[-1] == "mjpoincare: interrupted" and "Traceback" not in err, err
+    time.sleep(0.5)
+    with pytest.raises(ProcessLookupError):
+        os.killpg(run.pid, 0)  # the group is empty: no worker survived its parent

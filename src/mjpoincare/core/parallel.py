@@ -19,6 +19,7 @@ whole after every finished job, so an interruption loses at most the jobs in fli
 from __future__ import annotations
 
 import os
+import signal
 import sys
 from collections.abc import Callable, Hashable, Iterable, Iterator, Mapping, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
@@ -69,10 +70,24 @@ def run_jobs(fn: Callable[..., Any], jobs: Sequence[tuple[Any, ...]], *, workers
         for job in jobs:
             yield fn(*job)
     else:
-        with ProcessPoolExecutor(max_workers=min(workers, len(jobs)), mp_context=get_context(start_method())) as pool:
+        pool = ProcessPoolExecutor(max_workers=min(workers, len(jobs)), mp_context=get_context(start_method()),
+                                   initializer=_leave_interrupts_to_the_parent)
+        try:
             futures = [pool.submit(fn, *job) for job in jobs]
             for future in as_completed(futures):
                 yield future.result()
+        except BaseException:  # Ctrl-C, an error, or the consumer stopped early: the workers stop now, not later
+            for process in list(getattr(pool, "_processes", {}).values()):
+                process.terminate()
+            pool.shutdown(wait=False, cancel_futures=True)
+            raise
+        pool.shutdown()
+
+
+def _leave_interrupts_to_the_parent() -> None:
+    """A worker process ignores Ctrl-C (SIGINT reaches the whole process group): the parent stops the pool and says so
+    in one line, instead of every worker printing its own KeyboardInterrupt traceback."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
 def _dask(fn: Callable[..., Any], jobs: Sequence[tuple[Any, ...]], workers: int,
