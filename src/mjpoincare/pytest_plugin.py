@@ -200,6 +200,10 @@ def pytest_report_header(config: pytest.Config) -> list[str] | None:
     if getattr(config.option, "dist", "no") not in ("no", "loadscope"):
         lines.append(f"mjpoincare: --dist {config.option.dist} spreads a scenario's checks over the workers, and "
                      "each worker runs the scenario again; --dist loadscope runs each scenario once")
+    if getattr(config.option, "dist", "no") != "no":
+        lines.append("mjpoincare: each validation already steps its rollouts on every core (threads); workers split "
+                     "the cores and each starts its own processes, so on a machine with few cores a serial run "
+                     "(no -n) is the fastest for these items")
     return lines
 
 
