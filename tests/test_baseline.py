@@ -55,6 +55,16 @@ def test_below_the_floor_a_change_passes_however_small_the_resolution_and_nan_ma
     assert [d.check for d in moved] == ["a", "b"]
 
 
+def test_a_re_record_that_changes_no_run_keeps_the_stamp() -> None:
+    result = _result({"a": 0.01})
+    record = [(baseline.run_key(result), baseline.entry(result, {"a": 1e-4}))]
+    first = baseline.updated(None, record, {"date": "then"})
+    assert baseline.updated(first, record, {"date": "now"})["stamp"] == {"date": "then"}
+    moved = _result({"a": 0.02})
+    changed = [(baseline.run_key(moved), baseline.entry(moved, {"a": 1e-4}))]
+    assert baseline.updated(first, changed, {"date": "now"})["stamp"] == {"date": "now"}
+
+
 def test_a_missing_or_new_check_and_an_unrecorded_run_are_changes() -> None:
     recorded = _baseline(_result({"a": 0.01, "b": 0.02}), {})
     notes = [d.message() for d in baseline.deviations(_result({"a": 0.01, "c": 0.0}), recorded)]

@@ -198,8 +198,12 @@ def deviations(result: Result, baseline: Mapping[str, Any], key: str | None = No
 def updated(baseline: Mapping[str, Any] | None, records: Iterable[tuple[str, dict[str, Any]]],
             stamp: Mapping[str, Any]) -> dict[str, Any]:
     """``baseline`` (None: a new one) with ``records`` ((run key, :func:`entry`)) put in, stamped with ``stamp``
-    (:func:`mjpoincare.core.stamp.environment`); runs sorted by key so that its diff is what changed."""
+    (:func:`mjpoincare.core.stamp.environment`); runs sorted by key so that its diff is what changed. A re-record
+    that changes no run keeps the old stamp: the file stays byte for byte, and a reviewer's diff shows only real
+    changes."""
     runs = dict(baseline["runs"]) if baseline else {}
     runs.update(records)
-    return {"schema": SCHEMA, "multiple": MULTIPLE, "floor": FLOOR, "stamp": dict(stamp),
-            "runs": dict(sorted(runs.items()))}
+    runs = dict(sorted(runs.items()))
+    if baseline and runs == baseline["runs"] and "stamp" in baseline:
+        stamp = baseline["stamp"]
+    return {"schema": SCHEMA, "multiple": MULTIPLE, "floor": FLOOR, "stamp": dict(stamp), "runs": runs}
