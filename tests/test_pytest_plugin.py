@@ -85,8 +85,7 @@ def test_failing_check_reports_values_beside_project_tests(pytester: pytest.Pyte
     (["--mjpoincare", "rimless-wheel", "--mjpoincare-set", "timestep=1"], "timestep must be in (0, 0.05] s (got 1)"),
     (["--mjpoincare", "rimless-wheel", "--mjpoincare-set", "timestep"], "--mjpoincare-set expects NAME=VALUE"),
     (["--mjpoincare-set", "timestep=2e-4"], "--mjpoincare-set given without --mjpoincare"),
-    (["--mjpoincare", "rimless-wheel", "--mjpoincare-baseline", "absent.json"],
-     "--mjpoincare-baseline absent.json does not exist"),
+    (["--mjpoincare", "rimless-wheel", "--mjpoincare-baseline", "/proc/b.json"], "--mjpoincare-baseline /proc/b.json"),
     (["--mjpoincare", "rimless-wheel", "--mjpoincare-update-baseline"],
      "--mjpoincare-update-baseline needs --mjpoincare-baseline PATH"),
 ])
@@ -122,6 +121,17 @@ def test_without_option_the_plugin_adds_nothing(pytester: pytest.Pytester) -> No
     result = run(pytester, "-v")
     result.assert_outcomes(passed=1)
     assert "mjpoincare::" not in result.stdout.str()
+
+
+@pytest.mark.mujoco
+def test_a_missing_baseline_is_recorded_and_every_item_fails_saying_so(pytester: pytest.Pytester) -> None:
+    """As pytest-regressions: a baseline that does not exist is created from the session's runs, each item fails
+    naming it, and the next session compares with it and passes."""
+    base = ("--mjpoincare", "rimless-wheel", "--mjpoincare-baseline", "new.json", "-rf")
+    first = run(pytester, *base)
+    assert first.ret == pytest.ExitCode.TESTS_FAILED and (pytester.path / "new.json").is_file(), first.stdout.str()
+    assert "baseline new.json did not exist: this run is recorded into it; run again to compare" in first.stdout.str()
+    assert run(pytester, *base).ret == pytest.ExitCode.OK
 
 
 @pytest.mark.mujoco

@@ -19,7 +19,8 @@ With ``--mjpoincare-baseline PATH`` (:mod:`mjpoincare.gate.baseline`) an item al
 from the one recorded in ``PATH`` for the same scenario, preset and parameters by more than its allowance
 (:func:`mjpoincare.core.allowance.allowance`: 3 x its resolution, never below 1e-6 x its tolerance; naming the old
 and new errors, the resolution and the allowance), or when the check is missing from the run or from the baseline;
-a ``PATH`` that does not exist is a usage error. With ``--mjpoincare-update-baseline`` the runs are recorded into
+a ``PATH`` that does not exist is created from this session's runs, and every item fails saying so (as
+pytest-regressions does: run again to compare). With ``--mjpoincare-update-baseline`` the runs are recorded into
 ``PATH`` instead (whole, at the end of the session; its other runs kept), each check's resolution measured by
 re-running the scenario under the rounding perturbations, and the items judge the tolerances only (as
 syrupy's ``--snapshot-update``).
@@ -80,6 +81,8 @@ class Request:
     update_baseline: bool = False
     #: The scenarios came from the ini file (``mjpoincare = ...``), not from ``--mjpoincare``.
     from_ini: bool = False
+    #: The baseline to compare with did not exist: this session records it, and every item fails saying so.
+    creating_baseline: bool = False
 
     def describe(self, scenario: str | None = None) -> str:
         """One line: scenario(s), preset, seed and the ``--mjpoincare-set`` values."""
@@ -169,11 +172,15 @@ def _parse_request(config: pytest.Config) -> Request | None:
     from mjpoincare.commands.validation import resolve_inputs
     from mjpoincare.core.params import ParameterError, parse_assignments
 
+    creating = False
     if baseline:
+        from pathlib import Path
+
         from mjpoincare.gate.baseline import check_path
 
+        creating = not update and not Path(baseline).exists()  # as pytest-regressions: record it, and fail
         try:
-            check_path(baseline, update, option="--mjpoincare-baseline")
+            check_path(baseline, update or creating, option="--mjpoincare-baseline")
         except ParameterError as err:
             raise pytest.UsageError(str(err)) from None
 
@@ -186,8 +193,8 @@ def _parse_request(config: pytest.Config) -> Request | None:
             resolve_inputs(name, assignments, preset)
         except ParameterError as err:
             raise pytest.UsageError(f"--mjpoincare {name}: {err}") from None
-    return Request(names, preset, 0 if seed is None else seed, assignments, baseline, update,
-                   from_ini=not config.getoption("mjpoincare"))
+    return Request(names, preset, 0 if seed is None else seed, assignments, baseline, update or creating,
+                   from_ini=not config.getoption("mjpoincare"), creating_baseline=creating)
 
 
 def pytest_report_header(config: pytest.Config) -> list[str] | None:
@@ -256,6 +263,10 @@ def _against_baseline(config: pytest.Config, scenario: str, result: Result) -> N
     if request.update_baseline:
         config.stash[_RECORDS][baseline.run_key(result)] = baseline.entry(
             result, baseline.perturbation_spreads(result, request.assignments))
+        if request.creating_baseline:
+            config.stash[_CHANGES][scenario] = {
+                c.name: f"baseline {request.baseline} did not exist: this run is recorded into it; run again to "
+                        "compare" for c in result.checks}
         return
     changes = config.stash[_CHANGES].setdefault(scenario, {})
     for deviation in baseline.deviations(result, baseline.load(request.baseline),
