@@ -123,6 +123,19 @@ def test_without_option_the_plugin_adds_nothing(pytester: pytest.Pytester) -> No
     assert "mjpoincare::" not in result.stdout.str()
 
 
+def test_a_node_id_of_the_plugin_selects_its_item(pytester: pytest.Pytester) -> None:
+    """``pytest mjpoincare::<scenario>::<check>`` (as a node id is passed for a file's test) collects the scenario and
+    selects that item; the project's named tests run beside it."""
+    pytester.makeconftest(COUNTING_CRASH)
+    pytester.makepyfile(test_mine="def test_x():\n    pass\n")
+    result = run(pytester, "--collect-only", "-q", "test_mine.py::test_x", "mjpoincare::rimless-wheel::eigenvalue")
+    assert result.ret == pytest.ExitCode.OK, result.stdout.str()
+    assert [line for line in result.stdout.lines if "::" in line] == ["test_mine.py::test_x",
+                                                                       "mjpoincare::rimless-wheel::eigenvalue"]
+    refused = run(pytester, "mjpoincare::")
+    assert refused.ret == pytest.ExitCode.USAGE_ERROR and "mjpoincare::<scenario>[::<check>]" in refused.stderr.str()
+
+
 @pytest.mark.mujoco
 def test_a_missing_baseline_is_recorded_and_every_item_fails_saying_so(pytester: pytest.Pytester) -> None:
     """As pytest-regressions: a baseline that does not exist is created from the session's runs, each item fails

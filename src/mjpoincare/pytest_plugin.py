@@ -7,7 +7,8 @@ Usage (the plugin is registered through the ``pytest11`` entry point ``mjpoincar
            [--mjpoincare-baseline PATH [--mjpoincare-update-baseline]]
 
 Each scenario gives one item per check of its :class:`~mjpoincare.core.result.Result`, node id
-``mjpoincare::<scenario>::<check>`` (the ``stable`` check, divergence + MuJoCo warnings, included); every item
+``mjpoincare::<scenario>::<check>`` (the ``stable`` check, divergence + MuJoCo warnings, included; such a node id on
+the command line, ``pytest mjpoincare::rimless-wheel::eigenvalue``, runs that item alone); every item
 carries the ``mjpoincare`` marker, so ``-m mjpoincare`` selects only these and ``-m "not mjpoincare"`` skips them.
 A failing item prints the check's analytic and simulated values, error (and its kind), tolerance, unit and why,
 then the scenario / preset / seed / settings. Exit status is pytest's: 0 all passed, 1 a check failed,
@@ -83,6 +84,8 @@ class Request:
     from_ini: bool = False
     #: The baseline to compare with did not exist: this session records it, and every item fails saying so.
     creating_baseline: bool = False
+    #: Node ids named on the command line (``mjpoincare::<scenario>[::<check>]``): only those items run.
+    selected: tuple[str, ...] = ()
 
     def describe(self, scenario: str | None = None) -> str:
         """One line: scenario(s), preset, seed and the ``--mjpoincare-set`` values."""
@@ -133,9 +136,27 @@ def pytest_configure(config: pytest.Config) -> None:
     config.addinivalue_line("markers", f"{MARKER}: an mjpoincare analytic check (added by --mjpoincare)")
 
 
+def _take_node_ids(config: pytest.Config) -> list[tuple[str, str]]:
+    """The ``mjpoincare::<scenario>[::<check>]`` node ids among the command line's arguments, as (scenario, check)
+    pairs; they are taken out of ``config.args``, where pytest would look for a file of that name."""
+    ids = [a for a in config.args if a.startswith(f"{MARKER}::")]
+    if not ids:
+        return []
+    config.args[:] = [a for a in config.args if a not in ids]
+    out = []
+    for node in ids:
+        parts = node.split("::")
+        if len(parts) not in (2, 3) or not parts[1]:
+            raise pytest.UsageError(f"{node}: a node id of the plugin is mjpoincare::<scenario>[::<check>]")
+        out.append((parts[1], parts[2] if len(parts) == 3 else ""))
+    return out
+
+
 def _parse_request(config: pytest.Config) -> Request | None:
     """The checked request, None without ``--mjpoincare``; raises :class:`pytest.UsageError` on bad input."""
-    given: list[str] = config.getoption("mjpoincare") or list(config.getini("mjpoincare"))
+    named = _take_node_ids(config)
+    given: list[str] = (config.getoption("mjpoincare") or [",".join(dict.fromkeys(s for s, _ in named))] if named
+                        else config.getoption("mjpoincare") or list(config.getini("mjpoincare")))
     preset: str | None = config.getoption("mjpoincare_preset") or str(config.getini("mjpoincare_preset")) or None
     sets: list[str] = config.getoption("mjpoincare_set") or list(config.getini("mjpoincare_set"))
     seed: int | None = config.getoption("mjpoincare_seed")
@@ -194,7 +215,8 @@ def _parse_request(config: pytest.Config) -> Request | None:
         except ParameterError as err:
             raise pytest.UsageError(f"--mjpoincare {name}: {err}") from None
     return Request(names, preset, 0 if seed is None else seed, assignments, baseline, update or creating,
-                   from_ini=not config.getoption("mjpoincare"), creating_baseline=creating)
+                   from_ini=not (config.getoption("mjpoincare") or named), creating_baseline=creating,
+                   selected=tuple(f"{MARKER}::{s}::{c}" if c else f"{MARKER}::{s}" for s, c in named))
 
 
 def pytest_report_header(config: pytest.Config) -> list[str] | None:
@@ -212,6 +234,20 @@ def pytest_report_header(config: pytest.Config) -> list[str] | None:
                      "the cores and each starts its own processes, so on a machine with few cores a serial run "
                      "(no -n) is the fastest for these items")
     return lines
+
+
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    """With node ids of the plugin named on the command line, only those of its items run (the others are
+    deselected, as pytest does for a file's tests not named)."""
+    request = config.stash.get(_REQUEST, None)
+    if request is None or not request.selected:
+        return
+    keep = [i for i in items if not i.nodeid.startswith(f"{MARKER}::")
+            or any(i.nodeid == s or i.nodeid.startswith(f"{s}::") for s in request.selected)]
+    dropped = [i for i in items if i not in keep]
+    if dropped:
+        config.hook.pytest_deselected(items=dropped)
+        items[:] = keep
 
 
 @pytest.hookimpl(wrapper=True)
