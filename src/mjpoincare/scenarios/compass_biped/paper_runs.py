@@ -13,7 +13,6 @@ from mjpoincare.analysis.sections import level_crossings
 from mjpoincare.analysis.theory import compass_biped as theory
 from mjpoincare.analysis.theory.compass_biped.figures import stance_phase_curve
 from mjpoincare.core.params import Values
-from mjpoincare.core.seam import Batch, Chunk
 from mjpoincare.core.settings import rollout_options
 from mjpoincare.scenarios.base import JointIndex
 from mjpoincare.scenarios.compass_biped.controller import GaitController
@@ -25,7 +24,7 @@ from mjpoincare.scenarios.compass_biped.runs import (
     walk,
 )
 from mjpoincare.scenarios.paper_results import Reading, Runner
-from mjpoincare.simulation.simulate import event_rollout
+from mjpoincare.simulation.simulate import KeptRows, event_rollout
 
 #: Heel strikes walked from the analytic fixed point for Fig. 18: each step crosses every stance angle once.
 FIG18_STEPS = 6
@@ -33,22 +32,6 @@ FIG18_STEPS = 6
 MAP_STEPS = 3
 #: The walk of each preset, once per process: every point of the figure reads the same walk.
 _WALKS: dict[str, tuple[np.ndarray, np.ndarray, np.ndarray]] = {}
-
-
-class _Recorder:
-    """Wraps the gait controller: keeps every row of the single walk that the controller keeps (up to the row it
-    restarts from after an event)."""
-
-    def __init__(self, controller: GaitController) -> None:
-        self.controller = controller
-        self.chunks: list[Chunk] = []
-
-    def __call__(self, chunk: Chunk, batch: Batch) -> np.ndarray:
-        restart = self.controller(chunk, batch)
-        keep = int(restart[0]) + 1
-        first = 0 if not self.chunks else 1  # row 0 repeats the previous chunk's last kept row
-        self.chunks.append(Chunk(chunk.time[:, first:keep], chunk.qpos[:, first:keep], chunk.qvel[:, first:keep]))
-        return restart
 
 
 def fig18_walk(runner: Runner, params: Values, settings: Values) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -59,15 +42,14 @@ def fig18_walk(runner: Runner, params: Values, settings: Values) -> tuple[np.nda
     radius = float(settings["foot_radius"])
     x_star = theory.fixed_point(bp)
     controller = GaitController(model, bp, 1, radius)
-    recorder = _Recorder(controller)
+    recorder = KeptRows(controller)
     nstep = math.ceil((FIG18_STEPS + 0.5) * theory.step_period(bp, x_star) / model.opt.timestep)
     event_rollout(model, post_impact_states(model, bp, x_star[None, :], radius), nstep, recorder,
                   **rollout_options(settings), chunk_steps=max(10, round(CHUNK_SECONDS / model.opt.timestep)),
                   setup=controller.configure)
-    time = np.concatenate([c.time[0] for c in recorder.chunks])
+    rows = np.concatenate(recorder.rows)  # trajectory 0's kept rows: time, qpos, qvel
+    time, qpos, qvel = rows[:, 0], rows[:, 1 : 1 + model.nq], rows[:, 1 + model.nq :]
     legs = [JointIndex.of(model, f"leg{i}") for i in (0, 1)]
-    qpos = np.concatenate([c.qpos[0] for c in recorder.chunks])
-    qvel = np.concatenate([c.qvel[0] for c in recorder.chunks])
     angles = np.stack([qpos[:, leg.qpos] for leg in legs]) + bp.slope
     rates = np.stack([qvel[:, leg.dof] for leg in legs])
     return time, angles, rates
