@@ -113,25 +113,26 @@ class _CheckReader:
                        detail=f"the run reports no check {self.name}")
 
 
-def largest_multiplier_reader(tolerance: float) -> Reader:
+def largest_multiplier_reader(tolerance_of: str) -> Reader:
     """A reader of the fitted map's largest multiplier modulus abs(lambda)max against the theory's, with the bootstrap's
-    spread of it (half the 5-95 % range of the replicates' abs(lambda)max)."""
-    return _LargestMultiplier(tolerance)
+    spread of it (half the 5-95 % range of the replicates' abs(lambda)max), held to the tolerance the run's check
+    ``tolerance_of`` holds at its preset (NaN where the run does not report it)."""
+    return _LargestMultiplier(tolerance_of)
 
 
 @dataclass(frozen=True)
 class _LargestMultiplier:
-    tolerance: float
+    tolerance_of: str
 
     def __call__(self, result: Result) -> Reading:
+        tol = next((float(c.tolerance) for c in result.checks if c.name == self.tolerance_of), math.nan)
         if result.fit is None or result.analytic is None or result.analytic.eigenvalues is None:
-            return Reading(analytic=None, mujoco=None, error=math.nan, tolerance=self.tolerance,
-                           detail="the run fits no map")
+            return Reading(analytic=None, mujoco=None, error=math.nan, tolerance=tol, detail="the run fits no map")
         analytic = float(np.max(np.abs(np.asarray(result.analytic.eigenvalues, complex))))
         fitted = float(np.max(np.abs(np.asarray(result.fit.eigenvalues, complex))))
-        return Reading(analytic=analytic, mujoco=fitted, error=abs(fitted - analytic), tolerance=self.tolerance,
-                       spread=replicate_spread(result.fit.record),
-                       detail="abs(lambda)max of the fitted map")
+        return Reading(analytic=analytic, mujoco=fitted, error=abs(fitted - analytic), tolerance=tol,
+                       spread=replicate_spread(result.fit.record), detail="abs(lambda)max of the fitted map; spread: "
+                       "half the 5-95 % range of its bootstrap replicates")
 
 
 def replicate_spread(record: Mapping[str, Any]) -> float:

@@ -23,7 +23,7 @@ from mjpoincare.analysis.theory.compass_biped_friction.stance_measurements impor
 from mjpoincare.scenarios.compass_biped_friction.gait_choice import gait
 from mjpoincare.scenarios.compass_biped_friction.start_design import SETTLE
 from mjpoincare.scenarios.compass_biped_friction.walk import run_gait
-from mjpoincare.scenarios.paper_results import Reading, Runner, check_reader, replicate_spread
+from mjpoincare.scenarios.paper_results import Reading, Runner, check_reader, largest_multiplier_reader
 
 if TYPE_CHECKING:
     from mjpoincare.core.result import Result
@@ -63,22 +63,6 @@ def _tolerance(result: Result, check: str) -> float:
 
 
 @dataclass(frozen=True)
-class LargestMultiplier:
-    """Reads the fitted map's abs(lambda)max against the theory's (002 Secs. 4.2, 5: lambda_max), with the bootstrap's
-    spread, held to the run's eigenvalue tolerance (the preset's: 0.03 fast, 0.01 accurate)."""
-
-    def __call__(self, result: Result) -> Reading:
-        tol = _tolerance(result, "eigenvalues")
-        if result.fit is None or result.analytic is None or result.analytic.eigenvalues is None:
-            return Reading(analytic=None, mujoco=None, error=math.nan, tolerance=tol, detail="the run fits no map")
-        analytic = float(np.max(np.abs(np.asarray(result.analytic.eigenvalues, complex))))
-        fitted = float(np.max(np.abs(np.asarray(result.fit.eigenvalues, complex))))
-        return Reading(analytic=analytic, mujoco=fitted, error=abs(fitted - analytic), tolerance=tol,
-                       spread=replicate_spread(result.fit.record), detail="abs(lambda)max of the fitted map; spread: "
-                       "half the 5-95 % range of its bootstrap replicates")
-
-
-@dataclass(frozen=True)
 class ActuatorWork:
     """Reads the actuator work per step W (002 eq 29, J) regressed at the fitted fixed point against the exact step's,
     relative, held to the run's cost-of-transport tolerance (W is its numerator, measured the same way)."""
@@ -95,7 +79,7 @@ class ActuatorWork:
 
 
 #: What a figure's point reads off the validation at its mu: the multiplier with its bootstrap spread, or a check.
-_QUANTITY_READERS = {"multiplier": LargestMultiplier(), "speed": check_reader("speed"),
+_QUANTITY_READERS = {"multiplier": largest_multiplier_reader("eigenvalues"), "speed": check_reader("speed"),
                      "cost_of_transport": check_reader("cost_of_transport")}
 
 
@@ -245,7 +229,7 @@ def impulse_ratio(runner: Runner) -> Reading:
         if t_on + IMPULSE_SKIP + IMPULSE_FIT < rows[-1, 0]:
             ratios.append(momentum_jump(rows[:, 0], px, t_on) / momentum_jump(rows[:, 0], pz, t_on))
     exact = float(g.record.impulse_ratio)
-    tol = friction_ratio_tolerance(runner)
+    tol = runner.tolerance("friction_ratio")  # a force ratio read from momentum, as sigma~ is
     if not ratios:
         return Reading(analytic=exact, mujoco=None, error=math.nan, tolerance=tol, detail="no settled heel strike")
     sim = float(np.mean(ratios))
@@ -253,12 +237,6 @@ def impulse_ratio(runner: Runner) -> Reading:
                    spread=(max(ratios) - min(ratios)) / 2,
                    detail=f"momentum jump (quadratics over {IMPULSE_FIT * 1e3:g} ms each side, "
                    f"{IMPULSE_SKIP * 1e3:g} ms skipped) at {len(ratios)} settled heel strikes of trajectory 0")
-
-
-def friction_ratio_tolerance(runner: Runner) -> float:
-    """The scenario's friction-ratio tolerance at the runner's preset (a force ratio read from momentum, as sigma~
-    is)."""
-    return runner.tolerance("friction_ratio")
 
 
 #: The heel strike's window for Gait II's energy split (s around the touchdown): the soft impact and the exact

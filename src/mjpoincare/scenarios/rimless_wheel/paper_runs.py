@@ -164,11 +164,6 @@ CURVE_TOLERANCE = 0.03
 BOUND_START = 1.5  # the existence-bound runs start at this multiple of omega_f, above any rolling fixed point's basin
 
 
-def _tolerance(runner: Runner, check: str) -> float:
-    """The scenario's tolerance of ``check`` at the runner's preset (a relative one for omega_post_impact)."""
-    return runner.tolerance(check)
-
-
 def _observed(runs: Runs, row: int, star: float, tolerance: float) -> tuple[str, bool]:
     """A run's end state for the region tables, with the last post-impact speed where it rolls, and whether a rolling
     end state sits on the rolling fixed point (relative ``tolerance``)."""
@@ -187,7 +182,7 @@ def outcomes_reading(runner: Runner, slope: float, omega0: list[float]) -> Readi
     runs = roll_post_impact(runner, SPOKES, slope, np.asarray(omega0), REGION_SECONDS)
     w = runs.w
     star = theory.rolling_fixed_point(w)
-    tol = _tolerance(runner, "omega_post_impact")
+    tol = runner.tolerance("omega_post_impact")
     predicted = [theory.predicted_outcome(w, om) for om in omega0]
     observed = [_observed(runs, i, star, tol) for i in range(len(omega0))]
     wrong = sum(not (o.split()[0] == p and ok) for p, (o, ok) in zip(predicted, observed, strict=True))
@@ -242,7 +237,7 @@ def region_4(runner: Runner) -> Reading:
     forward = post[: int(np.argmax(post < 0))] if np.any(post < 0) else post
     low = float(np.min(forward))
     return Reading(analytic=omega_f, mujoco=low, error=abs(low / omega_f - 1.0),
-                   tolerance=_tolerance(runner, "omega_post_impact"), kind="rel",
+                   tolerance=runner.tolerance("omega_post_impact"), kind="rel",
                    detail=f"gamma* {slope:.6g} rad; {len(forward)} forward impacts, then "
                    f"{'a rock back' if np.any(post < 0) else 'the run ends'} ({runs.end_state(0)} at the end)")
 
@@ -312,7 +307,7 @@ def steep_branch(runner: Runner) -> Reading:
     first = [float(runs.post_impact_speeds(i)[0]) for i in range(len(starts))]
     printed = [-w.beta * om for om in starts]
     return Reading(analytic=analytic, mujoco=first, error=float(np.max(np.abs(np.subtract(first, analytic)))),
-                   tolerance=_tolerance(runner, "omega_post_impact") * math.sqrt(w.K), kind="max-abs",
+                   tolerance=runner.tolerance("omega_post_impact") * math.sqrt(w.K), kind="max-abs",
                    detail=f"n {STEEP_SPOKES}, gamma {STEEP_SLOPE:.5g}: starts {', '.join(f'{s:.4f}' for s in starts)}; "
                    f"(3.14) as printed: {', '.join(f'{p:.4f}' for p in printed)}; highest flight "
                    f"{max(runs.highest_flight(i) for i in range(len(starts))):.2g} m")
@@ -332,7 +327,7 @@ def standing_multiplier(runner: Runner) -> Reading:
     ratios = -np.exp(ratios)
     value = float(np.median(ratios))
     return Reading(analytic=theory.standing_multiplier(w), mujoco=value,
-                   error=abs(value - theory.standing_multiplier(w)), tolerance=_tolerance(runner, "eigenvalue"),
+                   error=abs(value - theory.standing_multiplier(w)), tolerance=runner.tolerance("eigenvalue"),
                    spread=float(np.ptp(ratios)) / 2, detail=f"{ratios.size} rocking impacts from starts "
                    f"{', '.join(f'{s:.4g}' for s in starts)}")
 
@@ -356,7 +351,7 @@ def sequence_reading(runner: Runner, figure: str) -> Reading:
     scale = float(np.max(np.abs(seq)))
     error = float(np.max(np.abs(got - seq))) / scale if got.size == 6 and end == limit else math.inf
     return Reading(analytic=[*seq.tolist(), limit], mujoco=[*got.tolist(), end], error=error,
-                   tolerance=_tolerance(runner, "omega_post_impact"), kind="max-abs / max |theta_dot_n|",
+                   tolerance=runner.tolerance("omega_post_impact"), kind="max-abs / max |theta_dot_n|",
                    detail=f"Fig. {figure}: highest flight {runs.highest_flight(0):.3g} m, largest |omega| "
                    f"{float(np.max(np.abs(runs.omega[0]))):.3g} rad/s")
 
@@ -388,7 +383,7 @@ def limit_reading(runner: Runner, figure: str) -> Reading:
     if rolls:
         last = float(post[-1]) if end == "rolling" else math.nan
         return Reading(analytic=star, mujoco=last, error=abs(last / star - 1.0) if end == "rolling" else math.inf,
-                       tolerance=_tolerance(runner, "omega_post_impact"), kind="rel", detail=detail)
+                       tolerance=runner.tolerance("omega_post_impact"), kind="rel", detail=detail)
     speed = float(np.max(np.abs(runs.omega[0, runs.time[0] >= runs.time[0, -1] - WINDOW])))
     return Reading(analytic=0.0, mujoco=speed, error=speed, tolerance=REST_FRACTION * star, kind="abs",
                    detail=detail + "; MuJoCo's value: the largest |omega| over the last second")
@@ -427,7 +422,7 @@ def four_spokes(runner: Runner) -> Reading:
     after = runs.time[0] >= impact + FOUR_RING
     energy = float(np.max(runs.omega[0, after] ** 2)) / pre
     return Reading(analytic=w.beta**2, mujoco=energy, error=abs(energy - w.beta**2),
-                   tolerance=_tolerance(runner, "impact_coefficient") ** 2, kind="abs",
+                   tolerance=runner.tolerance("impact_coefficient") ** 2, kind="abs",
                    detail=f"n 4, gamma {FOUR_SLOPE}, mu {FOUR_MU}: impact at {impact:.3f} s, pre-impact speed "
                    f"{math.sqrt(pre):.4f} rad/s; the contact's ringing from {SETTLE} to {FOUR_RING} s after it: "
                    f"|omega| up to {float(np.max(np.abs(runs.omega[0, ring]))) / math.sqrt(pre):.3g} of the "
