@@ -10,6 +10,7 @@ each; a bracket's bisection is one job.
 
 from __future__ import annotations
 
+import functools
 import math
 import sys
 import time
@@ -47,6 +48,11 @@ from mjpoincare.scenarios.paper_results import (
 SCHEMA = "mjpoincare.reproduce/1"
 
 
+@functools.lru_cache(maxsize=16)
+def _validation(scenario: str, assignments: tuple[tuple[str, str], ...], preset: str) -> Result:
+    return run_validation(scenario, dict(assignments), preset)
+
+
 class ScenarioRunner:
     """The :class:`~mjpoincare.scenarios.paper_results.Runner` of one scenario at one preset."""
 
@@ -55,8 +61,9 @@ class ScenarioRunner:
         self.preset = preset
 
     def validate(self, assignments: Mapping[str, str]) -> Result:
-        """The scenario's validation at ``assignments`` (:func:`run_validation`)."""
-        return run_validation(self.scenario, dict(assignments), self.preset)
+        """The scenario's validation at ``assignments`` (:func:`run_validation`), run once per process for the same
+        inputs: a figure's curves of several quantities at one value (a gait's multiplier, speed and cost) share it."""
+        return _validation(self.scenario, tuple(sorted(assignments.items())), self.preset)
 
     def inputs(self, assignments: Mapping[str, str], *, checked: bool = True) -> tuple[Values, Values]:
         """Resolved parameters and settings (:func:`resolve_values`; unchecked: the declared bounds only)."""

@@ -44,19 +44,6 @@ IMPULSE_FIRST = SETTLE
 IMPULSE_STEPS = 8
 
 
-#: The validations run in this process, by (gait, mu, preset): the figures' multiplier, speed and cost points at one mu
-#: share one run (where they run in one process).
-_VALIDATED: dict[tuple[str, float, str], Result] = {}
-
-
-def validated(runner: Runner, gait: str, mu: float) -> Result:
-    """The scenario's validation of ``gait`` at friction ``mu`` at the runner's preset, run once per process."""
-    key = (gait, float(mu), runner.preset)
-    if key not in _VALIDATED:
-        _VALIDATED[key] = runner.validate({"gait": gait, "mu": repr(float(mu))})
-    return _VALIDATED[key]
-
-
 def _tolerance(result: Result, check: str) -> float:
     """The tolerance the run's check ``check`` holds at the run's preset (NaN where it does not report it)."""
     return next((float(c.tolerance) for c in result.checks if c.name == check), math.nan)
@@ -92,7 +79,7 @@ class GaitPoint:
     quantity: str
 
     def __call__(self, x: float, runner: Runner) -> Reading:
-        return _QUANTITY_READERS[self.quantity](validated(runner, self.gait, x))
+        return _QUANTITY_READERS[self.quantity](runner.validate({"gait": self.gait, "mu": repr(float(x))}))
 
 
 def _gait_value(g: theory.Gait, quantity: str) -> float:
@@ -153,7 +140,7 @@ class FittedStable:
     gait: str
 
     def __call__(self, value: float, runner: Runner) -> bool:
-        result = validated(runner, self.gait, value)
+        result = runner.validate({"gait": self.gait, "mu": repr(float(value))})
         return result.fit is not None and float(np.max(np.abs(np.asarray(result.fit.eigenvalues, complex)))) < 1.0
 
 
