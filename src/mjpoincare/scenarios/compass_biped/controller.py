@@ -75,9 +75,10 @@ class GaitController:
         h = chunk.qpos[b, :, self.hip_z.qpos] - lever * np.cos(q) - self.radius
         return x, h
 
-    def __call__(self, chunk: Chunk, batch: Batch) -> np.ndarray:
+    def __call__(self, chunk: Chunk, batch: Batch) -> tuple[np.ndarray, dict[int, np.ndarray]]:
         steps = chunk.time.shape[1] - 1
         restart = np.full(chunk.time.shape[0], steps)
+        overrides: dict[int, np.ndarray] = {}
         for b in range(chunk.time.shape[0]):
             if np.isnan(chunk.time[b, 1]):
                 continue
@@ -107,6 +108,9 @@ class GaitController:
                 if hits.size:
                     k = int(hits[0]) + 1
                     restart[b], strike = k, True
+                    landed = self._land_on_onset(chunk, batch, b, k, h_sw)
+                    if landed is not None:
+                        overrides[b] = landed
                     batch.set_contact(b, self.feet[st], False)  # release the trailing foot before impact
                     self._actuate(batch, b, sw)
                     self.strikes[b].append((float(chunk.time[b, k]), float(x_sw[k])))
@@ -114,7 +118,26 @@ class GaitController:
             self._sample(chunk, b, st, sw, int(restart[b]))
             if strike:
                 self.stance[b], self.swing_enabled[b] = sw, False
-        return restart
+        return restart, overrides
+
+    def _land_on_onset(self, chunk: Chunk, batch: Batch, b: int, k: int, height: np.ndarray) -> np.ndarray | None:
+        """Row ``k``'s state advanced by the fraction of a step that puts a later step boundary exactly on the swing
+        foot's touchdown (its height reaching 0, extrapolated by a quadratic through rows k-2..k), so that every heel
+        strike's soft contact starts at the same phase of the step grid; None where the rows do not allow it."""
+        if k < 2 or not np.all(np.isfinite(height[k - 2 : k + 1])):
+            return None
+        dt = batch.timestep
+        t = chunk.time[b, k - 2 : k + 1] - chunk.time[b, k]
+        a, bb, c = np.polyfit(t, height[k - 2 : k + 1], 2)
+        roots = np.roots([a, bb, c])
+        ahead = [float(r.real) for r in roots if abs(r.imag) < 1e-12 and r.real > 0.0]
+        if not ahead:
+            return None
+        frac = min(ahead) % dt
+        if frac < 1e-9 * dt or frac > (1.0 - 1e-9) * dt:
+            return None
+        state = np.concatenate([[chunk.time[b, k]], chunk.qpos[b, k], chunk.qvel[b, k]])
+        return batch.advance(b, state, frac)
 
     def _watch_release(self, chunk: Chunk, b: int, leg: int, height: np.ndarray) -> None:
         """Follow the released trailing foot for RELEASE_WINDOW: it must rise (no impulse was needed there)."""
@@ -192,10 +215,10 @@ class FrictionGaitController(GaitController):
         out[rows, :, self.ankles[1]] = np.where((st == 1)[:, None], kp * th1 + kd * w1, -(kp * th2 + kd * w2))
         return out
 
-    def __call__(self, chunk: Chunk, batch: Batch) -> np.ndarray:
+    def __call__(self, chunk: Chunk, batch: Batch) -> tuple[np.ndarray, dict[int, np.ndarray]]:
         stance_before = self.stance.copy()
         strikes_before = [len(s) for s in self.strikes]
-        restart = super().__call__(chunk, batch)
+        restart, overrides = super().__call__(chunk, batch)
         for b in range(chunk.time.shape[0]):
             if np.isnan(chunk.time[b, 1]):
                 continue
@@ -209,7 +232,7 @@ class FrictionGaitController(GaitController):
                 self.step_work[b].append(self.work[b])
                 self.work[b] = 0.0
                 self.last_strike[b] = self.strikes[b][-1][0]
-        return restart
+        return restart, overrides
 
     def _work(self, chunk: Chunk, b: int, st: int, k: int) -> float:
         """Actuator work sum(actuator force . actuator velocity) dt over rows 0..k-1 (002 eq 29), from the
