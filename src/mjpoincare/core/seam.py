@@ -167,7 +167,8 @@ class Batch(Protocol):
         friction as the larger of its two geoms', so every contact of the trajectory then has ``mu``)."""
         ...
 
-    def advance(self, index: int, state: np.ndarray, seconds: float) -> np.ndarray:
+    def advance(self, index: int, state: np.ndarray, seconds: float, ctrl: np.ndarray | None = None) -> np.ndarray:
         """``state`` (nstate,) after one step of ``seconds`` (a fraction of the timestep) of trajectory ``index``'s
-        model and integrator: how an event controller lands a state on its guard."""
+        model and integrator, under ``ctrl`` (nu,) (zero when None): how an event controller lands a state on its
+        guard."""
         ...

@@ -117,6 +117,7 @@ def event_rollout(
     precision: str = "float64",
     batch: int = 0,
     stop: Callable[[], bool] | None = None,
+    finished: Callable[[], np.ndarray] | None = None,
     engine_options: Mapping[str, Value] | None = None,
 ) -> RolloutReport:
     """Batched rollout with a controller that acts at events, without Python between steps.
@@ -138,7 +139,8 @@ def event_rollout(
     acts on the step from recorded row k to k + 1). A time-varying feedforward (e.g. a reference trajectory in
     the phase since the last event, which the controller tracks) thus needs no Python between steps; rows
     after an event are discarded and the next chunk's control starts from the restart row.
-    ``start_perturbation``, ``batch``, ``stop``, ``engine_options``: as in :func:`rollout_batch`.
+    ``start_perturbation``, ``batch``, ``stop``, ``finished``, ``engine_options``: as in :func:`rollout_batch`; a
+    trajectory with its ``nstep`` kept steps is stepped no further either.
     """
     batch_size = state0.shape[0]
     nq, nv = model.nq, model.nv
@@ -148,11 +150,11 @@ def event_rollout(
                         backend=backend, precision=precision, batch=batch, engine_options=engine_options) as rollout:
             if setup is not None:
                 setup(rollout)
-            while (kept < nstep).any():
+            known = np.zeros(batch_size, bool)
+            while (~(done := (kept >= nstep) | known)).any():
                 before = rollout.states()
                 ctrl = None if control is None else np.ascontiguousarray(control(before[:, 0]), dtype=float)
-                full = rollout.run_chunk(chunk_steps, ctrl)
-                done = kept >= nstep
+                full = rollout.run_chunk(chunk_steps, ctrl, rows=None if not done.any() else np.flatnonzero(~done))
                 full[done, 1:] = np.nan  # finished trajectories idle; nothing is sampled from them
                 answer = on_chunk(_chunk_of(full, nq, nv), rollout)
                 rows_out, overrides = answer if isinstance(answer, tuple) else (answer, {})
@@ -165,6 +167,8 @@ def event_rollout(
                         rollout.set_states(np.array([b]), state[None, :])
                 rollout.set_states(np.nonzero(done)[0], before[done])
                 kept += np.where(done, 0, restart)
+                if finished is not None:
+                    known |= np.asarray(finished(), bool)
                 if stop is not None and stop():
                     break
         rollout.report.warnings += log

@@ -120,7 +120,7 @@ class DrakeBatch(ArrayBatch):
         else:
             self._released[index, geom] = 0.0
 
-    def advance(self, index: int, state: np.ndarray, seconds: float) -> np.ndarray:
+    def advance(self, index: int, state: np.ndarray, seconds: float, ctrl: np.ndarray | None = None) -> np.ndarray:
         raise NotImplementedError("backend=drake: fractional steps (a discrete plant's step is fixed)")
 
 

@@ -90,9 +90,10 @@ def _chunk(mx: mjx.Model, fields: tuple[jax.Array, ...], d: mjx.Data, state: jax
 
 
 def _fraction(mx: mjx.Model, fields: tuple[jax.Array, ...], d: mjx.Data, state: jax.Array, eq: jax.Array,
-              seconds: jax.Array) -> jax.Array:
-    """``state`` (nstate,) after one step of ``seconds`` with one trajectory's fields and ``eq_active`` ``eq``."""
-    d = _with_state(d, state, eq, mx.nq, mx.nv)
+              seconds: jax.Array, ctrl: jax.Array) -> jax.Array:
+    """``state`` (nstate,) after one step of ``seconds`` under ``ctrl`` (nu,) with one trajectory's fields and
+    ``eq_active`` ``eq``."""
+    d = _with_state(d, state, eq, mx.nq, mx.nv).replace(ctrl=ctrl)
     return _state_of(_one_step(mx.replace(opt=mx.opt.replace(timestep=seconds)), fields, d))
 
 
@@ -143,11 +144,13 @@ class MjxBatch(ArrayBatch):
             states, sensordata = np.asarray(recorded, float), np.asarray(sensors, float)
         return self._finish_chunk(states, sensordata, nstep, time.perf_counter() - start, rows)
 
-    def advance(self, index: int, state: np.ndarray, seconds: float) -> np.ndarray:
+    def advance(self, index: int, state: np.ndarray, seconds: float, ctrl: np.ndarray | None = None) -> np.ndarray:
         """One compiled single-trajectory step from fresh data (no solver warmstart carried over)."""
         with self._scope():
+            control = np.zeros(self._model.nu) if ctrl is None else ctrl
             args = (self._mx, self._event_fields(index), self._single, jnp.asarray(state, self._dtype),
-                    jnp.asarray(self._eq[index]), jnp.asarray(seconds, self._dtype))
+                    jnp.asarray(self._eq[index]), jnp.asarray(seconds, self._dtype),
+                    jnp.asarray(control, self._dtype))
             fraction, seconds = _compiled("fraction", _fraction, *args)
             self.report.compile_s += seconds
             return np.asarray(fraction(*args), float)

@@ -149,12 +149,14 @@ class MujocoBatch:
         model = self._model(index)
         model.geom_friction[:, 0] = mu
 
-    def advance(self, index: int, state: np.ndarray, seconds: float) -> np.ndarray:
-        """One event ``mjData`` serves the batch, set from ``state`` each time (its solver warmstart carries over)."""
+    def advance(self, index: int, state: np.ndarray, seconds: float, ctrl: np.ndarray | None = None) -> np.ndarray:
+        """One event ``mjData`` serves the batch, set from ``state`` and ``ctrl`` each time (its solver warmstart
+        carries over)."""
         model = self.models[index]
         if self._event_data is None:
             self._event_data = mujoco.MjData(model)
         mujoco.mj_setState(model, self._event_data, state, STATE_SPEC)
+        self._event_data.ctrl[:] = 0.0 if ctrl is None else ctrl
         fractional_step(model, self._event_data, seconds)
         out = np.empty_like(state)
         mujoco.mj_getState(model, self._event_data, out, STATE_SPEC)

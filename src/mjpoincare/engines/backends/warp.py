@@ -192,11 +192,13 @@ class WarpBatch(ArrayBatch):
             states, sensordata = recorded.numpy().astype(float), sensors.numpy().astype(float)
         return self._finish_chunk(states, sensordata, nstep, time.perf_counter() - start, rows)
 
-    def advance(self, index: int, state: np.ndarray, seconds: float) -> np.ndarray:
+    def advance(self, index: int, state: np.ndarray, seconds: float, ctrl: np.ndarray | None = None) -> np.ndarray:
         """One step on the one-world event model and data (its solver warmstart carries over, as in MuJoCo C's)."""
         model, data = self._event_model, self._event_data
         with quiet():
             self._load(model, data, slice(index, index + 1), state[None, :])
+            control = np.zeros(self._model.nu) if ctrl is None else ctrl
+            data.ctrl.assign(np.asarray(control, np.float32)[None, :])
             model.opt.timestep.assign(np.array([seconds], np.float32))
             mjw.step(model, data)
             out = np.concatenate([data.time.numpy(), data.qpos.numpy()[0], data.qvel.numpy()[0],

@@ -25,6 +25,10 @@ from mjpoincare.scenarios.base import JointIndex
 ENABLE_AHEAD = 0.05  # swing-foot contact switches on once the foot is this far (x l) ahead of the stance foot
 ENABLE_CLEAR = 2e-3  # ... and this high (x l) above the slope
 RELEASE_WINDOW = 0.02  # s: the released trailing foot is followed this long after heel strike
+#: Where in its step each heel strike's touchdown is put (:meth:`GaitController._landing`): half a step after the
+#: landed state, so the contact starts at the next step's start with the foot half a step's travel deep, for every
+#: strike alike; not at a step boundary, where the contact's presence in a step would be decided by roundoff.
+ONSET_PHASE = 0.5
 
 
 class GaitController:
@@ -42,7 +46,8 @@ class GaitController:
         self.swing_enabled = np.zeros(batch, bool)
         self.samples: list[list[np.ndarray]] = [[] for _ in range(batch)]
         self.sample_times: list[list[float]] = [[] for _ in range(batch)]
-        self.strikes: list[list[tuple[float, float]]] = [[] for _ in range(batch)]  # (time, new stance foot x)
+        #: per heel strike: (time, new stance foot x): the touchdown's, where it was landed
+        self.strikes: list[list[tuple[float, float]]] = [[] for _ in range(batch)]
         # per swing, while the swing foot's contact is off: its lowest height above the slope (m, along the normal;
         # < 0: below the slope) and the stance foot's height at that row (< 0: sunk into the slope)
         self._lowest = np.full((batch, 2), np.inf)
@@ -107,37 +112,57 @@ class GaitController:
                 hits = np.nonzero(predicted <= 0.0)[0]
                 if hits.size:
                     k = int(hits[0]) + 1
-                    restart[b], strike = k, True
-                    landed = self._land_on_onset(chunk, batch, b, k, h_sw)
-                    if landed is not None:
-                        overrides[b] = landed
+                    landing = self._landing(chunk, batch, b, k, x_sw, h_sw)
+                    if landing is None:  # too few rows: the strike is read at the detection row
+                        restart[b], strike_at = k, (float(chunk.time[b, k]), float(x_sw[k]))
+                    else:
+                        restart[b], overrides[b], strike_at = landing
+                    strike = True
+                    j = int(restart[b])
                     batch.set_contact(b, self.feet[st], False)  # release the trailing foot before impact
                     self._actuate(batch, b, sw)
-                    self.strikes[b].append((float(chunk.time[b, k]), float(x_sw[k])))
-                    self._release[b] = (float(chunk.time[b, k]), float(h_st[k]), float(h_st[k]))
+                    self.strikes[b].append(strike_at)
+                    self._release[b] = (float(chunk.time[b, j]), float(h_st[j]), float(h_st[j]))
             self._sample(chunk, b, st, sw, int(restart[b]))
             if strike:
                 self.stance[b], self.swing_enabled[b] = sw, False
         return restart, overrides
 
-    def _land_on_onset(self, chunk: Chunk, batch: Batch, b: int, k: int, height: np.ndarray) -> np.ndarray | None:
-        """Row ``k``'s state advanced by the fraction of a step that puts a later step boundary exactly on the swing
-        foot's touchdown (its height reaching 0, extrapolated by a quadratic through rows k-2..k), so that every heel
-        strike's soft contact starts at the same phase of the step grid; None where the rows do not allow it."""
-        if k < 2 or not np.all(np.isfinite(height[k - 2 : k + 1])):
+    def _landing(self, chunk: Chunk, batch: Batch, b: int, k: int, x: np.ndarray, height: np.ndarray
+                 ) -> tuple[int, np.ndarray, tuple[float, float]] | None:
+        """Where trajectory ``b``'s heel strike, detected at row ``k``, is landed on the step grid: the swing foot's
+        touchdown (its height ``height`` reaching 0, extrapolated by a quadratic through rows k-2..k) is put at
+        ONSET_PHASE of a step after the landed state, so that every heel strike's soft contact starts at the same
+        phase of the step grid, one step after the trailing foot's release, with the same depth. Returns the row j
+        the landing starts from, its state advanced by the fraction of a step (:meth:`Batch.advance`, under the
+        stance leg's torques), and the touchdown's time and foot x (``x`` extrapolated alike); None where the rows
+        do not allow it."""
+        rows = slice(k - 2, k + 1)
+        if k < 2 or not (np.all(np.isfinite(height[rows])) and np.all(np.isfinite(x[rows]))):
             return None
         dt = batch.timestep
-        t = chunk.time[b, k - 2 : k + 1] - chunk.time[b, k]
-        a, bb, c = np.polyfit(t, height[k - 2 : k + 1], 2)
-        roots = np.roots([a, bb, c])
+        t = chunk.time[b, rows] - chunk.time[b, k]
+        roots = np.roots(np.polyfit(t, height[rows], 2))
         ahead = [float(r.real) for r in roots if abs(r.imag) < 1e-12 and r.real > 0.0]
         if not ahead:
             return None
-        frac = min(ahead) % dt
-        if frac < 1e-9 * dt or frac > (1.0 - 1e-9) * dt:
+        touchdown = min(ahead)
+        last = chunk.time.shape[1] - 1
+        j = min(k + math.floor(touchdown / dt - ONSET_PHASE), last)
+        fraction = touchdown - ONSET_PHASE * dt - (chunk.time[b, j] - chunk.time[b, k])
+        if j < 1 or fraction < 0.0:
             return None
-        state = np.concatenate([[chunk.time[b, k]], chunk.qpos[b, k], chunk.qvel[b, k]])
-        return batch.advance(b, state, frac)
+        state = np.concatenate([[chunk.time[b, j]], chunk.qpos[b, j], chunk.qvel[b, j]])
+        if fraction > 1e-9 * dt:
+            state = batch.advance(b, state, fraction, self._landing_ctrl(b, float(chunk.time[b, j])))
+        x_touch = float(np.polyval(np.polyfit(t, x[rows], 2), touchdown))
+        return j, state, (float(chunk.time[b, k]) + touchdown, x_touch)
+
+    def _landing_ctrl(self, b: int, time: float) -> np.ndarray | None:
+        """The control of trajectory ``b``'s fractional landing step from ``time`` (None: zero; the torques here are
+        actuator biases)."""
+        del b, time
+        return None
 
     def _watch_release(self, chunk: Chunk, b: int, leg: int, height: np.ndarray) -> None:
         """Follow the released trailing foot for RELEASE_WINDOW: it must rise (no impulse was needed there)."""
@@ -203,17 +228,26 @@ class FrictionGaitController(GaitController):
 
     def control(self, t0: np.ndarray, steps: int) -> np.ndarray:
         """ctrl (B, steps, nu): Gait III's reference term kp theta^r + kd theta_dot^r per hinge (002 eq 30)."""
-        out = np.zeros((t0.size, steps, self.nu))
+        phase = (t0 - self.last_strike)[:, None] + self.dt * np.arange(steps)[None, :]
+        return self._reference_ctrl(phase, self.stance)
+
+    def _reference_ctrl(self, phase: np.ndarray, stance: np.ndarray) -> np.ndarray:
+        """ctrl (B, steps, nu) at the times ``phase`` (B, steps) since the last heel strike, with ``stance`` (B,)."""
+        out = np.zeros((*phase.shape, self.nu))
         if self.pd is None or self.ref is None:
             return out
         kp, kd = self.pd
-        phase = (t0 - self.last_strike)[:, None] + self.dt * np.arange(steps)[None, :]
         th1, th2, w1, w2 = reference_at(self.ref, np.nan_to_num(phase))
-        rows = np.arange(t0.size)
-        st = self.stance
-        out[rows, :, self.ankles[0]] = np.where((st == 0)[:, None], kp * th1 + kd * w1, -(kp * th2 + kd * w2))
-        out[rows, :, self.ankles[1]] = np.where((st == 1)[:, None], kp * th1 + kd * w1, -(kp * th2 + kd * w2))
+        out[:, :, self.ankles[0]] = np.where((stance == 0)[:, None], kp * th1 + kd * w1, -(kp * th2 + kd * w2))
+        out[:, :, self.ankles[1]] = np.where((stance == 1)[:, None], kp * th1 + kd * w1, -(kp * th2 + kd * w2))
         return out
+
+    def _landing_ctrl(self, b: int, time: float) -> np.ndarray | None:
+        """Gait III: the stance leg's reference at ``time`` (the landing step is the stance's last)."""
+        if self.pd is None:
+            return None
+        phase = np.array([[time - self.last_strike[b]]])
+        return self._reference_ctrl(phase, self.stance[b : b + 1])[0, 0]
 
     def __call__(self, chunk: Chunk, batch: Batch) -> tuple[np.ndarray, dict[int, np.ndarray]]:
         stance_before = self.stance.copy()
@@ -224,7 +258,10 @@ class FrictionGaitController(GaitController):
                 continue
             k = int(restart[b])
             st = int(stance_before[b])
-            self.work[b] += self._work(chunk, b, st, k)
+            self.work[b] += float(np.sum(self._power(chunk, b, st, slice(0, k)))) * self.dt
+            if b in overrides:  # the fractional landing step from row k, the stance's last
+                self.work[b] += float(self._power(chunk, b, st, slice(k, k + 1))[0]) * float(overrides[b][0]
+                                                                                            - chunk.time[b, k])
             if b == 0:
                 self.rows0.append(np.column_stack([chunk.time[0, 1 : k + 1], np.full(k, st), chunk.qpos[0, 1 : k + 1],
                                                    chunk.qvel[0, 1 : k + 1]]))
@@ -234,21 +271,19 @@ class FrictionGaitController(GaitController):
                 self.last_strike[b] = self.strikes[b][-1][0]
         return restart, overrides
 
-    def _work(self, chunk: Chunk, b: int, st: int, k: int) -> float:
-        """Actuator work sum(actuator force . actuator velocity) dt over rows 0..k-1 (002 eq 29), from the
-        recorded hinge rates: constant torques (tau_ankle - tau_hip) on the stance hinge and tau_hip on the swing
+    def _power(self, chunk: Chunk, b: int, st: int, rows: slice) -> np.ndarray:
+        """Actuator power (actuator force . actuator velocity) at ``rows`` with stance leg ``st`` (002 eq 29), from
+        the recorded hinge rates: constant torques (tau_ankle - tau_hip) on the stance hinge and tau_hip on the swing
         hinge; Gait III: the PD force with the same reference as the control."""
-        qd = chunk.qvel[b, :k]
+        qd = chunk.qvel[b, rows]
         sw = 1 - st
         if self.pd is None:
             ta, th = self.bp.tau_ankle, self.bp.tau_hip
-            power = (ta - th) * qd[:, self.rate[st]] + th * qd[:, self.rate[sw]]
-        else:
-            kp, kd = self.pd
-            q = chunk.qpos[b, :k]
-            phase = chunk.time[b, :k] - self.last_strike[b]
-            r1, r2, w1, w2 = reference_at(self.ref, phase)  # type: ignore[arg-type]
-            f_st = kp * (r1 - q[:, self.angle[st]]) + kd * (w1 - qd[:, self.rate[st]])
-            f_sw = kp * (-r2 - q[:, self.angle[sw]]) + kd * (-w2 - qd[:, self.rate[sw]])
-            power = f_st * qd[:, self.rate[st]] + f_sw * qd[:, self.rate[sw]]
-        return float(np.sum(power) * self.dt)
+            return (ta - th) * qd[:, self.rate[st]] + th * qd[:, self.rate[sw]]
+        kp, kd = self.pd
+        q = chunk.qpos[b, rows]
+        phase = chunk.time[b, rows] - self.last_strike[b]
+        r1, r2, w1, w2 = reference_at(self.ref, phase)  # type: ignore[arg-type]
+        f_st = kp * (r1 - q[:, self.angle[st]]) + kd * (w1 - qd[:, self.rate[st]])
+        f_sw = kp * (-r2 - q[:, self.angle[sw]]) + kd * (-w2 - qd[:, self.rate[sw]])
+        return f_st * qd[:, self.rate[st]] + f_sw * qd[:, self.rate[sw]]

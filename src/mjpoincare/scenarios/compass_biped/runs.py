@@ -30,6 +30,11 @@ def biped(params: Values) -> theory.CompassBiped:
 #: ``foot_radius`` in the bipeds' models (passive, actuated, with friction).
 BIPED_FOOT = Foot(meaning="spheres at the leg tips, standing for the point feet (lowest point at the leg's length); "
                           "the controller switches their contacts at each heel strike")
+#: The feet's contact impedance in the bipeds' presets (MuJoCo's default solimp d0, d_width): a loaded foot then sits
+#: about 1e-7 m deep and its contact stays in every step's constraint set; at 0.99-0.999 it sat within 1e-9 m of the
+#: slope and dropped out on 1.7 % of the steps (accurate preset; 0.95-0.99: 0.1 %), each a step of free fall that made
+#: the map jump with the step (tests/test_biped_step_grid.py).
+BIPED_IMPEDANCE: dict[str, float] = {"solimp_dmin": 0.9, "solimp_dmax": 0.95}
 STEPS = 10  # heel strikes per trajectory, at most (adaptive stopping ends the batch earlier: STOPPING)
 #: Initial offsets from the fixed point on the 3-D post-impact section: STARTS random directions (fixed seed), of
 #: size PERTURBATION, x (timestep / 20 us)^(1/3) below 20 us, shrunk to a third as |lambda|max -> 1 (how the size

@@ -114,9 +114,11 @@ TOLERANCES: dict[str, Tolerances] = {
     ),
 }
 
-#: A stable gait's batch stops once more steps no longer sharpen its fit (:mod:`mjpoincare.analysis.adaptive_stopping`);
-#: first look at SETTLE + 2 samples per trajectory, so that trajectory 0 has settled stances to check.
-STOPPING = StoppingRule(min_samples=SETTLE + 2)
+#: A stable gait's starts stop once more steps no longer sharpen its fit (:mod:`mjpoincare.analysis.adaptive_stopping`);
+#: first look at 3 samples per trajectory (2 pairs each: 34 pairs for the cubic fit's 20 coefficients per coordinate);
+#: trajectory 0 walks on to SETTLE + 2 samples, so that it has settled stances to check.
+STOPPING = StoppingRule(min_samples=3)
+SETTLED_SAMPLES = SETTLE + 2
 
 
 def check_params(params: Values) -> None:
@@ -168,7 +170,7 @@ def evaluate(params: Values, settings: Values, preset: str, seed: int) -> Evalua
         STOPPING, degree=degree, seed=seed, fixed_point_tolerance=tol["fixed_point"],
         eigenvalue_tolerance=tol["eigenvalues"])
     c, report, _ = run_gait(params, settings, model, initial_section_states(g, model.opt.timestep), steps,
-                        settling=settling)
+                        settling=settling, first_samples=SETTLED_SAMPLES)
     out: list[checks.Check] = []
     extras: dict[str, object] = {"gait": name, "mu": friction(params), "analytic_pattern": theory.describe(g.record)}
     y_star_th, _ = theory.legs_parallel(g)
@@ -314,7 +316,7 @@ COMPASS_BIPED_FRICTION = Scenario(
     track_body="hip",
     camera_distance=3.5,
     stress_cases=STRESS_CASES,
-    mechanisms=("rollout", "contact", "actuator", "control"),
+    mechanisms=("rollout", "contact", "actuator", "control", "fractional_step"),
     checks=CHECKS,
     checks_at=checks_at,
     rivals=RIVALS,

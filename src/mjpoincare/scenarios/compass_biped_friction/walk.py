@@ -53,11 +53,12 @@ def build(params: Values, settings: Values) -> mujoco.MjModel:
 
 
 def run_gait(params: Values, settings: Values, model: mujoco.MjModel, starts: np.ndarray, steps: int,
-         wrap: bool = False, settling: FitSettling | None = None
+         wrap: bool = False, settling: FitSettling | None = None, first_samples: int = 0
          ) -> tuple[FrictionGaitController, RolloutReport, KeptRows | None]:
     """Walk the scenario's model from the section states ``starts`` for ``steps`` heel strikes (its gait controller:
     contact switching, the gait's torques, Gait III's PD servos), in one event rollout; ``wrap`` keeps trajectory 0's
-    rows, ``settling`` stops the batch once the fit has settled."""
+    rows. With ``settling``, the other starts stop once the fit has settled, and trajectory 0 (the fixed point's,
+    whose stances the stance checks read) once it also has ``first_samples`` legs-parallel samples."""
     g = gait(params)
     pd = (float(params["kp"]), float(params["kd"])) if gait_name(params) == "III" else None
     radius = float(settings["foot_radius"])
@@ -66,10 +67,18 @@ def run_gait(params: Values, settings: Values, model: mujoco.MjModel, starts: np
     chunk = max(10, round(CHUNK_SECONDS / model.opt.timestep))
     nstep = horizon(g, steps, model.opt.timestep)
     kept = KeptRows(controller) if wrap else None
+
+    def finished() -> np.ndarray:
+        known = np.zeros(len(starts), bool)
+        if settling is not None and (settling.reason != "full design" or settling(controller.samples)):
+            known[1:] = True
+            known[0] = len(controller.samples[0]) >= first_samples
+        return known
+
     report = event_rollout(model, post_impact_states(model, g.biped, starts, radius),
                            nstep, kept if kept is not None else controller, **rollout_options(settings),
                            chunk_steps=chunk,
                            control=(lambda t0: controller.control(t0, chunk)) if pd is not None else None,
                            setup=controller.configure,
-                           stop=None if settling is None else lambda: settling(controller.samples))
+                           finished=finished)
     return controller, report, kept
