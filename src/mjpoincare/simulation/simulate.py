@@ -155,7 +155,7 @@ def event_rollout(
                 before = rollout.states()
                 ctrl = None if control is None else np.ascontiguousarray(control(before[:, 0]), dtype=float)
                 full = rollout.run_chunk(chunk_steps, ctrl, rows=None if not done.any() else np.flatnonzero(~done))
-                full[done, 1:] = np.nan  # finished trajectories idle; nothing is sampled from them
+                full[done, 0], full[done, 1:] = before[done], np.nan  # finished ones idle; nothing is sampled
                 answer = on_chunk(_chunk_of(full, nq, nv), rollout)
                 rows_out, overrides = answer if isinstance(answer, tuple) else (answer, {})
                 restart = np.clip(np.asarray(rows_out, int), 1, chunk_steps)
