@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from mjpoincare.cli import main
-from mjpoincare.commands import bench
+from mjpoincare.commands import bench, bench_paths
 from mjpoincare.commands.bench import pareto_front
 
 #: A coarse step (contact time constant 2 steps) for the tests of the command's output: a wheel validation takes about
@@ -102,6 +102,31 @@ def test_paths_bench_puts_fast_accurate_and_richardson_on_one_plot(tmp_path: Pat
     assert richardson["wall_s"] > fast["wall_s"]
     for component in richardson["not_clean"]:
         assert richardson["errors"][component] == fast["errors"][component]
+    data = json.loads(out.read_text())
+    assert data["build"]  # the commit the paths were measured at, the label --compare draws
+    beside = tmp_path / "beside.png"
+    bench_paths.plot(data, str(beside), compare={**data, "build": "earlier"})  # another build's, dashed
+    assert beside.stat().st_size > png.stat().st_size
+
+
+@pytest.mark.parametrize(("content", "needle"), [
+    (None, "not a readable bench --paths JSON"),
+    ('{"scenario": "rimless-wheel"}', "not a bench --paths JSON (no 'paths')"),
+    ('{"scenario": "slotted-skate", "paths": []}', "is of 'slotted-skate', not 'rimless-wheel'"),
+])
+def test_paths_compare_refuses_what_is_not_the_scenarios_paths(content: str | None, needle: str, tmp_path: Path,
+                                                              capsys: pytest.CaptureFixture[str]) -> None:
+    """``--compare`` takes another build's ``bench --paths --json`` of the same scenario; anything else is refused in
+    one line before any run, as is ``--compare`` without ``--paths``."""
+    other = tmp_path / "other.json"
+    if content is not None:
+        other.write_text(content)
+    assert main(["bench", "rimless-wheel", "--paths", "--compare", str(other), "-o", str(tmp_path / "p.png"),
+                 "--json", str(tmp_path / "p.json")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and needle in err[0] and not (tmp_path / "p.png").exists()
+    assert main(["bench", "rimless-wheel", "--compare", str(other)]) == 2
+    assert "is for bench --paths only" in capsys.readouterr().err
 
 
 @pytest.mark.parametrize("flags", [["--paths", "--skips"], ["--quick", "--paths"]])

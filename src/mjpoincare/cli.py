@@ -211,6 +211,8 @@ def _cmd_bench(args: argparse.Namespace) -> int:
         raise ParameterError("bench --scaling needs --param NAME (the swept parameter or setting)")
     if args.param and not args.scaling:
         raise ParameterError(f"--param {args.param} is for bench --scaling only")
+    if args.compare is not None and not args.paths:
+        raise ParameterError(f"--compare {args.compare} is for bench --paths only")
     if args.values is not None and not args.scaling:
         raise ParameterError(f"--values {args.values} is for bench --scaling only (with --param NAME)")
     if args.scaling:
@@ -237,7 +239,7 @@ def _cmd_bench(args: argparse.Namespace) -> int:
     if args.paths:
         from mjpoincare.commands.bench_paths import run_paths
 
-        return run_paths(args.scenario, parse_assignments(args.set), output, json_path)
+        return run_paths(args.scenario, parse_assignments(args.set), output, json_path, args.compare)
     return run_bench(args.scenario, parse_assignments(args.set), args.output, args.json, quick=args.quick)
 
 
@@ -564,6 +566,8 @@ def build_parser() -> argparse.ArgumentParser:
     bench.add_argument("--quick", action="store_true", help="a small sweep (for tests)")
     bench.add_argument("--paths", action="store_true", help="instead: the error against the wall time of the fast "
                        "preset, the accurate preset and the fast preset with Richardson extrapolation, one plot")
+    bench.add_argument("--compare", metavar="JSON", help="--paths: another build's bench --paths --json (an earlier "
+                       "commit, another MuJoCo), drawn beside this one's, dashed")
     bench.add_argument("--skips", action="store_true", help="instead: what each skip (collision filtering, no "
                        "sensors, contact off, solver budget, threads) buys in speed, and the error with and without")
     bench.add_argument("--scaling", action="store_true", help="instead: a sweep's speedup from 1 to --workers "

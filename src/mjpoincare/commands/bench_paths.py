@@ -10,7 +10,8 @@ Three paths, each a whole validation of the scenario (the pipeline users run):
 
 For each accuracy check's scalar components the absolute error against the analytic value, and the wall time of the
 path (for the Richardson path: all three grids), go into one table and one plot. The plot shows where the cheap path
-reaches the accurate preset's error, and at what cost; it judges nothing.
+reaches the accurate preset's error, and at what cost; it judges nothing. ``--compare`` draws another build's paths
+(its ``--json``: an earlier commit, another MuJoCo) beside these, dashed and labelled with that build's commit.
 """
 
 from __future__ import annotations
@@ -31,7 +32,9 @@ from mjpoincare.commands.extrapolate import coarse_grids, extrapolate
 from mjpoincare.commands.validation import run_steps, run_validation
 from mjpoincare.core import progress
 from mjpoincare.core.cost import refuse_long
+from mjpoincare.core.params import ParameterError
 from mjpoincare.core.result import write_bytes, write_json
+from mjpoincare.core.stamp import git_state
 
 #: The paths, in the order they are run and drawn.
 PATHS = ("fast", "accurate", "fast + Richardson")
@@ -80,7 +83,26 @@ def measure_paths(name: str, assignments: Mapping[str, str]) -> dict[str, Any]:
         rows.append({"path": PATHS[2], "wall_s": entry["wall_s"], "passed": fast.passed, "errors": errors,
                      "not_clean": not_clean})
         bar.update(1)
-    return {"scenario": name, "mujoco_version": mujoco.__version__, "accuracy": list(accuracy), "paths": rows}
+    sha, dirty = git_state()
+    build = f"{sha[:7]}{'+' if dirty else ''}" if sha else "this build"
+    return {"scenario": name, "mujoco_version": mujoco.__version__, "build": build, "accuracy": list(accuracy),
+            "paths": rows}
+
+
+def load_compare(path: str, name: str) -> dict[str, Any]:
+    """Another build's ``bench NAME --paths --json`` to draw beside this one; refused (before any run) when it is not
+    one, or is of another scenario."""
+    import json
+
+    try:
+        data = json.loads(Path(path).read_text())
+    except (OSError, ValueError) as err:
+        raise ParameterError(f"--compare {path}: not a readable bench --paths JSON ({err})") from None
+    if not isinstance(data, dict) or "paths" not in data:
+        raise ParameterError(f"--compare {path}: not a bench --paths JSON (no 'paths')")
+    if data.get("scenario") != name:
+        raise ParameterError(f"--compare {path} is of {data.get('scenario')!r}, not {name!r}")
+    return data
 
 
 def format_table(data: Mapping[str, Any]) -> str:
@@ -94,25 +116,33 @@ def format_table(data: Mapping[str, Any]) -> str:
           *(f"{r['errors'].get(k, math.nan):.2e}{'*' if k in r['not_clean'] else ''}" for k in keys)) for r in rows])
 
 
-def plot(data: Mapping[str, Any], path: str) -> None:
+def plot(data: Mapping[str, Any], path: str, compare: Mapping[str, Any] | None = None) -> None:
     """Each accuracy component's error against each path's wall time (log-log), one line per component through the
-    three paths in order of wall time, on one figure."""
+    three paths in order of wall time, on one figure; ``compare``'s the same, dashed, in the same colour per
+    component."""
     from matplotlib.figure import Figure
 
-    fig = Figure(figsize=(7, 4.5))
+    fig = Figure(figsize=(7.5, 5))
     ax = fig.subplots()
-    rows = data["paths"]
     markers = dict(zip(PATHS, ("o", "s", "^"), strict=True))
-    rows = sorted(rows, key=lambda r: r["wall_s"])
-    for key in rows[0]["errors"]:
-        walls = [r["wall_s"] for r in rows]
-        errors = [max(r["errors"].get(key, math.nan), 1e-17) for r in rows]
-        line, = ax.plot(walls, errors, "-", lw=0.8, alpha=0.6)
-        for r, w, e in zip(rows, walls, errors, strict=True):
-            ax.plot([w], [e], markers[r["path"]], color=line.get_color(), mfc="none" if key in r["not_clean"] else None)
-        ax.annotate(key, (walls[0], errors[0]), fontsize=6, xytext=(3, 3), textcoords="offset points")
+    colours: dict[str, Any] = {}
+    for build, style in ((data, "-"), *(((compare, "--"),) if compare is not None else ())):
+        rows = sorted(build["paths"], key=lambda r: r["wall_s"])
+        for key in data["paths"][0]["errors"]:
+            walls = [r["wall_s"] for r in rows]
+            errors = [max(r["errors"].get(key, math.nan), 1e-17) for r in rows]
+            line, = ax.plot(walls, errors, style, lw=0.8, alpha=0.6, color=colours.get(key))
+            colours.setdefault(key, line.get_color())
+            for r, w, e in zip(rows, walls, errors, strict=True):
+                ax.plot([w], [e], markers[r["path"]], color=colours[key],
+                        mfc="none" if key in r["not_clean"] else None)
+            if style == "-":
+                ax.annotate(key, (walls[0], errors[0]), fontsize=6, xytext=(3, 3), textcoords="offset points")
     for label, marker in markers.items():
         ax.plot([], [], marker, color="k", label=label)
+    if compare is not None:
+        ax.plot([], [], "-", color="k", label=f"{data.get('build', 'this build')} (solid)")
+        ax.plot([], [], "--", color="k", label=f"{compare.get('build', 'compared build')} (dashed)")
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("wall time of the path, s (2 threads)")
@@ -125,13 +155,19 @@ def plot(data: Mapping[str, Any], path: str) -> None:
     write_bytes(buffer.getvalue(), path)
 
 
-def run_paths(name: str, assignments: Mapping[str, str], output: str, json_path: str | None) -> int:
-    """Measure the paths, print the table, write the PNG (and JSON); exit 0."""
+def run_paths(name: str, assignments: Mapping[str, str], output: str, json_path: str | None,
+              compare: str | None = None) -> int:
+    """Measure the paths, print the table (and ``compare``'s, another build's JSON), write the PNG (and JSON);
+    exit 0."""
+    other = load_compare(compare, name) if compare else None
     data = measure_paths(name, assignments)
     print(f"{name}: the paths to an accurate value (error = |simulated - analytic| of each accuracy component; "
           "* no clean three-grid order, the fast value kept)")
     print(format_table(data))
-    plot(data, output.format(scenario=name))
+    if other is not None:
+        print(f"compared build {other.get('build', '(unnamed)')} (MuJoCo {other.get('mujoco_version')}):")
+        print(format_table(other))
+    plot(data, output.format(scenario=name), other)
     if json_path:
         write_json(jsonable(data), json_path.format(scenario=name))
     return 0
