@@ -43,6 +43,7 @@ print("|---|---|---|---|---|---|---|")
 table = []
 for dt in steps:
     runs = [json.loads(path(dt, sp).read_text()) for sp in STARTS]
+    runs = [d["results"][0] if "results" in d else d for d in runs]  # the CLI's JSON holds one result per scenario
     chk = [{c["name"]: c for c in d["checks"]} for d in runs]
     err = np.array([c["eigenvalues"]["error"] for c in chk])
     resid = float(np.mean([np.sqrt(np.mean(np.square(d["fit"]["residual_rms"]))) for d in runs]))
