@@ -33,7 +33,8 @@ def _require_viz(what: str, *modules: str) -> None:
 def _cmd_list(_: argparse.Namespace) -> int:
     from mjpoincare import scenarios
 
-    for scenario in scenarios.REGISTRY.values():
+    for name in scenarios.loadable():
+        scenario = scenarios.REGISTRY[name]
         print(f"{scenario.name}: {scenario.summary}")
         print(f"  source: {scenario.source}")
         print(f"  presets: {', '.join(scenario.presets)} (default {scenario.default_preset})"
@@ -55,7 +56,9 @@ def _cmd_list(_: argparse.Namespace) -> int:
     print("simulator settings (--set NAME=VALUE on top of the preset; a preset's own values are listed above):")
     for p in SETTINGS:
         print(f"  {p.name} = {p.default}  ({p.doc}; {p.range_text()})")
-    return EXIT_PASS
+    for line in scenarios.REGISTRY.broken.values():  # listed last, after every scenario that loads
+        print(f"mjpoincare: error: {line}", file=sys.stderr)
+    return EXIT_BAD_INPUT if scenarios.REGISTRY.broken else EXIT_PASS
 
 
 def _cmd_validate(args: argparse.Namespace) -> int:

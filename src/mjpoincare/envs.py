@@ -1,4 +1,5 @@
-"""The validated systems as dm_control environments: ``load(name, preset=None, environment_kwargs=None, **values)``.
+"""The validated systems as dm_control environments: ``load(name, preset=None, *, task_kwargs=None,
+environment_kwargs=None, **values)`` (the keyword arguments in ``dm_control.suite.load``'s order).
 
 Each registered scenario (:data:`ALL`) loads as a :class:`dm_control.rl.control.Environment`, in the manner of
 ``dm_control.suite``: a :class:`Physics` over the scenario's compiled model with the given physical parameters and
@@ -193,18 +194,18 @@ def sub_steps(control_timestep: float, physics_timestep: float) -> int:
     return max(1, round(control_timestep / physics_timestep))
 
 
-def load(name: str, preset: str | None = None, environment_kwargs: Mapping[str, Any] | None = None,
-         task_kwargs: Mapping[str, Any] | None = None, **values: Value) -> control.Environment:
+def load(name: str, preset: str | None = None, *, task_kwargs: Mapping[str, Any] | None = None,
+         environment_kwargs: Mapping[str, Any] | None = None, **values: Value) -> control.Environment:
     """The dm_control environment of scenario ``name``.
 
     Args:
         name: a registered scenario (:data:`ALL`), e.g. ``"rimless-wheel"``.
         preset: simulator preset (``"fast"``, ``"accurate"``, ...); None is the scenario's default.
+        task_kwargs: passed to :class:`SystemTask`: ``start`` (row of the start batch, None: random) and ``random``.
         environment_kwargs: passed to :class:`dm_control.rl.control.Environment` (``time_limit``, default
             :data:`DEFAULT_TIME_LIMIT`; ``n_sub_steps``, or ``control_timestep`` in s, default
             :data:`DEFAULT_CONTROL_TIMESTEP`, rounded to whole physics steps by :func:`sub_steps`: the environment's
             ``control_timestep()`` returns the rounded value).
-        task_kwargs: passed to :class:`SystemTask`: ``start`` (row of the start batch, None: random) and ``random``.
         **values: physical parameters and simulator settings, typed (``spokes=8``; text for a number is refused),
             as for :func:`mjpoincare.validate`.
 

@@ -113,6 +113,7 @@ def run_validation(name: str, assignments: Mapping[str, Value] | None = None, pr
     start = time.perf_counter()
     evaluation = scenario.evaluate(params, settings, preset_name, seed)
     wall = time.perf_counter() - start
+    scenarios.check_evaluation(scenario, evaluation)
     report = evaluation.rollout
     diverged = [int(i) for i in report.diverged.nonzero()[0]]
     checks = [*evaluation.checks, *missing_checks(scenario.checks_for(params, settings), evaluation.checks),

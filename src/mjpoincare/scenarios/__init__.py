@@ -20,7 +20,8 @@ from collections.abc import Iterator, MutableMapping
 from importlib.metadata import EntryPoint, entry_points
 
 from mjpoincare.core.params import ParameterError
-from mjpoincare.scenarios.base import Evaluation, Scenario
+from mjpoincare.scenarios.base import DeclarationError, Evaluation, Scenario
+from mjpoincare.scenarios.declaration import check_declaration, check_evaluation, load_error
 
 #: The entry-point group a distribution declares its scenarios in: ``name = "module:attribute"`` of a Scenario.
 GROUP = "mjpoincare.scenarios"
@@ -35,6 +36,8 @@ class Registry(MutableMapping[str, Scenario]):
         self._group = group
         self._entries: dict[str, EntryPoint] | None = None
         self._loaded: dict[str, Scenario] = {}
+        #: name -> the one-line error of a scenario whose module or declaration failed (it stays out of every run)
+        self.broken: dict[str, str] = {}
 
     @property
     def entries(self) -> dict[str, EntryPoint]:
@@ -55,12 +58,22 @@ class Registry(MutableMapping[str, Scenario]):
         return None if dist is None else dist.name
 
     def __getitem__(self, name: str) -> Scenario:
+        """The scenario, loaded and its declaration checked on first access; a plugin that fails either raises
+        :class:`DeclarationError` in one line naming the distribution, its entry point, the field and the fix (the
+        same line every later access: other scenarios are unaffected)."""
+        if name in self.broken:
+            raise DeclarationError(self.broken[name])
         if name not in self._loaded:
-            scenario = self.entries[name].load()
-            if not isinstance(scenario, Scenario):
-                raise TypeError(f"entry point {name!r} ({self.entries[name].value}) is not a Scenario")
-            if scenario.name != name:
-                raise RuntimeError(f"entry point {name!r} loads scenario {scenario.name!r}")
+            entry = self.entries[name]
+            where = f"plugin {self.distribution(name) or '?'} ({entry.value})"
+            try:
+                scenario = entry.load()
+                if not isinstance(scenario, Scenario):
+                    raise DeclarationError(f"the entry point loads a {type(scenario).__name__}, not a Scenario")
+                check_declaration(scenario, name)
+            except Exception as err:  # an author's mistake at import or declaration: one line, never a traceback
+                self.broken[name] = f"{where}: {load_error(err)}"
+                raise DeclarationError(self.broken[name]) from None
             self._loaded[name] = scenario
         return self._loaded[name]
 
@@ -82,10 +95,24 @@ class Registry(MutableMapping[str, Scenario]):
 REGISTRY = Registry(GROUP)
 
 
+def loadable() -> list[str]:
+    """Every registered scenario whose module and declaration load (a broken plugin's error is in
+    ``REGISTRY.broken``), in the registry's order."""
+    names = []
+    for name in REGISTRY:
+        try:
+            REGISTRY[name]
+        except DeclarationError:
+            continue
+        names.append(name)
+    return names
+
+
 def default_scenarios() -> tuple[str, ...]:
     """What ``mjpoincare validate`` runs when no scenario is named (the main job): every registered scenario whose
-    :attr:`Scenario.default` is set, a plugin's included, in the registry's order (by name)."""
-    return tuple(name for name in REGISTRY if REGISTRY[name].default)
+    :attr:`Scenario.default` is set, a plugin's included, in the registry's order (by name); a broken plugin is left
+    out (its error in ``REGISTRY.broken``)."""
+    return tuple(name for name in loadable() if REGISTRY[name].default)
 
 
 def get(name: str) -> Scenario:
@@ -100,4 +127,5 @@ def get(name: str) -> Scenario:
     return REGISTRY[name]
 
 
-__all__ = ["GROUP", "REGISTRY", "Evaluation", "Scenario", "default_scenarios", "get"]
+__all__ = ["GROUP", "REGISTRY", "DeclarationError", "Evaluation", "Scenario", "check_evaluation", "default_scenarios",
+           "get", "loadable"]

@@ -10,6 +10,8 @@ preset without tolerances is an error, never a fallback.
 
 from __future__ import annotations
 
+import difflib
+import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any, Protocol, TypeVar
@@ -40,6 +42,11 @@ class MissingTolerances(LookupError):
     """A scenario offers a preset for which it declares no tolerances (a bug in the scenario, not in its input)."""
 
 
+class DeclarationError(ParameterError, TypeError):
+    """A mistake in a scenario's declaration or in what its ``evaluate`` returns (the system author's, not the user's
+    input): one line naming the field and the fix; the commands exit 2 with it, as for a refused input."""
+
+
 def at_preset(table: Mapping[str, T], scenario: str, preset: str) -> T:
     """``table[preset]``: a scenario's tolerances (or the reasons for them) at ``preset``.
 
@@ -67,9 +74,25 @@ class Tolerances:
     why: str = ""
     reasons: Mapping[str, str] = field(default_factory=dict)
 
+    def __post_init__(self) -> None:
+        """Refuse a bound that is not a finite positive number (0 would fail every run, NaN pass none, in a way that
+        reads as physics)."""
+        for check, bound in self.bounds.items():
+            if isinstance(bound, bool) or not isinstance(bound, (int, float)) or not math.isfinite(bound) \
+                    or bound <= 0:
+                raise DeclarationError(f"Tolerances: the bound of {check!r} must be a finite number > 0 (got "
+                                       f"{bound!r})")
+
     def __getitem__(self, check: str) -> float:
-        """The bound of ``check`` (KeyError for a check the table does not bound)."""
-        return self.bounds[check]
+        """The bound of ``check``; one that the table does not bound raises :class:`DeclarationError` naming the
+        bounds it has."""
+        try:
+            return self.bounds[check]
+        except KeyError:
+            close = difflib.get_close_matches(check, list(self.bounds), n=1)
+            hint = f"; did you mean {close[0]!r}?" if close else ""
+            raise DeclarationError(f"Tolerances: no bound for {check!r}{hint} (bounds: {', '.join(self.bounds)})"
+                                   ) from None
 
 
 #: A scenario's tolerances by preset.
@@ -128,8 +151,14 @@ class Evaluation:
         (a plugin written when ``extras["fit"]`` and the like were how the commands found these values)."""
         for key in sorted(self.extras.keys() & TYPED_EXTRAS.keys()):
             name, record = TYPED_EXTRAS[key]
-            raise TypeError(f"Evaluation: extras[{key!r}] is now the field {name}= (a mjpoincare.plugin.{record}), "
-                            "not an extra")
+            raise DeclarationError(f"Evaluation: extras[{key!r}] is now the field {name}= (a "
+                                   f"mjpoincare.plugin.{record}), not an extra")
+        if not isinstance(self.rollout, RolloutReport):
+            raise DeclarationError(f"Evaluation: rollout= must be the RolloutReport of the scenario's rollouts (what "
+                                   f"rollout_batch or event_rollout returns; got {type(self.rollout).__name__})")
+        if not isinstance(self.checks, (list, tuple)) or not all(isinstance(c, Check) for c in self.checks):
+            raise DeclarationError("Evaluation: checks= must be a list of Check (made by relative, absolute, "
+                                   "fraction or categorical)")
 
 
 #: Former extras that are now fields of :class:`Evaluation`: key -> (field, record).

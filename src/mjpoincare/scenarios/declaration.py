@@ -1,0 +1,81 @@
+"""A scenario's declaration checked when the registry loads it, before anything runs: each mistake a system author
+can make in the :class:`~mjpoincare.scenarios.base.Scenario` record, as one line naming the field and the fix
+(:class:`~mjpoincare.scenarios.base.DeclarationError`).
+
+What is checked here is what the record itself shows: the fields it was built with, its presets' setting names, its
+seam mechanisms, its parameters' bounds, its name against its entry point, its tolerances (each
+:class:`~mjpoincare.scenarios.base.Tolerances` refuses a bound that is not finite and positive when it is built).
+What ``evaluate`` returns is checked on its first return (:func:`check_evaluation`).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import difflib
+import re
+from collections.abc import Iterable
+
+from mjpoincare.analysis.checks import Check
+from mjpoincare.core import settings as sim_settings
+from mjpoincare.scenarios.base import DeclarationError, Evaluation, Scenario
+from mjpoincare.simulation.seam_check import MECHANISMS
+
+
+def _closest(word: str, known: Iterable[str]) -> str:
+    """``; did you mean 'x'?`` for the closest of ``known``, or nothing."""
+    close = difflib.get_close_matches(word, list(known), n=1, cutoff=0.6)
+    return f"; did you mean {close[0]!r}?" if close else ""
+
+
+def load_error(error: BaseException) -> str:
+    """What went wrong while a scenario's module was imported or its record built, in one line: an unknown field of
+    a record gets the closest field's name."""
+    text = str(error).splitlines()[0] if str(error) else type(error).__name__
+    unknown = re.search(r"(\w+)\.__init__\(\) got an unexpected keyword argument '(\w+)'", text)
+    if unknown:
+        record = {"Scenario": Scenario}.get(unknown.group(1))
+        if record is not None:
+            fields = (f.name for f in dataclasses.fields(record))
+            return f"{unknown.group(1)} has no field {unknown.group(2)!r}{_closest(unknown.group(2), fields)}"
+    return text if isinstance(error, DeclarationError) else f"{type(error).__name__}: {text}"
+
+
+def check_declaration(scenario: Scenario, entry_name: str) -> None:
+    """Refuse, in one line naming the field and the fix, a declaration the commands would trip over later."""
+    if scenario.name != entry_name:
+        raise DeclarationError(f"name={scenario.name!r} differs from its entry point {entry_name!r}: make them the "
+                               "same")
+    settings = [p.name for p in sim_settings.SETTINGS]
+    for preset, values in scenario.presets.items():
+        for key in values:
+            if key not in settings:
+                raise DeclarationError(f"presets[{preset!r}] sets {key!r}, which is not a simulator setting"
+                                       f"{_closest(key, settings)} (mjpoincare list shows them)")
+    for key in scenario.mechanisms:
+        if key not in MECHANISMS:
+            raise DeclarationError(f"mechanisms= names {key!r}, not a seam mechanism{_closest(key, MECHANISMS)} "
+                                   f"(known: {', '.join(MECHANISMS)})")
+    for param in scenario.params:
+        if param.choices is None and param.kind in (int, float) and (param.low is None or param.high is None):
+            raise DeclarationError(f"Param {param.name!r} has no bounds: give low= and high= (the values the "
+                                   "theory holds for), so that a value outside is refused before any simulation")
+    if scenario.default_preset not in scenario.presets:
+        raise DeclarationError(f"default_preset={scenario.default_preset!r} is not one of presets= "
+                               f"({', '.join(scenario.presets)})")
+
+
+def check_evaluation(scenario: Scenario, evaluation: object) -> None:
+    """Refuse what ``evaluate`` returned when it is not an :class:`Evaluation`, reports no check, or reports one the
+    scenario does not declare (its ``checks``, or where it declares none its ``accuracy_checks``)."""
+    if not isinstance(evaluation, Evaluation):
+        raise DeclarationError(f"evaluate returned {type(evaluation).__name__}, not an Evaluation")
+    names = [c.name for c in evaluation.checks if isinstance(c, Check)]
+    if not names:
+        raise DeclarationError("evaluate reported no check: a run must be judged on something (report the checks "
+                               "checks= declares)")
+    declared = scenario.checks or scenario.accuracy_checks
+    field = "checks=" if scenario.checks else "accuracy_checks= (checks= is empty)"
+    for name in names:
+        if name not in declared:
+            raise DeclarationError(f"evaluate reported check {name!r}, which {field} does not declare"
+                                   f"{_closest(name, declared)} (declared: {', '.join(declared)})")
