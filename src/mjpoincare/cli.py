@@ -709,7 +709,34 @@ def build_parser() -> argparse.ArgumentParser:
     render.add_argument("--fps", type=int, default=30)
     render.add_argument("--size", default="640x480", help="WIDTHxHEIGHT")
     render.set_defaults(func=_cmd_render)
+    check = sub.add_parser("check-plugin", help="the scenario contract and the gate's forms against an installed "
+                           "scenario (a plugin's): one line per clause")
+    check.add_argument("scenario", help="scenario name")
+    check.set_defaults(func=_cmd_check_plugin)
+    new = sub.add_parser("new-scenario", help="write a minimal working scenario plugin to start from (a folder with "
+                         "its pyproject.toml, package, model and README)")
+    new.add_argument("name", help="the scenario's name, lower-case words joined by hyphens")
+    new.add_argument("--dir", default=None, help="the folder to write (default ./NAME; must not exist)")
+    new.set_defaults(func=_cmd_new_scenario)
     return parser
+
+
+def _cmd_check_plugin(args: argparse.Namespace) -> int:
+    no_gl = _select_still_backend()  # before MuJoCo is imported: the stills' OpenGL backend
+    from mjpoincare.commands.check_plugin import check_plugin
+
+    if no_gl:
+        print(f"note: {no_gl}: the still clauses will fail")
+    return check_plugin(args.scenario)
+
+
+def _cmd_new_scenario(args: argparse.Namespace) -> int:
+    from mjpoincare.commands.new_scenario import write_scenario
+
+    root = write_scenario(args.name, args.dir)
+    print(f"wrote {root}/ (pyproject.toml, {args.name.replace('-', '_')}/, README.md): pip install -e {root} && "
+          f"mjpoincare check-plugin {args.name}")
+    return EXIT_PASS
 
 
 def main(argv: Sequence[str] | None = None) -> int:

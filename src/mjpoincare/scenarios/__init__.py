@@ -20,8 +20,9 @@ from collections.abc import Iterator, MutableMapping
 from importlib.metadata import EntryPoint, entry_points
 
 from mjpoincare.core.params import ParameterError
-from mjpoincare.scenarios.base import DeclarationError, Evaluation, Scenario
+from mjpoincare.scenarios.base import DeclarationError, Evaluation, Scenario, Tolerances, at_preset
 from mjpoincare.scenarios.declaration import check_declaration, check_evaluation, load_error
+from mjpoincare.scenarios.gate_cases import GateCase
 
 #: The entry-point group a distribution declares its scenarios in: ``name = "module:attribute"`` of a Scenario.
 GROUP = "mjpoincare.scenarios"
@@ -127,5 +128,5 @@ def get(name: str) -> Scenario:
     return REGISTRY[name]
 
 
-__all__ = ["GROUP", "REGISTRY", "DeclarationError", "Evaluation", "Scenario", "check_evaluation", "default_scenarios",
-           "get", "loadable"]
+__all__ = ["GROUP", "REGISTRY", "DeclarationError", "Evaluation", "GateCase", "Scenario", "Tolerances", "at_preset",
+           "check_evaluation", "default_scenarios", "get", "loadable"]
