@@ -151,3 +151,14 @@ def test_bad_tune_input_is_refused_before_any_trial(tmp_path: Path, capsys: pyte
     assert "--target must be one of accurate, fast" in capsys.readouterr().err
     assert main(["tune", "rimless-wheel", "--trials", "0", "--study", str(db)]) == 2
     assert not db.exists()
+
+
+def test_a_study_too_long_to_run_is_refused_before_it_starts(tmp_path: Path,
+                                                              capsys: pytest.CaptureFixture[str]) -> None:
+    """``--trials`` whose estimated steps (each trial the target preset's validations over the coverage points) pass
+    the cost check's bound: one line with the estimate and the remedy, exit 2, no study written."""
+    study = tmp_path / "study.db"
+    assert main(["tune", "rimless-wheel", "--target", "fast", "--trials", "100000000", "--study", str(study)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "tune rimless-wheel --trials 100000000" in err[0] and "give fewer --trials" in err[0]
+    assert not study.exists()

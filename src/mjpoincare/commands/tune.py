@@ -43,9 +43,10 @@ from typing import Any
 
 from mjpoincare import scenarios
 from mjpoincare.analysis.checks import Check
-from mjpoincare.commands.validation import resolve_inputs, run_validation
+from mjpoincare.commands.validation import resolve_inputs, run_steps, run_validation
 from mjpoincare.core import progress
 from mjpoincare.core import settings as sim_settings
+from mjpoincare.core.cost import refuse_long
 from mjpoincare.core.params import ParameterError, Value, resolve
 from mjpoincare.scenarios.base import CoveragePoint
 
@@ -311,6 +312,10 @@ def run_study(name: str, target: str, *, trials: int, workers: int, path: Path, 
     if trials < 1 or workers < 1:
         raise ParameterError(f"--trials and --workers must be >= 1 (got {trials}, {workers})")
     resolve_inputs(name, {}, target)
+    per_trial = sum(run_steps(name, dict(point.assignments), target) for point in scenario.coverage) or run_steps(
+        name, {}, target)
+    refuse_long(trials * per_trial, f"tune {name} --trials {trials} (each trial about the {target} preset's "
+                f"{per_trial:.3g} steps over the coverage points)", allow=False, remedy="give fewer --trials")
     extra = [enqueued_params(scenario, a) for a in enqueue]
     path.parent.mkdir(parents=True, exist_ok=True)
     url, label = storage_url(path), study_name(name, target)
