@@ -17,6 +17,7 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
+from mjpoincare import scenarios
 from mjpoincare.analysis.tables import markdown_table
 from mjpoincare.core.result import write_text
 from mjpoincare.core.stamp import stamp_table, table_cell
@@ -81,6 +82,23 @@ def merged(runs: Mapping[str, Mapping[str, Any]]) -> list[dict[str, Any]]:
         best = rec["by_preset"].get("accurate") or rec["by_preset"]["fast"]
         rec["verdict"] = best["verdict"]
     return list(order.values())
+
+
+def judged(runs: Mapping[str, Mapping[str, Any]]) -> dict[str, dict[str, Any]]:
+    """``runs`` with each failing row judged against today's declarations: a declared miss (its mechanism, ``why``
+    and verdict ``miss``) or a ``FAIL``; a pure function of the measurement and the declaration, as the gate's page
+    judges its rows (a declaration changed since the run is judged without simulating again)."""
+    declared = {r.id: r for name in scenarios.REGISTRY for r in scenarios.REGISTRY[name].paper_results}
+    out: dict[str, dict[str, Any]] = {}
+    for preset, run in runs.items():
+        rows = []
+        for row in run.get("results", []):
+            result = declared.get(row["id"])
+            if result is not None and row["verdict"] in ("miss", "FAIL"):
+                row = {**row, "miss": result.miss, "why": result.why, "verdict": "miss" if result.miss else "FAIL"}
+            rows.append(row)
+        out[preset] = {**run, "results": rows}
+    return out
 
 
 def summary(records: Sequence[Mapping[str, Any]]) -> str:
@@ -189,7 +207,7 @@ def readme(records: Sequence[Mapping[str, Any]], runs: Mapping[str, Mapping[str,
 
 def render(runs: Mapping[str, Mapping[str, Any]]) -> dict[str, str]:
     """Every page by file name."""
-    records = merged(runs)
+    records = merged(judged(runs))
     env = (runs.get("fast") or runs["accurate"])["environment"]
     pages = {"README.md": readme(records, runs)}
     pages |= {f"{paper}.md": paper_page(paper, records, env) for paper in TITLES}
