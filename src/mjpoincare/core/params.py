@@ -144,14 +144,19 @@ def resolve(
     return values
 
 
+def did_you_mean(word: str, known: Iterable[str]) -> str:
+    """``; did you mean 'x'?`` naming the closest of ``known`` to ``word`` (difflib's ratio at least 0.6), or
+    nothing: the hint every refusal of an unknown name carries."""
+    close = difflib.get_close_matches(word, list(known), n=1, cutoff=0.6)
+    return f"; did you mean {close[0]!r}?" if close else ""
+
+
 def unknown(names: Iterable[str], *declared: Sequence[Param]) -> None:
     """Raise :class:`ParameterError` for the first name not declared in any of ``declared``."""
     known = sorted({p.name for group in declared for p in group})
     for name in names:
         if name not in known:
-            close = difflib.get_close_matches(name, known, n=1, cutoff=0.6)
-            hint = f"; did you mean {close[0]!r}?" if close else ""
-            raise ParameterError(f"unknown parameter {name!r}{hint} (known: {', '.join(known)})")
+            raise ParameterError(f"unknown parameter {name!r}{did_you_mean(name, known)} (known: {', '.join(known)})")
 
 
 def _span(start: str, stop: str, count: str) -> list[str]:

@@ -15,11 +15,10 @@ only through this registry.
 
 from __future__ import annotations
 
-import difflib
 from collections.abc import Iterator, MutableMapping
 from importlib.metadata import EntryPoint, entry_points
 
-from mjpoincare.core.params import ParameterError
+from mjpoincare.core.params import ParameterError, did_you_mean
 from mjpoincare.scenarios.base import DeclarationError, Evaluation, Scenario, Tolerances, at_preset
 from mjpoincare.scenarios.declaration import check_declaration, check_evaluation, load_error
 from mjpoincare.scenarios.gate_cases import GateCase
@@ -122,8 +121,7 @@ def get(name: str) -> Scenario:
         known = list(REGISTRY)
         if "=" in name:
             raise ParameterError(f"unknown scenario {name!r}: to set a parameter or setting, give --set {name}")
-        close = difflib.get_close_matches(name.replace("_", "-").lower(), known, n=1, cutoff=0.6)
-        hint = f"; did you mean {close[0]!r}?" if close else ""
+        hint = did_you_mean(name.replace("_", "-").lower(), known)
         raise ParameterError(f"unknown scenario {name!r}{hint} (known: {', '.join(known)})")
     return REGISTRY[name]
 

@@ -10,7 +10,6 @@ preset without tolerances is an error, never a fallback.
 
 from __future__ import annotations
 
-import difflib
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
@@ -28,7 +27,7 @@ from mjpoincare.core.outputs import (
     ReturnMapPlot,
     SectionConvergence,
 )
-from mjpoincare.core.params import Param, ParameterError, Values
+from mjpoincare.core.params import Param, ParameterError, Values, did_you_mean
 from mjpoincare.core.seam import RolloutReport
 from mjpoincare.core.settings import SEARCH_SPACE, Dimension
 from mjpoincare.engines.peers import Peer
@@ -89,10 +88,8 @@ class Tolerances:
         try:
             return self.bounds[check]
         except KeyError:
-            close = difflib.get_close_matches(check, list(self.bounds), n=1)
-            hint = f"; did you mean {close[0]!r}?" if close else ""
-            raise DeclarationError(f"Tolerances: no bound for {check!r}{hint} (bounds: {', '.join(self.bounds)})"
-                                   ) from None
+            raise DeclarationError(f"Tolerances: no bound for {check!r}{did_you_mean(check, self.bounds)} (bounds: "
+                                   f"{', '.join(self.bounds)})") from None
 
 
 #: A scenario's tolerances by preset.

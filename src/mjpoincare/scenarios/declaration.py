@@ -11,20 +11,13 @@ What ``evaluate`` returns is checked on its first return (:func:`check_evaluatio
 from __future__ import annotations
 
 import dataclasses
-import difflib
 import re
-from collections.abc import Iterable
 
 from mjpoincare.analysis.checks import Check
 from mjpoincare.core import settings as sim_settings
+from mjpoincare.core.params import did_you_mean
 from mjpoincare.scenarios.base import DeclarationError, Evaluation, Scenario
 from mjpoincare.simulation.seam_check import MECHANISMS
-
-
-def _closest(word: str, known: Iterable[str]) -> str:
-    """``; did you mean 'x'?`` for the closest of ``known``, or nothing."""
-    close = difflib.get_close_matches(word, list(known), n=1, cutoff=0.6)
-    return f"; did you mean {close[0]!r}?" if close else ""
 
 
 def load_error(error: BaseException) -> str:
@@ -36,7 +29,7 @@ def load_error(error: BaseException) -> str:
         record = {"Scenario": Scenario}.get(unknown.group(1))
         if record is not None:
             fields = (f.name for f in dataclasses.fields(record))
-            return f"{unknown.group(1)} has no field {unknown.group(2)!r}{_closest(unknown.group(2), fields)}"
+            return f"{unknown.group(1)} has no field {unknown.group(2)!r}{did_you_mean(unknown.group(2), fields)}"
     return text if isinstance(error, DeclarationError) else f"{type(error).__name__}: {text}"
 
 
@@ -50,10 +43,10 @@ def check_declaration(scenario: Scenario, entry_name: str) -> None:
         for key in values:
             if key not in settings:
                 raise DeclarationError(f"presets[{preset!r}] sets {key!r}, which is not a simulator setting"
-                                       f"{_closest(key, settings)} (mjpoincare list shows them)")
+                                       f"{did_you_mean(key, settings)} (mjpoincare list shows them)")
     for key in scenario.mechanisms:
         if key not in MECHANISMS:
-            raise DeclarationError(f"mechanisms= names {key!r}, not a seam mechanism{_closest(key, MECHANISMS)} "
+            raise DeclarationError(f"mechanisms= names {key!r}, not a seam mechanism{did_you_mean(key, MECHANISMS)} "
                                    f"(known: {', '.join(MECHANISMS)})")
     for param in scenario.params:
         if param.choices is None and param.kind in (int, float) and (param.low is None or param.high is None):
@@ -78,4 +71,4 @@ def check_evaluation(scenario: Scenario, evaluation: object) -> None:
     for name in names:
         if name not in declared:
             raise DeclarationError(f"evaluate reported check {name!r}, which {field} does not declare"
-                                   f"{_closest(name, declared)} (declared: {', '.join(declared)})")
+                                   f"{did_you_mean(name, declared)} (declared: {', '.join(declared)})")
