@@ -30,8 +30,10 @@
 #                     per run (resumable), into docs/results/backends/; PRESETS, BATCH (the batch setting), MAPS (the
 #                     friction wheel's basin map, MAPS x MAPS starts, and mu sweep, MAPS values; 0 = none), SCALING
 #                     (batch sizes to time a batched step at), WORKERS
-#   make releases     the MuJoCo release history: one nox session per release (noxfile.py, uv), RELEASE_WORKERS at a
-#                     time, resumable, into docs/results/releases/json/, then docs/results/mujoco-releases.md
+#   make releases     the MuJoCo release history: asks the package index which releases exist (the oldest admitted,
+#                     the newest patch of each minor line, every patch of the newest), then one nox session (noxfile.py,
+#                     uv) per release the page lacks, RELEASE_WORKERS at a time, resumable, into
+#                     docs/results/releases/json/, then docs/results/mujoco-releases.md
 #   make releases-render  re-render docs/results/mujoco-releases.md from the committed JSON (no simulation)
 #   make bisect LOW=3.17.0 HIGH=4.0.0 CHECK=rimless-wheel/eigenvalue [PRESET=fast]   the first patch release between
 #                     two releases where a check really changes (beyond its spread)

@@ -1,6 +1,7 @@
 """The MuJoCo release matrix: one nox session per MuJoCo release, uv as the installer.
 
-    nox -s "release(mujoco='3.3.7')"          the history's runs on MuJoCo 3.3.7 (make releases runs them all)
+    nox -s "release(mujoco='3.3.7')"          the history's runs on MuJoCo 3.3.7, one of the releases the package
+                                              index listed (make releases runs those the page lacks)
     nox -s release_point -- 3.3.5 [ARGS]      the same on any release, for python -m mjpoincare.gate.releases bisect
     nox -s oldest                             every built-in scenario's default validation on the oldest MuJoCo
                                               admitted (CI)
@@ -17,7 +18,7 @@ from pathlib import Path
 
 import nox
 
-from mjpoincare.gate.releases import OLDEST, RELEASES, history_scenarios
+from mjpoincare.gate.releases import OLDEST, history_scenarios, load_index
 
 nox.options.default_venv_backend = "uv"
 nox.options.reuse_existing_virtualenvs = True
@@ -37,7 +38,7 @@ def _install(session: nox.Session, mujoco: str, *, editable: bool = True) -> Non
 
 
 @nox.session
-@nox.parametrize("mujoco", list(RELEASES))
+@nox.parametrize("mujoco", load_index()["history"])
 def release(session: nox.Session, mujoco: str) -> None:
     """The release history's runs on one MuJoCo (``python -m mjpoincare.gate.releases run``; resumable)."""
     _install(session, mujoco)

@@ -11,18 +11,20 @@ import json
 import math
 import re
 import subprocess
+import sys
 from pathlib import Path
 from typing import Any
 
 import pytest
 
 from mjpoincare import scenarios
-from mjpoincare.core import allowance
+from mjpoincare.core import allowance, stamp
 from mjpoincare.core.params import ParameterError
 from mjpoincare.gate import releases
 
 ROOT = Path(__file__).resolve().parent.parent
 PAYLOADS = releases.load(ROOT / releases.OUT)
+INDEX = releases.load_index(ROOT / releases.OUT)
 #: The rule the page states, written out again: a change is real beyond MULTIPLE times the larger spread and beyond
 #: ROUNDOFF of max(1, the larger magnitude of the two values).
 MULTIPLE, ROUNDOFF = 3.0, 1e-12
@@ -31,36 +33,44 @@ MULTIPLE, ROUNDOFF = 3.0, 1e-12
 def test_the_range_pyproject_admits_starts_at_the_oldest_release_of_the_history() -> None:
     pin = re.search(r'^\s*"mujoco>=([\d.]+),<5",', (ROOT / "pyproject.toml").read_text(), re.M)
     assert pin is not None and pin.group(1) == releases.OLDEST
-    assert releases.NEWEST.startswith("4.")
-    assert list(releases.RELEASES) == sorted(releases.RELEASES, key=releases.version_key)
+    assert INDEX["history"][0] == releases.OLDEST and INDEX["history"] == releases.history(INDEX["versions"])
 
 
-def test_the_history_holds_every_minor_line_once_with_the_oldest_admitted() -> None:
-    lines = [releases.version_key(v)[:2] for v in releases.RELEASES[1:]]
-    assert len(set(lines)) == len(lines)
-    first, last = lines[0], lines[-1]
-    minors = {(3, m) for m in range(first[1], 18)} | {(4, 0)}
-    assert first == releases.version_key(releases.OLDEST)[:2] and last == (4, 0) and set(lines) == minors
+def test_the_history_is_found_on_the_index_not_typed() -> None:
+    """The oldest admitted, the newest patch of every minor line, every patch of the newest line; no pre-release."""
+    index = ["3.3.3", "3.3.4", "3.3.5", "3.4.0rc1", "3.4.0", "3.4.1", "3.10.0", "4.0.0", "4.0.1", "4.1.0.dev1"]
+    assert releases.history(index, "3.3.4") == ["3.3.4", "3.3.5", "3.4.1", "3.10.0", "4.0.0", "4.0.1"]
+    assert releases.accurate_on(releases.history(index, "3.3.4")) == ("3.3.4", "4.0.0", "4.0.1")
+    found = releases.discover(fetch=lambda: index)
+    assert found["history"] == releases.history(index) and found["versions"][-1] == "4.0.1"
+    with pytest.raises(ParameterError, match=r"does not list MuJoCo 3\.3\.4"):
+        releases.discover(fetch=lambda: ["4.0.0"])
+    # the committed answer: every minor line from the oldest's to the newest release's, each once but the newest's
+    lines = [releases.version_key(v)[:2] for v in INDEX["history"][1:]]
+    newest = lines[-1]
+    assert len(set(lines)) == len(lines) - (lines.count(newest) - 1)
+    assert set(lines) == {releases.version_key(v)[:2] for v in INDEX["versions"]
+                          if releases.version_key(v) >= releases.version_key(releases.OLDEST)}
 
 
 def test_the_readme_ci_example_lists_releases_of_the_history() -> None:
     matrix = re.search(r"matrix: \{mujoco: \[(.*?)\]\}", (ROOT / "README.md").read_text())
     assert matrix is not None
     listed = re.findall(r'"([\d.]+)"', matrix.group(1))
-    assert listed and set(listed) <= set(releases.RELEASES) and releases.OLDEST in listed
+    assert listed and set(listed) <= set(INDEX["history"]) and releases.OLDEST in listed
 
 
 def test_committed_page_reproduces_from_its_json_and_covers_the_history() -> None:
     page = ROOT / releases.PAGE
-    assert page.read_text() == releases.render(PAYLOADS), f"{page} is stale: run make releases-render"
-    assert [p["mujoco"] for p in PAYLOADS] == list(releases.RELEASES)
+    assert page.read_text() == releases.render(PAYLOADS, INDEX), f"{page} is stale: run make releases-render"
+    assert [p["mujoco"] for p in PAYLOADS] == INDEX["history"]
     built_in = releases.history_scenarios()
     held = {r["scenario"] for p in PAYLOADS for r in p["runs"]}
     assert set(scenarios.default_scenarios()) <= held <= set(built_in)
     if missing := [n for n in built_in if n not in held]:  # named on the page until make releases runs them
         assert f"Not in this history yet: {', '.join(missing)} " in page.read_text()
     for payload in PAYLOADS:
-        presets = {"fast", "accurate"} if payload["mujoco"] in releases.ACCURATE_ON else {"fast"}
+        presets = {"fast", "accurate"} if payload["mujoco"] in releases.accurate_on(INDEX["history"]) else {"fast"}
         ran = {(r["scenario"], r["preset"]) for r in payload["runs"]}
         assert ran == {(n, p) for n in held for p in presets}, payload["mujoco"]
         assert payload["environment"]["mujoco"] == payload["mujoco"]
@@ -115,8 +125,9 @@ def test_distance_of_check_values(a: Any, b: Any, expected: float) -> None:
     assert releases.distance(a, b) == pytest.approx(expected, rel=1e-9)
 
 
-def _payload(version: str, value: float, spread: float, refused: str | None = None) -> dict[str, Any]:
-    env = {"mujoco": version, "numpy": "2", "scipy": "1", "python": "3.11", "cpu": "CPU", "git_sha": "abc",
+def _payload(version: str, value: float, spread: float, refused: str | None = None, sha: str = "abc"
+             ) -> dict[str, Any]:
+    env = {"mujoco": version, "numpy": "2", "scipy": "1", "python": "3.11", "cpu": "CPU", "git_sha": sha,
            "git_dirty": False, "date": "2026-01-01T00:00:00Z"}
     check = {"name": "eigenvalue", "analytic": 0.5, "simulated": value, "error": abs(value - 0.5),
              "error_kind": "absolute", "tolerance": 0.02, "passed": True, "spread": spread}
@@ -124,6 +135,11 @@ def _payload(version: str, value: float, spread: float, refused: str | None = No
            {"scenario": "toy", "preset": "fast", "refused": None, "passed": True, "wall_s": 1.0, "warnings": [],
             "checks": [check]})
     return {"schema": releases.SCHEMA, "mujoco": version, "environment": env, "runs": [run]}
+
+
+def _index(payloads: list[dict[str, Any]]) -> dict[str, Any]:
+    versions = [p["mujoco"] for p in payloads]
+    return {"index": releases.INDEX, "queried": "2026-01-01T00:00:00Z", "versions": versions, "history": versions}
 
 
 def _change(a: Any, b: Any) -> tuple[float, float]:
@@ -185,7 +201,7 @@ def test_a_change_is_real_only_beyond_three_spreads_and_roundoff(monkeypatch: py
     payloads = [_payload("3.10.0", 1.00947, spread), _payload("3.11.0", after, spread)]
     (found,) = releases.changes(payloads, "toy", "fast")
     assert found["real"] is real and found["change"] > 0 and found["spread"] == spread
-    assert ("| toy | fast | eigenvalue | 3.11.0 | 3.10.0 |" in releases.render(payloads)) is real
+    assert ("| toy | fast | eigenvalue | 3.11.0 | 3.10.0 |" in releases.render(payloads, _index(payloads))) is real
     monkeypatch.setattr(releases, "_index_versions", lambda: ["3.10.0", "3.11.0"])
     values = {"3.10.0": 1.00947, "3.11.0": after}
     result = releases.bisect("3.10.0", "3.11.0", "toy", "fast", "eigenvalue", lambda v: (values[v], spread))
@@ -198,9 +214,36 @@ def test_a_change_is_real_only_beyond_the_larger_spread() -> None:
     found = releases.changes(payloads, "toy", "fast")
     assert [(c["to"], c["real"]) for c in found] == [("3.4.0", False), ("3.5.0", True)]
     assert found[1]["change"] == pytest.approx(2.995e-4) and found[1]["spread"] == 1e-5
-    page = releases.render(payloads)
+    page = releases.render(payloads, _index(payloads))
     assert "| toy | fast | eigenvalue | 3.5.0 | 3.4.0 | 0.0003 | 1e-05 | 30 | 0.015 |" in page
     assert "refused: harness: contact release and restore does not work" in page
+
+
+def test_a_change_across_commits_is_never_called_real_or_jitter() -> None:
+    """Two releases run at different commits of the suite: the change is not MuJoCo's alone."""
+    payloads = [_payload("4.0.0", 0.5, 1e-6, sha="old"), _payload("4.0.1", 0.6, 1e-6, sha="new"),
+                _payload("4.1.0", 0.5000001, 1e-6, sha="new")]
+    found = releases.changes(payloads, "toy", "fast")
+    assert [(c["to"], c["same_commit"], c["real"]) for c in found] == [("4.0.1", False, False), ("4.1.0", True, True)]
+    index = _index(payloads) | {"history": ["4.0.0", "4.0.1", "4.1.0", "4.1.1"]}
+    page = releases.render(payloads, index)
+    assert "other commit" in page and "The releases ran at 2 commits of the suite" in page
+    assert "Not run yet: MuJoCo 4.1.1 " in page
+    assert "| toy | fast | eigenvalue | 4.1.0 | 4.0.1 |" in page and "| 4.0.1 | 4.0.0 |" not in page
+
+
+def test_the_matrix_runs_what_the_page_lacks() -> None:
+    """A release without a file, with a file of another commit, or missing a run; not one that holds them all."""
+    names = releases.history_scenarios()
+
+    def payload(version: str, sha: str, presets: tuple[str, ...]) -> dict[str, Any]:
+        return {"mujoco": version, "environment": {"git_sha": sha},
+                "runs": [{"scenario": n, "preset": p} for n in names for p in presets]}
+
+    index = {"history": ["3.3.4", "3.4.0", "3.5.0", "4.0.0", "4.0.1"]}
+    payloads = [payload("3.3.4", "head", ("fast", "accurate")), payload("3.4.0", "head", ("fast",)),
+                payload("3.5.0", "older", ("fast",)), payload("4.0.0", "head", ("fast",))]
+    assert releases.lacking(index, payloads, "head") == ["3.5.0", "4.0.0", "4.0.1"]
 
 
 def test_bisect_finds_the_first_patch_release_of_a_change(monkeypatch: pytest.MonkeyPatch) -> None:
@@ -228,10 +271,11 @@ def test_a_release_file_is_stamped_by_its_latest_run_and_left_alone_when_nothing
     stamps the file with that run's environment."""
     import mujoco
 
-    from mjpoincare.core import stamp
 
     dates = iter(f"2026-01-0{day}T00:00:00Z" for day in range(1, 10))
-    monkeypatch.setattr(stamp, "environment", lambda: {"date": next(dates), "mujoco": mujoco.__version__})
+    sha = "head"
+    monkeypatch.setattr(stamp, "environment", lambda: {"date": next(dates), "mujoco": mujoco.__version__,
+                                                      "git_sha": sha})
     monkeypatch.setattr(releases, "run_scenario", lambda name, preset: {"scenario": name, "preset": preset,
                                                                      "refused": None, "passed": True})
     path = releases.run_release(tmp_path, ["fast"], ["rimless-wheel"])
@@ -243,6 +287,10 @@ def test_a_release_file_is_stamped_by_its_latest_run_and_left_alone_when_nothing
     held = json.loads(path.read_text())
     assert [r["scenario"] for r in held["runs"]] == ["rimless-wheel", "slotted-skate"]
     assert held["environment"]["date"] == "2026-01-05T00:00:00Z"
+    sha = "next"  # a file of another commit is run again, whole: one file, one version of the suite
+    releases.run_release(tmp_path, ["fast"], ["slotted-skate"])
+    held = json.loads(path.read_text())
+    assert [r["scenario"] for r in held["runs"]] == ["slotted-skate"] and held["environment"]["git_sha"] == "next"
 
 
 def test_bad_input_exits_2_in_one_line(capsys: pytest.CaptureFixture[str]) -> None:
@@ -253,9 +301,10 @@ def test_bad_input_exits_2_in_one_line(capsys: pytest.CaptureFixture[str]) -> No
     assert len(lines) == 3 and "must be older than" in lines[0] and "unknown scenario" in lines[1]
 
 
-def test_sessions_are_the_nox_sessions_of_the_history(capsys: pytest.CaptureFixture[str]) -> None:
-    assert releases.main(["sessions"]) == 0
-    assert capsys.readouterr().out.split() == [f"release(mujoco='{v}')" for v in releases.RELEASES]
+def test_the_nox_sessions_are_the_history_the_index_gave(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.chdir(ROOT)
+    listed = subprocess.run([sys.executable, "-m", "nox", "-l"], capture_output=True, text=True, check=True).stdout
+    assert re.findall(r"^[-*] release\(mujoco='([\d.]+)'\)", listed, re.M) == INDEX["history"]
 
 
 def test_a_bisection_reads_the_history_then_runs_a_release_point(tmp_path: Path,
@@ -283,17 +332,26 @@ def test_a_bisection_reads_the_history_then_runs_a_release_point(tmp_path: Path,
 
 def test_the_matrix_runs_one_nox_session_per_release_and_names_the_failed_ones(
         monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> None:
-    """``matrix`` (make releases) runs every release's nox session with its output in a log of its own, and
-    returns the releases whose session failed."""
+    """``matrix`` (make releases) asks the index, keeps its answer, runs the nox session of every release the page
+    lacks with its output in a log of its own (accurate too on the oldest and the newest line), and returns the
+    releases run and those whose session failed."""
     calls = []
 
     def fake_run(command: list[str], *, stdout: Any, stderr: Any, check: bool) -> subprocess.CompletedProcess:
         calls.append(command)
-        stdout.write(f"ran {command[-1]}\n")
-        return subprocess.CompletedProcess(command, 1 if "3.9.0" in command[-1] else 0)
+        stdout.write(f"ran {command[2]}\n")
+        return subprocess.CompletedProcess(command, 1 if "3.9.0" in command[2] else 0)
 
+    index = ["3.3.4", "3.3.7", "3.9.0", "4.0.0", "4.0.1"]
+    monkeypatch.setattr(releases, "_index_versions", lambda: index)
+    monkeypatch.setattr(stamp, "git_state", lambda: ("head", False))
     monkeypatch.setattr(releases.subprocess, "run", fake_run)
-    assert releases.run_matrix(2, tmp_path) == ["3.9.0"]
-    assert sorted(c[-1] for c in calls) == sorted(f"release(mujoco='{v}')" for v in releases.RELEASES)
-    assert (tmp_path / "3.9.0.log").read_text() == "ran release(mujoco='3.9.0')\n"
+    out = tmp_path / "history"
+    assert releases.run_matrix(2, tmp_path / "logs", out) == (releases.history(index), ["3.9.0"])
+    assert releases.load_index(out)["history"] == releases.history(index)
+    sessions = {c[2]: c[4:] for c in calls}
+    assert sessions == {f"release(mujoco='{v}')": ["--out", str(out), "--preset", "fast",
+                                                   *(["--preset", "accurate"] if v in ("3.3.4", "4.0.0", "4.0.1")
+                                                     else [])] for v in releases.history(index)}
+    assert (tmp_path / "logs" / "3.9.0.log").read_text() == "ran release(mujoco='3.9.0')\n"
     assert releases.main(["matrix", "--workers", "0"]) == 2
