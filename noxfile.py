@@ -24,14 +24,19 @@ nox.options.default_venv_backend = "uv"
 nox.options.reuse_existing_virtualenvs = True
 nox.options.sessions = ["oldest"]
 
-#: Packages the lock pins that follow the MuJoCo release under test.
-FOLLOW_MUJOCO = ("mujoco", "mujoco-mjx", "mujoco-warp", "dm-control")
+#: Packages the lock pins that follow the MuJoCo release under test: MuJoCo's own (mujoco, and every mujoco-* package:
+#: mujoco-core and mujoco-studio, which mujoco 4 pins at its own version, mujoco-mjx, mujoco-warp) and dm-control.
+FOLLOW_MUJOCO = ("dm-control",)
+
+
+def _follows_mujoco(package: str) -> bool:
+    return package == "mujoco" or package.startswith("mujoco-") or package in FOLLOW_MUJOCO
 
 
 def _install(session: nox.Session, mujoco: str, *, editable: bool = True) -> None:
     """The checkout and MuJoCo ``mujoco``, the rest of requirements/lock.txt as constraints."""
     lock = Path("requirements/lock.txt").read_text().splitlines()
-    kept = [line for line in lock if line.split("==")[0].strip() not in FOLLOW_MUJOCO]
+    kept = [line for line in lock if not _follows_mujoco(line.split("==")[0].strip())]
     constraints = Path(session.create_tmp()) / "constraints.txt"
     constraints.write_text("\n".join(kept) + "\n")
     session.install("-c", str(constraints), *(["-e", "."] if editable else ["."]), f"mujoco=={mujoco}")

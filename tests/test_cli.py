@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import pytest
@@ -116,3 +117,26 @@ def test_interrupt_stops_the_worker_processes_at_once(tmp_path: Path) -> None:
     time.sleep(0.5)
     with pytest.raises(ProcessLookupError):
         os.killpg(run.pid, 0)  # the group is empty: no worker survived its parent
+
+
+def test_list_ranges_finds_where_a_scenarios_own_checks_refuse(capsys: pytest.CaptureFixture[str]) -> None:
+    """``list NAME --ranges``: rimless-wheel's slope is declared (0, pi/2) but its existence and no-flight bounds
+    refuse outside about (0.0682, 0.2621) at the defaults; each reported end is accepted and 0.2 % past it is
+    refused."""
+    from mjpoincare.commands.validation import resolve_values
+    from mjpoincare.core.params import ParameterError
+
+    assert main(["list", "rimless-wheel", "--ranges"]) == 0
+    out = capsys.readouterr().out
+    line = next(line for line in out.splitlines() if line.startswith("  slope = "))
+    match = re.search(r"accepted at the defaults: \[([\d.e+-]+), ([\d.e+-]+)\]", line)
+    assert match is not None, line
+    low, high = float(match[1]), float(match[2])
+    assert 0.068 < low < 0.0685 and 0.261 < high < 0.263
+    for inside, outside in ((low, low * (1 - 2e-3)), (high, high * (1 + 2e-3))):
+        resolve_values("rimless-wheel", {"slope": repr(inside)}, None)
+        with pytest.raises(ParameterError, match="slope must be in"):
+            resolve_values("rimless-wheel", {"slope": repr(outside)}, None)
+    assert "leg_length = 1.0  (spoke length l, m; in (0, 100])" in out  # nothing refused: the declared range
+    assert main(["list", "rimless_wheel"]) == 2
+    assert "did you mean 'rimless-wheel'" in capsys.readouterr().err

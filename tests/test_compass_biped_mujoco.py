@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 from mjpoincare.analysis.theory import compass_biped as theory
 from mjpoincare.analysis.theory.compass_biped import flight
+from mjpoincare.analysis.theory.compass_biped.step_measurements import swing_foot_detail
 
 from mjpoincare.cli import main
 from mjpoincare.commands.validation import resolve_values
@@ -66,6 +67,22 @@ def test_bad_input(assignment: str, needle: str, capsys: pytest.CaptureFixture[s
     assert main(["validate", "compass-biped", "--set", assignment]) == 2
     err = capsys.readouterr().err
     assert needle in err and err.count("\n") == 1
+
+
+def test_a_mass_ratio_the_heel_strike_contact_cannot_hold_is_refused(capsys: pytest.CaptureFixture[str]) -> None:
+    """m_h / m_l past 1e4: the heel-strike contact, as soft as the light leg makes it, cannot stop the hip."""
+    assert main(["validate", "compass-biped", "--set", "m_h=1e6", "--set", "m_l=1e-6"]) == 2
+    err = capsys.readouterr().err
+    assert "m_h / m_l must be <= 10000 (got 1e+12)" in err and err.count("\n") == 1
+
+
+def test_a_sample_the_exact_biped_falls_from_gives_nan_not_a_traceback() -> None:
+    """A simulated gait far from the exact one (a fallen run's legs-parallel sample, from a run at m_h / m_l = 1e4
+    with solimp 0.5-0.6) is measured as nan in the swing-foot record."""
+    bp = theory.CompassBiped()
+    fallen = np.array([-0.30897218, -0.31002485, -3.17537188])
+    detail = swing_foot_detail(bp, [(-0.1, 0.0)], [fallen], 5e-4, 0.002)
+    assert math.isnan(detail["exact_depth_same_swing"][0])
 
 
 def mujoco_release(model: mujoco.MjModel, bp: theory.CompassBiped, x_minus: np.ndarray, foot_radius: float,

@@ -71,19 +71,59 @@ def test_n_sub_steps_is_kept_and_a_bad_control_timestep_is_refused() -> None:
         envs.load("rimless-wheel", environment_kwargs={"control_timestep": 0.0})
 
 
-def test_suite_style_domain_and_task_names() -> None:
-    """``suite_load(domain, task)`` as dm_control's ``suite.load``: the scenario and its preset, every pair in
-    ``ALL_TASKS``; an unknown domain or task is one line naming the known ones."""
-    assert ("rimless-wheel", "accurate") in envs.ALL_TASKS
+def test_dm_control_suite_shape_tasks_are_the_validated_behaviours() -> None:
+    """``load(domain, task, task_kwargs, environment_kwargs, visualize_reward)`` as dm_control's ``suite.load``:
+    the tasks are each scenario's coverage points (every pair in ``ALL_TASKS``), each setting its parameters; the
+    preset is a keyword; an unknown domain or task is one line with the closest known name."""
     assert {domain for domain, _ in envs.ALL_TASKS} == set(scenarios.REGISTRY)
-    env = envs.suite_load("rimless-wheel", "accurate", environment_kwargs={"time_limit": 1.0})
+    assert [t for d, t in envs.ALL_TASKS if d == "compass-biped-friction"] == [
+        "gait_a", "gait_b", "gait_c", "gait_i", "gait_ii", "gait_iii"]
+    assert ("rimless-wheel-friction", "type_d_plus") in envs.ALL_TASKS
+    a = envs.load("compass-biped-friction", "gait_a", None, {"time_limit": 1.0})
+    b = envs.load("compass-biped-friction", "gait_b", environment_kwargs={"time_limit": 1.0})
+    friction = {name: env.physics.named.model.geom_friction["foot0"][0] for name, env in (("a", a), ("b", b))}
+    assert friction == {"a": pytest.approx(1.0), "b": pytest.approx(0.14)}  # 002's paper values of the two gaits
+    steep = envs.load("rimless-wheel", "steep", preset="accurate", environment_kwargs={"time_limit": 1.0})
     accurate = scenarios.get("rimless-wheel").preset("accurate")[1]
-    if "timestep" in accurate:
-        assert env.physics.timestep() == pytest.approx(float(accurate["timestep"]))
-    with pytest.raises(ParameterError, match="unknown domain 'rimless_wheel'"):
-        envs.suite_load("rimless_wheel", "fast")
-    with pytest.raises(ParameterError, match="unknown task 'walk' of domain rimless-wheel"):
-        envs.suite_load("rimless-wheel", "walk")
+    assert steep.physics.timestep() == pytest.approx(float(accurate["timestep"]))
+    gravity = steep.physics.model.opt.gravity
+    assert np.arctan2(gravity[0], -gravity[2]) == pytest.approx(0.25)  # the task's slope
+    with pytest.raises(ParameterError, match="unknown scenario 'rimless_wheel'; did you mean 'rimless-wheel'"):
+        envs.load("rimless_wheel", "defaults")
+    with pytest.raises(ParameterError, match="unknown task 'stepp' of domain rimless-wheel; did you mean 'steep'"):
+        envs.load("rimless-wheel", "stepp")
+
+
+def test_a_preset_as_the_task_still_loads_with_a_deprecation_warning() -> None:
+    with pytest.warns(DeprecationWarning, match="pass preset='accurate'"):
+        env = envs.load("rimless-wheel", "accurate", environment_kwargs={"time_limit": 1.0})
+    accurate = scenarios.get("rimless-wheel").preset("accurate")[1]
+    assert env.physics.timestep() == pytest.approx(float(accurate["timestep"]))
+    with pytest.warns(DeprecationWarning, match="suite_load is envs.load"):
+        envs.suite_load("rimless-wheel", "steep", environment_kwargs={"time_limit": 1.0})
+
+
+def test_visualize_reward_colours_the_tracked_body_by_its_reward() -> None:
+    """Off: colours never change; on: the tracked body's geoms move toward the highlight as the wheel rolls
+    downhill at its gait's speed, and nothing else changes colour."""
+    plain = envs.load("rimless-wheel", environment_kwargs={"time_limit": 1.0})
+    shown = envs.load("rimless-wheel", visualize_reward=True, environment_kwargs={"time_limit": 1.0})
+    before = shown.physics.model.geom_rgba.copy()
+    plain_before = plain.physics.model.geom_rgba.copy()
+    for env in (plain, shown):
+        env.reset()
+        for _ in range(5):
+            env.step(np.zeros(env.action_spec().shape))
+    assert np.array_equal(plain.physics.model.geom_rgba, plain_before)
+    changed = np.flatnonzero(np.any(shown.physics.model.geom_rgba != before, axis=1))
+    model = shown.physics.model
+    tracked = model.body(scenarios.get("rimless-wheel").track_body).id
+    assert changed.size and all(model.body_rootid[model.geom_bodyid[g]] == model.body_rootid[tracked]
+                                for g in changed)
+    toward = np.abs(shown.physics.model.geom_rgba[changed] - np.asarray(envs.REWARD_HIGHLIGHT))
+    assert np.all(toward <= np.abs(before[changed] - np.asarray(envs.REWARD_HIGHLIGHT)) + 1e-12)
+    with pytest.raises(ParameterError, match="visualize_reward must be True or False"):
+        envs.load("rimless-wheel", visualize_reward=1)  # type: ignore[arg-type]
 
 
 def test_named_access_and_parameterised_model() -> None:

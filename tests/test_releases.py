@@ -76,6 +76,31 @@ def test_committed_page_reproduces_from_its_json_and_covers_the_history() -> Non
         assert payload["environment"]["mujoco"] == payload["mujoco"]
 
 
+def test_a_release_session_frees_every_package_that_follows_mujoco(tmp_path: Path,
+                                                                   monkeypatch: pytest.MonkeyPatch) -> None:
+    """mujoco 4 pins mujoco-core and mujoco-studio at its own version: a constraint left from the lock would make
+    every other release uninstallable."""
+    monkeypatch.chdir(ROOT)
+    spec = importlib.util.spec_from_file_location("noxfile", ROOT / "noxfile.py")
+    assert spec is not None and spec.loader is not None
+    noxfile = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(noxfile)
+    installed: list[tuple[str, ...]] = []
+
+    class Session:
+        def create_tmp(self) -> str:
+            return str(tmp_path)
+
+        def install(self, *args: str) -> None:
+            installed.append(args)
+
+    noxfile._install(Session(), "4.0.1")
+    kept = [line.split("==")[0].strip() for line in (tmp_path / "constraints.txt").read_text().splitlines()
+            if "==" in line]
+    assert kept and not [p for p in kept if p.startswith("mujoco") or p == "dm-control"]
+    assert installed[-1][-1] == "mujoco==4.0.1"
+
+
 def test_the_history_and_the_oldest_job_run_every_built_in_scenario(monkeypatch: pytest.MonkeyPatch,
                                                                     tmp_path: Path) -> None:
     """Not only the default validation's scenarios: the registry's, the biped with friction among them."""

@@ -30,10 +30,15 @@ def _require_viz(what: str, *modules: str) -> None:
         raise ParameterError(f"{what} needs {', '.join(missing)}: pip install 'mjpoincare[viz]'")
 
 
-def _cmd_list(_: argparse.Namespace) -> int:
+def _cmd_list(args: argparse.Namespace) -> int:
     from mjpoincare import scenarios
+    from mjpoincare.commands.accepted_ranges import accepted_range
+    from mjpoincare.core import progress
 
-    for name in scenarios.loadable():
+    names = args.scenario or scenarios.loadable()
+    for name in names:
+        scenarios.get(name)  # an unknown name: one line, exit 2, before anything is printed
+    for name in names:
         scenario = scenarios.REGISTRY[name]
         print(f"{scenario.name}: {scenario.summary}")
         print(f"  source: {scenario.source}")
@@ -41,8 +46,15 @@ def _cmd_list(_: argparse.Namespace) -> int:
               + ("; in the default validation" if scenario.default else ""))
         print(f"  foot_radius: {scenario.foot.meaning} (searched {scenario.foot.low:g}-{scenario.foot.high:g} m)"
               if scenario.foot else "  foot_radius: not used (the model has no foot spheres)")
-        for p in scenario.params:
-            print(f"  {p.name} = {p.default}  ({p.doc}; {p.range_text()})")
+        with progress.bar(len(scenario.params) if args.ranges else 0, f"{name}: accepted ranges",
+                          unit="parameter") as bar:
+            for p in scenario.params:
+                found = accepted_range(name, p) if args.ranges else None
+                accepted = found.text(p) if found else ""
+                bar.update(1 if args.ranges else 0)
+                print(f"  {p.name} = {p.default}  ({p.doc}; {p.range_text()}"
+                      + (f"; {accepted}: past it, e.g. {found.why_low or found.why_high}" if found and accepted
+                         else "") + ")")
         if scenario.region_map:
             axes = scenario.region_map.axes
             print(f"  sweep --grid {grid_syntax(axes)} with " + ", ".join(f"{a.name} = {a.doc}" for a in axes))
@@ -51,6 +63,9 @@ def _cmd_list(_: argparse.Namespace) -> int:
         for preset, overrides in scenario.presets.items():
             print(f"  preset {preset}: " + ", ".join(f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}"
                                                    for k, v in overrides.items()))
+    if not args.ranges:
+        print("(a scenario's own checks may refuse less than a parameter's declared range at other values; "
+              "mjpoincare list NAME --ranges finds, for each parameter, the range they accept at the defaults)")
     from mjpoincare.core.settings import SETTINGS
 
     print("simulator settings (--set NAME=VALUE on top of the preset; a preset's own values are listed above):")
@@ -534,7 +549,13 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--version", action="version",
                         version=f"mjpoincare {__version__} (MuJoCo {version('mujoco')})")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=OneLineParser)
-    sub.add_parser("list", help="list scenarios, their parameters and presets").set_defaults(func=_cmd_list)
+    lst = sub.add_parser("list", help="list scenarios, their parameters and presets")
+    lst.add_argument("scenario", nargs="*", help="scenario names (default: every scenario)")
+    lst.add_argument("--ranges", action="store_true",
+                     help="also find, by bisection of each scenario's own checks, the range of each numeric parameter "
+                          "a run accepts with the others at their defaults (slow: seconds per parameter, minutes for "
+                          "the bipeds, whose checks solve for the gait)")
+    lst.set_defaults(func=_cmd_list)
 
     val = sub.add_parser("validate", help="run scenarios and check them against the analytic results")
     val.add_argument("scenario", nargs="*", help="scenario names (default: the default scenarios)")

@@ -1,5 +1,10 @@
-"""The validated systems as dm_control environments: ``load(name, preset=None, *, task_kwargs=None,
-environment_kwargs=None, **values)`` (the keyword arguments in ``dm_control.suite.load``'s order).
+"""The validated systems as dm_control environments: ``load(domain_name, task_name=None, task_kwargs=None,
+environment_kwargs=None, visualize_reward=False, *, preset=None, **values)``, ``dm_control.suite.load``'s shape.
+
+The domain is a scenario (:data:`ALL`); its tasks are the behaviours the suite validates it on, its coverage points
+(:data:`ALL_TASKS`): ``defaults`` and ``steep`` for ``rimless-wheel``, ``gait_a`` to ``gait_iii`` for
+``compass-biped-friction``, ``type_a`` to ``type_d_plus`` for ``rimless-wheel-friction``...; each task sets the
+parameters of its point, and ``**values`` set more on top. The simulator preset is the keyword ``preset``.
 
 Each registered scenario (:data:`ALL`) loads as a :class:`dm_control.rl.control.Environment`, in the manner of
 ``dm_control.suite``: a :class:`Physics` over the scenario's compiled model with the given physical parameters and
@@ -13,7 +18,9 @@ row per episode.
   mass of ``scenario.track_body``'s subtree: the whole wheel, walker or skate).
 * Reward: the down-slope speed of that centre of mass, m/s (the slope is tilted gravity, so down-slope is the
   horizontal part of ``model.opt.gravity``: model +x); with no slope (``slotted-skate``, gravity off) its
-  horizontal speed.
+  horizontal speed. With ``visualize_reward=True`` the tracked body's geoms turn from their own colour to
+  :data:`REWARD_HIGHLIGHT` as the reward rises from 0 to the start state's speed (dm_control's suite blends its
+  ``self`` materials the same way; these models have no such materials).
 * Actions: one per model actuator. Only the compass bipeds have any: ``ankle0``, ``ankle1`` on the leg hinges and
   ``hip`` on the ``leg1 - leg0`` tendon. The MJCF builds them with zero gain (the validation drives them through
   their biases), so the environment sets a unit gain: an action is a torque, N m, within +-:func:`weight_torque`
@@ -41,6 +48,8 @@ from __future__ import annotations
 
 import collections
 import contextlib
+import re
+import warnings
 from collections.abc import Iterator, Mapping
 from typing import Any
 
@@ -55,7 +64,8 @@ from dm_control.suite import base
 from mjpoincare import scenarios
 from mjpoincare.commands.validation import resolve_inputs
 from mjpoincare.core import settings as sim_settings
-from mjpoincare.core.params import ParameterError, Value, typed
+from mjpoincare.core.params import ParameterError, Value, did_you_mean, typed
+from mjpoincare.scenarios.base import CoveragePoint
 
 #: The loadable names: every scenario of the registry.
 ALL: tuple[str, ...] = tuple(scenarios.REGISTRY)
@@ -64,10 +74,22 @@ DEFAULT_TIME_LIMIT = 10.0
 #: Default control timestep, s, as in dm_control's suite (10-25 ms); rounded to whole physics steps
 #: (:func:`sub_steps`).
 DEFAULT_CONTROL_TIMESTEP = 0.01
-#: ``(domain, task)`` pairs for :func:`suite_load`, as ``dm_control.suite.ALL_TASKS``: each scenario with each of
-#: its presets.
-ALL_TASKS: tuple[tuple[str, str], ...] = tuple((name, preset) for name in scenarios.REGISTRY
-                                               for preset in scenarios.get(name).presets)
+#: The colour a tracked body's geoms blend to as the reward reaches the start state's speed (visualize_reward).
+REWARD_HIGHLIGHT = (1.0, 0.55, 0.1, 1.0)
+
+
+def task_name_of(point: str) -> str:
+    """A coverage point's name as a task name: ``"Gait A"`` -> ``"gait_a"``, ``"Type D+"`` -> ``"type_d_plus"``."""
+    return re.sub(r"[^a-z0-9]+", "_", point.lower().replace("+", " plus")).strip("_")
+
+
+def tasks(domain_name: str) -> dict[str, CoveragePoint]:
+    """The tasks of a domain: its scenario's coverage points (the behaviours the suite validates), by task name."""
+    return {task_name_of(point.name): point for point in scenarios.get(domain_name).coverage}
+
+
+#: ``(domain, task)`` pairs, as ``dm_control.suite.ALL_TASKS``: each scenario with each of its coverage points.
+ALL_TASKS: tuple[tuple[str, str], ...] = tuple((name, task) for name in scenarios.REGISTRY for task in tasks(name))
 _FULLPHYSICS = mujoco.mjtState.mjSTATE_FULLPHYSICS
 
 
@@ -134,13 +156,29 @@ class SystemTask(base.Task):
                                   or not 0 <= start < len(starts)):
             raise ParameterError(f"start must be None or an integer in [0, {len(starts)}) (got {start!r})")
         self.track_body, self.starts, self.start, self.source = track_body, starts, start, source
+        self._reward_scale = 1.0
+        self._colours: np.ndarray | None = None
         super().__init__(random=random)
 
     def initialize_episode(self, physics: Physics) -> None:
         """Set the chosen start state (time, qpos, qvel, act, mocap, active equalities...)."""
         row = self.random.randint(len(self.starts)) if self.start is None else self.start
         mujoco.mj_setState(physics.model.ptr, physics.data.ptr, self.starts[row], _FULLPHYSICS)
+        mujoco.mj_forward(physics.model.ptr, physics.data.ptr)
+        self._reward_scale = abs(self.get_reward(physics)) or 1.0
         super().initialize_episode(physics)
+
+    def after_step(self, physics: Physics) -> None:
+        """With ``visualize_reward``: blend the tracked body's geoms from their own colour to
+        :data:`REWARD_HIGHLIGHT` by the reward over the start state's speed, clipped to [0, 1]."""
+        if not self.visualize_reward:
+            return
+        model = physics.model.ptr
+        geoms = _subtree_geoms(model, model.body(self.track_body).id)
+        if self._colours is None:
+            self._colours = model.geom_rgba[geoms].copy()
+        blend = float(np.clip(self.get_reward(physics) / self._reward_scale, 0.0, 1.0))
+        model.geom_rgba[geoms] = (1.0 - blend) * self._colours + blend * np.asarray(REWARD_HIGHLIGHT)
 
     def get_observation(self, physics: Physics) -> collections.OrderedDict[str, np.ndarray]:
         """``position`` (qpos), ``velocity`` (qvel), ``com_velocity`` (tracked subtree's centre of mass, world)."""
@@ -157,6 +195,14 @@ class SystemTask(base.Task):
         if direction is None:
             return float(np.linalg.norm(velocity[:2]))
         return float(velocity @ direction)
+
+
+def _subtree_geoms(model: mujoco.MjModel, body: int) -> np.ndarray:
+    """The geoms of ``body`` and of every body below it."""
+    inside = np.zeros(model.nbody, bool)
+    for b in range(model.nbody):  # a parent's id is below its children's
+        inside[b] = b == body or (b > 0 and inside[model.body_parentid[b]])
+    return np.flatnonzero(inside[model.geom_bodyid])
 
 
 def _unit_gains(model: mujoco.MjModel) -> None:
@@ -194,35 +240,53 @@ def sub_steps(control_timestep: float, physics_timestep: float) -> int:
     return max(1, round(control_timestep / physics_timestep))
 
 
-def load(name: str, preset: str | None = None, *, task_kwargs: Mapping[str, Any] | None = None,
-         environment_kwargs: Mapping[str, Any] | None = None, **values: Value) -> control.Environment:
-    """The dm_control environment of scenario ``name``.
+def load(domain_name: str, task_name: str | None = None, task_kwargs: Mapping[str, Any] | None = None,
+         environment_kwargs: Mapping[str, Any] | None = None, visualize_reward: bool = False, *,
+         preset: str | None = None, **values: Value) -> control.Environment:
+    """The dm_control environment of scenario ``domain_name`` doing task ``task_name``, as
+    ``dm_control.suite.load(domain_name, task_name, task_kwargs, environment_kwargs, visualize_reward)``.
 
     Args:
-        name: a registered scenario (:data:`ALL`), e.g. ``"rimless-wheel"``.
-        preset: simulator preset (``"fast"``, ``"accurate"``, ...); None is the scenario's default.
+        domain_name: a registered scenario (:data:`ALL`), e.g. ``"rimless-wheel"``.
+        task_name: one of the scenario's validated behaviours (:func:`tasks`, :data:`ALL_TASKS`), e.g. ``"steep"``
+            or ``"gait_b"``; None is its first (the scenario's defaults, or its first gait).
         task_kwargs: passed to :class:`SystemTask`: ``start`` (row of the start batch, None: random) and ``random``.
         environment_kwargs: passed to :class:`dm_control.rl.control.Environment` (``time_limit``, default
             :data:`DEFAULT_TIME_LIMIT`; ``n_sub_steps``, or ``control_timestep`` in s, default
             :data:`DEFAULT_CONTROL_TIMESTEP`, rounded to whole physics steps by :func:`sub_steps`: the environment's
             ``control_timestep()`` returns the rounded value).
-        **values: physical parameters and simulator settings, typed (``spokes=8``; text for a number is refused),
-            as for :func:`mjpoincare.validate`.
+        visualize_reward: colour the tracked body by the reward in rendered frames (:meth:`SystemTask.after_step`).
+        preset: simulator preset (``"fast"``, ``"accurate"``, ...); None is the scenario's default.
+        **values: physical parameters and simulator settings on top of the task's, typed (``spokes=8``; text for a
+            number is refused), as for :func:`mjpoincare.validate`.
 
     Raises:
-        ParameterError: any bad input (unknown scenario, preset or parameter, value out of range), one line.
+        ParameterError: any bad input (unknown scenario, task, preset or parameter, value out of range), one line.
     """
-    scenario = scenarios.get(name)
+    scenario = scenarios.get(domain_name)
+    known = tasks(domain_name)
+    if task_name in scenario.presets and task_name not in known:
+        warnings.warn(f"envs.load({domain_name!r}, {task_name!r}): the second argument is the task now, as in "
+                      f"dm_control.suite.load; pass preset={task_name!r}", DeprecationWarning, stacklevel=2)
+        task_name, preset = None, task_name
+    if task_name is None:
+        task_name = next(iter(known))
+    if task_name not in known:
+        raise ParameterError(f"unknown task {task_name!r} of domain {domain_name}{did_you_mean(task_name, known)}; "
+                             f"known: {', '.join(known)}")
     if preset is not None and preset not in scenario.presets:
-        raise ParameterError(f"preset must be one of {', '.join(scenario.presets)} (got {preset!r}); envs.load takes "
-                             "(name, preset): dm_control.suite.load's (domain, task) is envs.suite_load")
+        raise ParameterError(f"preset must be one of {', '.join(scenario.presets)} (got {preset!r})")
+    if not isinstance(visualize_reward, bool):
+        raise ParameterError(f"visualize_reward must be True or False (got {visualize_reward!r})")
     typed([*scenario.params, *sim_settings.SETTINGS], values)
-    scenario, _, params, settings = resolve_inputs(name, values, preset)
+    point: dict[str, Value] = dict(known[task_name].assignments)  # --set text, as the coverage point declares it
+    scenario, _, params, settings = resolve_inputs(domain_name, {**point, **values}, preset)
     model, batches = scenario.probe(params, settings)
     _unit_gains(model)
     _limit_controls(model)
     physics = Physics.from_model(wrapper.MjModel(model))
     task = SystemTask(scenario.track_body, batches[0][0], source=scenario.source, **dict(task_kwargs or {}))
+    task.visualize_reward = visualize_reward
     kwargs = {"time_limit": DEFAULT_TIME_LIMIT, **dict(environment_kwargs or {})}
     if "n_sub_steps" not in kwargs:
         requested = kwargs.pop("control_timestep", DEFAULT_CONTROL_TIMESTEP)
@@ -231,20 +295,13 @@ def load(name: str, preset: str | None = None, *, task_kwargs: Mapping[str, Any]
 
 
 def suite_load(domain_name: str, task_name: str, task_kwargs: Mapping[str, Any] | None = None,
-               environment_kwargs: Mapping[str, Any] | None = None, **values: Value) -> control.Environment:
-    """:func:`load` named as ``dm_control.suite.load(domain_name, task_name, ...)``: the domain is the scenario, the
-    task its preset (:data:`ALL_TASKS`), e.g. ``suite_load("rimless-wheel", "accurate")``.
-
-    Raises:
-        ParameterError: an unknown domain or task, one line naming the known ones, and any bad input of :func:`load`.
-    """
-    if domain_name not in scenarios.REGISTRY:
-        raise ParameterError(f"unknown domain {domain_name!r}; known: {', '.join(scenarios.REGISTRY)}")
-    tasks = [task for domain, task in ALL_TASKS if domain == domain_name]
-    if task_name not in tasks:
-        raise ParameterError(f"unknown task {task_name!r} of domain {domain_name}; known: {', '.join(tasks)}")
-    return load(domain_name, task_name, environment_kwargs=environment_kwargs, task_kwargs=task_kwargs, **values)
+               environment_kwargs: Mapping[str, Any] | None = None, visualize_reward: bool = False,
+               **values: Value) -> control.Environment:
+    """Deprecated: :func:`load` has ``dm_control.suite.load``'s shape now (its tasks are behaviours, the preset a
+    keyword); a preset as the task still works, with a warning."""
+    warnings.warn("envs.suite_load is envs.load now", DeprecationWarning, stacklevel=2)
+    return load(domain_name, task_name, task_kwargs, environment_kwargs, visualize_reward, **values)
 
 
-__all__ = ["ALL", "ALL_TASKS", "DEFAULT_CONTROL_TIMESTEP", "DEFAULT_TIME_LIMIT", "Physics", "SystemTask", "load",
-           "sub_steps", "suite_load"]
+__all__ = ["ALL", "ALL_TASKS", "DEFAULT_CONTROL_TIMESTEP", "DEFAULT_TIME_LIMIT", "REWARD_HIGHLIGHT", "Physics",
+           "SystemTask", "load", "sub_steps", "suite_load", "tasks"]

@@ -64,10 +64,17 @@ def swing_foot_detail(bp: theory.CompassBiped, lows: Sequence[tuple[float, float
     """Trajectory 0's swings (it starts on the exact fixed point; ``lows`` and ``samples`` are its records): the
     switched-off swing foot's depth below the slope and below the stance foot, and the exact depth of the same
     swing, from the post-impact state its legs-parallel sample pulls back to (003 eq 4.19), scaled by (l - r)/l
-    (MuJoCo's legs reach the slope at l - r from the foot sphere's centre)."""
+    (MuJoCo's legs reach the slope at l - r from the foot sphere's centre); nan for a sample from which the exact
+    biped falls (a simulated gait far from the exact one)."""
     scale = (bp.l - foot_radius) / bp.l
-    same = [-scale * theory.lowest_swing_height(bp, theory.post_impact_from_parallel(bp, y))
-            for y in samples[: len(lows)]]
+
+    def exact_depth_from(y: np.ndarray) -> float:
+        try:
+            return -scale * theory.lowest_swing_height(bp, theory.post_impact_from_parallel(bp, y))
+        except RuntimeError:
+            return math.nan
+
+    same = [exact_depth_from(y) for y in samples[: len(lows)]]
     return {"exact_depth": exact_depth, "depth": [-h for h, _ in lows],
             "depth_below_stance_foot": [h_st - h for h, h_st in lows], "exact_depth_same_swing": same,
             "note": "trajectory 0 (from the exact fixed point), per swing, m; below the slope = below the stance foot "
