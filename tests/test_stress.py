@@ -11,7 +11,14 @@ import pytest
 
 from mjpoincare import scenarios
 from mjpoincare.cli import main
-from mjpoincare.commands.stress import LADDER, generic_cases, largest_timesteps, run_case, soak_summary
+from mjpoincare.commands.stress import (
+    LADDER,
+    generic_cases,
+    largest_timesteps,
+    run_case,
+    soak_steps,
+    soak_summary,
+)
 from mjpoincare.scenarios.base import StressCase
 
 
@@ -51,6 +58,17 @@ def test_case_runs_with_diagnostics() -> None:
 
 
 @pytest.mark.mujoco
+def test_a_soak_past_a_billion_steps_is_refused_before_it_starts(capsys: pytest.CaptureFixture[str]) -> None:
+    """A 20-impact pilot costs the soak: rimless-wheel's million impacts at the fast preset, about 1.1e9 steps."""
+    assert main(["stress", "rimless-wheel", "--soak", "1000000"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "stress rimless-wheel --soak 1000000 (a 20-impact pilot, scaled) would take" in err
+    steps = soak_steps("rimless-wheel", 1_000_000)
+    assert 1e9 < steps < 1.3e9
+    assert soak_steps("rimless-wheel", 1000) == pytest.approx(steps / 1000)
+    assert soak_steps("slotted-skate", 1_000_000) == 0.0  # no soak: nothing to cost
+
+
 def test_soak_of_the_wheel_stays_on_the_cycle() -> None:
     summary = soak_summary("rimless-wheel", 40)
     assert summary["impacts_seen"] >= 40 and summary["diverged"] == 0

@@ -359,7 +359,7 @@ def _cmd_stress(args: argparse.Namespace) -> int:
 
     check_output_path(args.json, "--json")
 
-    return run_stress(args.scenario, args.json, soak=args.soak, workers=args.workers)
+    return run_stress(args.scenario, args.json, soak=args.soak, workers=args.workers, allow_long=args.allow_long)
 
 
 def _cmd_margins(args: argparse.Namespace) -> int:
@@ -670,6 +670,7 @@ def build_parser() -> argparse.ArgumentParser:
     stress.add_argument("--json", metavar="PATH|-", help="write the stress report as JSON (- for stdout)")
     stress.add_argument("--soak", type=int, default=10_000, help="impacts in the soak from the fixed point (0: none)")
     stress.add_argument("--workers", type=int, default=1, help="cases run at once (processes)")
+    stress.add_argument("--allow-long", action="store_true", help="run a soak estimated past 1e9 MuJoCo steps")
     stress.set_defaults(func=_cmd_stress)
 
     margins = sub.add_parser("margins", help="the regression gate's checks over the environments this machine can "

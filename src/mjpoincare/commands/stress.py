@@ -21,6 +21,7 @@ tolerance), ``left cycle`` (no return map: the gait was lost), ``energy blow-up`
 from __future__ import annotations
 
 import math
+import sys
 import time
 import traceback
 from collections.abc import Sequence
@@ -34,6 +35,7 @@ from mjpoincare.analysis.tables import markdown_table
 from mjpoincare.commands.validation import resolve_inputs, run_validation
 from mjpoincare.core import progress
 from mjpoincare.core import settings as sim_settings
+from mjpoincare.core.cost import refuse_long
 from mjpoincare.core.parallel import run_jobs
 from mjpoincare.core.params import ParameterError
 from mjpoincare.core.result import write_json
@@ -206,13 +208,40 @@ def table(report: dict[str, Any]) -> str:
     return "\n".join(lines)
 
 
-def run_stress(names: Sequence[str], json_path: str | None, *, soak: int, workers: int) -> int:
-    """Stress each scenario; print the tables; exit 0 unless a case crashed or an expectation failed."""
+#: Impacts of the pilot soak that estimates a longer soak's cost.
+PILOT_IMPACTS = 20
+
+
+def soak_steps(name: str, impacts: int) -> float:
+    """The MuJoCo steps a soak of ``impacts`` impacts of scenario ``name`` would take (fast preset): a pilot soak of
+    :data:`PILOT_IMPACTS` impacts, scaled; 0 when the scenario defines no soak."""
+    scenario = scenarios.get(name)
+    if scenario.soak is None or impacts <= 0:
+        return 0.0
+    _, _, params, settings = resolve_inputs(name, {}, "fast")
+    pilot = scenario.soak(params, settings, PILOT_IMPACTS)
+    seen = int(np.isfinite(np.asarray(pilot.samples, float)).sum()) or 1
+    return float(pilot.rollout.steps) / seen * impacts
+
+
+def run_stress(names: Sequence[str], json_path: str | None, *, soak: int, workers: int,
+               allow_long: bool = False) -> int:
+    """Stress each scenario; print the tables; exit 0 unless a case crashed or an expectation failed. A soak longer
+    than the default is first costed by a pilot soak (:func:`soak_steps`) and refused past
+    :data:`mjpoincare.core.cost.LONG_STEPS` steps unless ``allow_long``."""
     names = list(names) or list(scenarios.default_scenarios())
     if not 0 <= soak <= MAX_SOAK:
         raise ParameterError(f"--soak must be in [0, {MAX_SOAK}] impacts (got {soak})")
     for name in names:
         scenarios.get(name)
+    if soak > SOAK_IMPACTS:
+        for name in names:
+            steps = soak_steps(name, soak)
+            refuse_long(steps, f"stress {name} --soak {soak} (a {PILOT_IMPACTS}-impact pilot, scaled)",
+                        allow=allow_long, remedy="give a smaller --soak, or --allow-long")
+            if steps:
+                print(f"stress {name}: the soak of {soak} impacts will take about {steps:.2g} MuJoCo steps "
+                      f"(about {steps / 3e5 / 60:.2g} min at 3e5 steps/s)", file=sys.stderr, flush=True)
     reports = [stress_scenario(name, soak=soak, workers=workers) for name in names]
     if json_path != "-":
         print("\n\n".join(table(r) for r in reports))
