@@ -5,6 +5,7 @@ gates a throwaway project that has only the wheel and pytest."""
 from __future__ import annotations
 
 import os
+import re
 import subprocess
 import sys
 import venv
@@ -92,3 +93,12 @@ def test_plugin_gates_a_throwaway_project(env_bin: Path, tmp_path: Path) -> None
                     "timestep=0.01"], cwd=tmp_path)
     assert failing.returncode == 1, failing.stdout[-3000:]
     assert "analytic" in failing.stdout and "tolerance" in failing.stdout
+
+
+def test_the_readmes_install_lines_name_what_exists(wheel: Path) -> None:
+    """No package index serves mjpoincare: the README installs from a clone or a built wheel, never by a bare name,
+    and every wheel it names is the one this checkout builds."""
+    readme = (REPO / "README.md").read_text()
+    assert not re.search(r"pip install (?:'|\")?mjpoincare\b(?![-./\w])", readme)
+    named = set(re.findall(r"mjpoincare-[\w.]+-py3-none-any\.whl", readme))
+    assert named == {wheel.name}
