@@ -176,8 +176,9 @@ def test_sweep_on_the_plugin_shows_its_analytic_eigenvalue() -> None:
 
 
 def test_a_parameter_against_a_setting_is_refused_before_any_simulation(tmp_path: Path) -> None:
-    """The toy's ``check_inputs`` sees the parameters and the settings together: a radius under twice the ball's
-    deepest penetration at that contact softness is refused in one line, exit 2, before any rollout, nothing written."""
+    """The toy's ``check_params_with_settings`` sees the parameters and the settings together: a radius under twice
+    the ball's deepest penetration at that contact softness is refused in one line, exit 2, before any rollout,
+    nothing written."""
     code = ("import sys\n"
             "from mjpoincare.engines.backends import mujoco_c\n"
             "def refuse(*a, **k):\n"

@@ -1,6 +1,6 @@
 """The registry's contract, as dm_control's suite test holds its domains to theirs: every scenario at every preset
 has defaults its own input check accepts, tolerances for that preset, a declaration of the checks a run reports, a
-model that compiles, a probe whose batches fit the model, a render frame, and a validation result whose JSON
+model that compiles, validation batches that fit the model, a render frame, and a validation result whose JSON
 round-trips and whose checks are the declared ones. The validation results are the gate's cached runs
 (:func:`mjpoincare.gate.forms.case`), so no validation runs twice in a session; the declarations of the gate's other
 runs are held to the checks the committed margins measurement (docs/results/gate/margins.json) saw them report."""
@@ -91,7 +91,7 @@ def test_a_missing_preset_is_an_error_not_a_fallback() -> None:
 def test_model_compiles_and_probe_batches_fit_it(name: str, preset: str) -> None:
     scenario, _, params, settings = resolve_inputs(name, {}, preset)
     assert isinstance(scenario.build(params, settings), mujoco.MjModel)
-    model, batches = scenario.probe(params, settings)
+    model, batches = scenario.validation_batches(params, settings)
     assert batches
     size = mujoco.mj_stateSize(model, STATE_SPEC)
     for states, nstep in batches:

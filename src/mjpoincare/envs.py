@@ -4,10 +4,10 @@ environment_kwargs=None, **values)`` (the keyword arguments in ``dm_control.suit
 Each registered scenario (:data:`ALL`) loads as a :class:`dm_control.rl.control.Environment`, in the manner of
 ``dm_control.suite``: a :class:`Physics` over the scenario's compiled model with the given physical parameters and
 simulator settings applied (``scenario.build``, through MjSpec, not the raw MJCF file), and a :class:`SystemTask`
-that starts each episode from a full-physics start state the validation itself starts from (``scenario.probe``'s
-first batch, around the analytic fixed point or gait of the paper in ``scenario.source``, kept as
-``task.source``): its first row by default, ``task_kwargs={"start": i}`` row ``i``, ``{"start": None}`` a random
-row per episode.
+that starts each episode from a full-physics start state the validation itself starts from
+(``scenario.validation_batches``'s first batch, around the analytic fixed point or gait of the paper in
+``scenario.source``, kept as ``task.source``): its first row by default, ``task_kwargs={"start": i}`` row ``i``,
+``{"start": None}`` a random row per episode.
 
 * Observations: ``position`` (qpos), ``velocity`` (qvel), ``com_velocity`` (world-frame velocity of the centre of
   mass of ``scenario.track_body``'s subtree: the whole wheel, walker or skate).
@@ -218,7 +218,7 @@ def load(name: str, preset: str | None = None, *, task_kwargs: Mapping[str, Any]
                              "(name, preset): dm_control.suite.load's (domain, task) is envs.suite_load")
     typed([*scenario.params, *sim_settings.SETTINGS], values)
     scenario, _, params, settings = resolve_inputs(name, values, preset)
-    model, batches = scenario.probe(params, settings)
+    model, batches = scenario.validation_batches(params, settings)
     _unit_gains(model)
     _limit_controls(model)
     physics = Physics.from_model(wrapper.MjModel(model))

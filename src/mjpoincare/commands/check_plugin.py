@@ -3,7 +3,7 @@ plugin's, or a built-in one), in about the time of its validations at each prese
 
 The clauses are the ones the suite holds its own scenarios to (tests/test_scenario_contract.py, tests/test_gate.py):
 the declaration loads; at every preset the defaults are accepted, the tolerances exist with their reasons, the model
-compiles, the probe's batches fit it, a validation reports exactly the declared checks and its JSON round-trips, and
+compiles, the validation batches fit it, a validation reports exactly the declared checks and its JSON round-trips, and
 a still renders; every stress case is accepted or refused in one line; every gate case's run has each check gated,
 watched or a declared miss, and its gated checks pass. One line per clause; exit 0 when every clause holds, else 1.
 """
@@ -57,8 +57,8 @@ def _tolerances(name: str, preset: str) -> str:
 def _probe(name: str, preset: str) -> str:
     scenario, _, params, settings = resolve_inputs(name, {}, preset)
     assert isinstance(scenario.build(params, settings), mujoco.MjModel), "build returned no MjModel"
-    model, batches = scenario.probe(params, settings)
-    assert batches, "probe returned no batch"
+    model, batches = scenario.validation_batches(params, settings)
+    assert batches, "validation_batches returned no batch"
     size = mujoco.mj_stateSize(model, STATE_SPEC)
     for states, nstep in batches:
         assert states.ndim == 2 and states.shape[1] == size, f"a batch of shape {states.shape}, state size {size}"
@@ -131,7 +131,7 @@ def check_plugin(name: str) -> int:
     for preset in scenario.presets:
         clauses.check(f"{name}[{preset}] defaults accepted", lambda p=preset: (resolve_inputs(name, {}, p), "")[1])
         clauses.check(f"{name}[{preset}] tolerances with reasons", lambda p=preset: _tolerances(name, p))
-        clauses.check(f"{name}[{preset}] model compiles, probe fits it", lambda p=preset: _probe(name, p))
+        clauses.check(f"{name}[{preset}] model compiles, validation batches fit it", lambda p=preset: _probe(name, p))
         clauses.check(f"{name}[{preset}] validation reports the declared checks",
                       lambda p=preset: _validation(name, p, runs))
         clauses.check(f"{name}[{preset}] a still renders", lambda p=preset: _still(name, p))

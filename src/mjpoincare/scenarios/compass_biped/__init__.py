@@ -259,7 +259,7 @@ def _step_summary(bp: theory.CompassBiped, x_star: np.ndarray) -> dict[str, floa
 
 
 
-def probe(params: Values, settings: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
+def validation_batches(params: Values, settings: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
     """Model and initial states of the gait batch (contacts fixed: the raw-rate reference)."""
     bp = biped(params)
     model = build(params, settings)
@@ -269,7 +269,7 @@ def probe(params: Values, settings: Values) -> tuple[mujoco.MjModel, list[tuple[
     return model, [(starts, math.ceil((STEPS + 0.5) * period / model.opt.timestep))]
 
 
-def reference_bench(params: Values, rtol: float) -> dict[str, float]:
+def exact_model_bench(params: Values, rtol: float) -> dict[str, float]:
     """The exact reference (solve_ivp at ``rtol``) over the default preset's starts and steps, through the same
     fit: its error is the floor the experiment design sets."""
     bp = biped(params)
@@ -317,7 +317,7 @@ STRESS_CASES = (
 )
 
 
-def clip(params: Values, settings: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
+def video_states(params: Values, settings: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
     """States of a clip from the analytic post-impact fixed point, with the gait's contact switching."""
     bp = biped(params)
     start = post_impact_states(model, bp, theory.fixed_point(bp)[None, :], float(settings["foot_radius"]))
@@ -364,16 +364,16 @@ COMPASS_BIPED = Scenario(
     check_params=check_params,
     build=build,
     evaluate=evaluate,
-    accuracy_checks=("fixed_point", "eigenvalues", "step_period", "step_length"),
-    probe=probe,
-    reference_bench=reference_bench,
-    clip=clip,
+    bench_checks=("fixed_point", "eigenvalues", "step_period", "step_length"),
+    validation_batches=validation_batches,
+    exact_model_bench=exact_model_bench,
+    video_states=video_states,
     track_body="hip",
     frame_tilt="slope",
     camera_distance=3.0,
     stress_cases=STRESS_CASES,
     soak=soak,
-    mechanisms=("rollout", "contact", "actuator", "fractional_step"),
+    seam_mechanisms=("rollout", "contact", "actuator", "fractional_step"),
     checks=CHECKS,
     rivals=RIVALS,
     tolerances=TOLERANCES,

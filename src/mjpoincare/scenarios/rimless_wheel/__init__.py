@@ -256,7 +256,7 @@ def evaluate(params: Values, settings: Values, preset: str, seed: int) -> Evalua
                       return_map=plot, basins=basins)
 
 
-def probe(params: Values, settings: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
+def validation_batches(params: Values, settings: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
     """The model and the (initial states, steps) of each rollout batch :func:`evaluate` runs."""
     w = wheel(params)
     model = build(params, settings)
@@ -268,7 +268,7 @@ def probe(params: Values, settings: Values) -> tuple[mujoco.MjModel, list[tuple[
     return model, batches
 
 
-def reference_bench(params: Values, rtol: float) -> dict[str, float]:
+def exact_model_bench(params: Values, rtol: float) -> dict[str, float]:
     """The exact hybrid reference (solve_ivp, tolerance ``rtol``) through the same fit: time and errors."""
     w = wheel(params)
     start = time.perf_counter()
@@ -309,7 +309,7 @@ STRESS_CASES = (
 )
 
 
-def clip(params: Values, settings: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
+def video_states(params: Values, settings: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
     """States of a clip that starts just after an impact, 20 % above the rolling fixed point's speed."""
     w = wheel(params)
     state0 = post_impact_states(model, w, np.array([1.2 * theory.rolling_fixed_point(w)]),
@@ -365,16 +365,16 @@ RIMLESS_WHEEL = Scenario(
     check_params=check_params,
     build=build,
     evaluate=evaluate,
-    accuracy_checks=("omega_post_impact", "eigenvalue", "impact_coefficient", "step_period"),
-    probe=probe,
-    reference_bench=reference_bench,
-    clip=clip,
+    bench_checks=("omega_post_impact", "eigenvalue", "impact_coefficient", "step_period"),
+    validation_batches=validation_batches,
+    exact_model_bench=exact_model_bench,
+    video_states=video_states,
     track_body="hub",
     frame_tilt="slope",
     camera_distance=4.0,
     stress_cases=STRESS_CASES,
     soak=soak,
-    mechanisms=("rollout",),
+    seam_mechanisms=("rollout",),
     checks=CHECKS,
     tolerances=TOLERANCES,
     gate_cases=GATE_CASES,

@@ -260,10 +260,10 @@ def evaluate(params: Values, settings: Values, preset: str, seed: int) -> Evalua
                       fit=summary, return_map=plot, reported=reported)
 
 
-# --- probe, reference bench, render clip, soak ----------------------------------------------------------------------
+# --- validation batches, exact-model bench, video states, soak --------------------------------------------------------
 
 
-def probe(params: Values, settings: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
+def validation_batches(params: Values, settings: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
     """The model and the (initial states, steps) of the batch :func:`evaluate` runs."""
     w = friction_wheel(params)
     gait = reference_gait(w)
@@ -273,7 +273,7 @@ def probe(params: Values, settings: Values) -> tuple[mujoco.MjModel, list[tuple[
     return model, [(start_states(model, params, settings, starts), nstep)]
 
 
-def reference_bench(params: Values, rtol: float) -> dict[str, float]:
+def exact_model_bench(params: Values, rtol: float) -> dict[str, float]:
     """The exact reference (theory.step, the generic Appendix-A integrator at tolerance ``rtol``) through the same
     mid-stance fit: wall time and the eigenvalue / mid-stance errors against the fast-method gait."""
     w = friction_wheel(params)
@@ -282,7 +282,7 @@ def reference_bench(params: Values, rtol: float) -> dict[str, float]:
     return reference.generic_bench(w, gait, starts[mask], FIT_PAIRS + 1, rtol)
 
 
-def clip(params: Values, settings: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
+def video_states(params: Values, settings: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
     """States of a clip from the reference gait's post-impact state perturbed by +10 % in theta_dot."""
     gait = reference_gait(friction_wheel(params))
     th, xd = gait_start(gait)
@@ -366,10 +366,10 @@ RIMLESS_WHEEL_FRICTION = Scenario(
     check_params=check_params,
     build=build,
     evaluate=evaluate,
-    accuracy_checks=("midstance_rate", "eigenvalue"),
-    probe=probe,
-    reference_bench=reference_bench,
-    clip=clip,
+    bench_checks=("midstance_rate", "eigenvalue"),
+    validation_batches=validation_batches,
+    exact_model_bench=exact_model_bench,
+    video_states=video_states,
     track_body="hub",
     frame_tilt="slope",
     camera_distance=5.5,  # the whole 12-spoke wheel and its contact in frame, seen from slightly above
@@ -378,7 +378,7 @@ RIMLESS_WHEEL_FRICTION = Scenario(
     soak=soak,
     region_map=REGION_MAP,
     param_sweeps={"mu": MU_SWEEP},
-    mechanisms=("rollout", "friction", "contact_fields"),
+    seam_mechanisms=("rollout", "friction", "contact_fields"),
     checks=CHECKS,
     checks_at=checks_at,
     tolerances=TOLERANCES,
