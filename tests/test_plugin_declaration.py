@@ -16,6 +16,7 @@ import pytest
 from mjpoincare.core.params import PluginDeprecationWarning
 from mjpoincare.scenarios import REGISTRY
 from mjpoincare.scenarios.base import RENAMED_FIELDS, DeclarationError, Scenario
+from mjpoincare.scenarios.gate_cases import GateCase
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLE = ROOT / "tests" / "plugin_example"
@@ -153,3 +154,13 @@ def test_a_renamed_field_by_either_name() -> None:
             dataclasses.replace(scenario, **{old: value})
     with pytest.warns(PluginDeprecationWarning, match="Scenario.mechanisms_for is renamed Scenario.seam_mechanisms"):
         assert scenario.mechanisms_for({}) == scenario.seam_mechanisms_for({})
+
+
+def test_a_gate_case_s_checks_as_one_string_still_work_with_a_warning() -> None:
+    """``GateCase.of`` takes the gated checks as a tuple of names; the old space-separated string gives the same case,
+    with one warning showing the tuple to write."""
+    new = GateCase.of("bouncing-ball", "fast", ("restitution", "stable"), drop_height=2.0)
+    with pytest.warns(PluginDeprecationWarning, match=r"give the gated checks as a tuple of names, "
+                                                      r"\('restitution', 'stable'\)") as warned:
+        old = GateCase.of("bouncing-ball", "fast", "restitution stable", drop_height=2.0)
+    assert len(warned) == 1 and old == new and new.gated == ("restitution", "stable")

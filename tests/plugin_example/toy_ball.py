@@ -209,7 +209,7 @@ def video_states(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> np.
     return plain_clip(model, batch(model, p, s)[0][:1], nstep)
 
 
-_ALL = "restitution eigenvalue flight_period stable"
+_ALL = ("restitution", "eigenvalue", "flight_period", "stable")
 BOUNCING_BALL = Scenario(
     name="bouncing-ball", summary="toy plugin: a ball bouncing on a plane: MuJoCo's restitution, apex map, flights",
     source="MuJoCo docs, Computation 'Soft contact model' and Modeling 'Solver parameters' (solref, solimp)",

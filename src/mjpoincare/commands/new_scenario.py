@@ -167,8 +167,8 @@ SCENARIO = Scenario(
     bench_checks=("fall_time",), validation_batches=validation_batches, exact_model_bench=exact_model_bench,
     video_states=video_states, track_body="ball",
     tolerances=TOLERANCES, checks=("fall_time",),
-    gate_cases=(GateCase.of("{name}", "fast", "fall_time stable"),
-                GateCase.of("{name}", "accurate", "fall_time stable")))
+    gate_cases=(GateCase.of("{name}", "fast", ("fall_time", "stable")),
+                GateCase.of("{name}", "accurate", ("fall_time", "stable"))))
 '''
 
 README = '''# {name}

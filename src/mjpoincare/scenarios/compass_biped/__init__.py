@@ -337,14 +337,14 @@ CHECKS = ("fixed_point", "eigenvalues", "step_period", "step_length", "trailing_
 #: defaults to a limit where a checked quantity vanishes: towards slope 0 the step length goes to 0 while the soft
 #: impact's displacement of the foot does not, so the step length's relative error grows without bound (a study with
 #: slope 0.01 as a coverage point found no setting within the accurate tolerances there).
-_BIPED = "fixed_point step_period step_length stable"
+_BIPED = ("fixed_point", "step_period", "step_length", "stable")
 #: The gate's runs of this scenario (:mod:`mjpoincare.gate.forms`), as measured by ``mjpoincare margins`` over its
 #: ensemble of environments (docs/results/gate/: MuJoCo 4.0.0, numpy 2.4.6, scipy 1.17.1; the OpenBLAS kernels Prescott
 #: to Zen, numpy at its baseline, and the perturbations): each spread is the measured one rounded up to 2 digits.
 GATE_CASES: tuple[GateCase, ...] = (
-    GateCase.of("compass-biped", "fast", "eigenvalues trailing_foot_release " + _BIPED),
-    GateCase.of("compass-biped", "fast", "eigenvalues trailing_foot_release " + _BIPED, tau_ankle=0.5, tau_hip=0.2),
-    GateCase.of("compass-biped", "accurate", "eigenvalues trailing_foot_release " + _BIPED),
+    GateCase.of("compass-biped", "fast", ("eigenvalues", "trailing_foot_release", *_BIPED)),
+    GateCase.of("compass-biped", "fast", ("eigenvalues", "trailing_foot_release", *_BIPED), tau_ankle=0.5, tau_hip=0.2),
+    GateCase.of("compass-biped", "accurate", ("eigenvalues", "trailing_foot_release", *_BIPED)),
 )
 
 

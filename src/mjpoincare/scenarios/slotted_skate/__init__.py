@@ -363,7 +363,7 @@ def checks_at(params: Values, settings: Values) -> tuple[str, ...]:
 #: Where a preset must hold (mjpoincare tune): the defaults, the other stability region (slot behind the mass centre),
 #: the regression gate's two other points (a long slot behind the mass centre; the mirrored defaults) and a fast slide
 #: (20x the slot speed: few steps per stance, the hardest impacts on the pegs).
-_SKATE = " ".join((*CHECKS, "stable"))
+_SKATE = (*CHECKS, "stable")
 #: The gate's runs of this scenario (:mod:`mjpoincare.gate.forms`), as measured by ``mjpoincare margins`` (MuJoCo 4.0.0,
 #: numpy 2.4.6, scipy 1.17.1, this repository's CPU): each spread is the measured one rounded up to 2 digits. A
 #: declared miss's range spans this measurement and the one an earlier margins run declared (machines and builds
