@@ -37,6 +37,18 @@ MISTAKES = {
                          "Tolerances: the bound of 'flight_period' must be a finite number > 0 (got 0.0)"),
     "a NaN tolerance": ('"flight_period": 1.5e-3}', '"flight_period": float("nan")}',
                         "Tolerances: the bound of 'flight_period' must be a finite number > 0 (got nan)"),
+    "a misspelled tolerance key": ('"flight_period": 1.5e-3}', '"flight_perod": 1.5e-3}',
+                                   "tolerances['fast'] bounds 'flight_perod', which names no declared check; did you "
+                                   "mean 'flight_period'?"),
+    "a check without a bound at one preset": ('"eigenvalue": 5e-3, "flight_period": 4e-4}', '"eigenvalue": 5e-3}',
+                                              "tolerances['accurate'] has no bound for 'flight_period', which "
+                                              "tolerances['fast'] bounds: give it a bound at every preset"),
+    "a misspelled preset in the tolerances": ('    "accurate": Tolerances(', '    "acurate": Tolerances(',
+                                              "tolerances names 'acurate', which is not a preset; did you mean "
+                                              "'accurate'?"),
+    "a preset without tolerances": ('PRESETS: dict[str, dict[str, float | int | str]] = {',
+                                    'PRESETS: dict[str, dict[str, float | int | str]] = {\n    "coarse": {},',
+                                    "tolerances has no Tolerances for preset 'coarse'"),
     "a parameter without bounds": ('Param("gravity", 9.81, "gravity, m/s^2", float, 0.0, 1e3, True)',
                                    'Param("gravity", 9.81, "gravity, m/s^2", float)',
                                    "Param 'gravity' has no bounds: give low= and high="),

@@ -530,10 +530,16 @@ class Scenario:
         return tuple(out)
 
     @property
+    def tolerance_modes(self) -> dict[str, ToleranceTable]:
+        """The scenario's preset -> :class:`Tolerances` tables by mode (rimless-wheel-3d: one per impact mode); a
+        scenario without modes has its one table under ``""``."""
+        table: Mapping[str, Any] = self.tolerances
+        return {"": table} if set(table) & set(self.presets) else dict(table)
+
+    @property
     def tolerance_tables(self) -> list[ToleranceTable]:
         """The scenario's preset -> :class:`Tolerances` tables: its one, or one per mode (rimless-wheel-3d)."""
-        table: Mapping[str, Any] = self.tolerances
-        return [table] if set(table) & set(self.presets) else list(table.values())
+        return list(self.tolerance_modes.values())
 
     if not TYPE_CHECKING:  # a type checker sees the new names only
         def __getattr__(self, name: str) -> Any:

@@ -4,7 +4,8 @@ can make in the :class:`~mjpoincare.scenarios.base.Scenario` record, as one line
 
 What is checked here is what the record itself shows: the fields it was built with, its presets' setting names, its
 seam mechanisms, its parameters' bounds, its name against its entry point, its tolerances (each
-:class:`~mjpoincare.scenarios.base.Tolerances` refuses a bound that is not finite and positive when it is built).
+:class:`~mjpoincare.scenarios.base.Tolerances` refuses a bound that is not finite and positive when it is built; the
+tables, against the presets and the declared checks: :func:`check_tolerances`).
 What ``evaluate`` returns is checked on its first return (:func:`check_evaluation`).
 """
 
@@ -16,7 +17,7 @@ import re
 from mjpoincare.analysis.checks import Check
 from mjpoincare.core import settings as sim_settings
 from mjpoincare.core.params import did_you_mean
-from mjpoincare.scenarios.base import RENAMED_FIELDS, DeclarationError, Evaluation, Scenario
+from mjpoincare.scenarios.base import RENAMED_FIELDS, DeclarationError, Evaluation, Scenario, Tolerances
 from mjpoincare.simulation.seam_check import MECHANISMS
 
 
@@ -54,6 +55,59 @@ def check_declaration(scenario: Scenario, entry_name: str) -> None:
     if scenario.default_preset not in scenario.presets:
         raise DeclarationError(f"default_preset={scenario.default_preset!r} is not one of presets= "
                                f"({', '.join(scenario.presets)})")
+    check_tolerances(scenario)
+
+
+def declared_checks(scenario: Scenario) -> tuple[str, ...]:
+    """The checks a run may report: ``checks``, or where the scenario declares none its ``bench_checks``."""
+    return scenario.checks or scenario.bench_checks
+
+
+def _bounds_a_check(key: str, declared: tuple[str, ...]) -> bool:
+    """Whether tolerance key ``key`` names a declared check or begins a word of one's name: a quantity the checks
+    named after it share (slotted-skate's ``sigma4``: ``sigma4_forward``, ``sigma4_fit_backward``, ...; the 3-D
+    wheel's ``eigenvalue``: ``heading_eigenvalue`` and the multipliers without their own bound)."""
+    return any(re.search(rf"(?:^|_){re.escape(key)}", name) for name in declared)
+
+
+def check_tolerances(scenario: Scenario) -> None:
+    """Refuse a tolerance table whose presets are not the scenario's, a bound that names no declared check (nor
+    begins a word of one's name: :func:`_bounds_a_check`), or a check bounded at one preset and not at another.
+
+    A declared check that no preset bounds is not refused here: a category or a count is judged without a bound,
+    and which checks those are shows only when ``evaluate`` runs (asking a :class:`Tolerances` for a bound it does not
+    have is then a :class:`DeclarationError`)."""
+    declared = declared_checks(scenario)
+    presets = list(scenario.presets)
+    if not set(scenario.tolerances) & set(presets):
+        stray = [key for key, table in scenario.tolerances.items() if isinstance(table, Tolerances)]
+        if stray:
+            raise DeclarationError(f"tolerances names {stray[0]!r}, which is not a preset"
+                                   f"{did_you_mean(stray[0], presets)} (presets: {', '.join(presets)})")
+    for mode, table in scenario.tolerance_modes.items():
+        where = f"tolerances[{mode!r}]" if mode else "tolerances"
+        for preset in table:
+            if preset not in presets:
+                raise DeclarationError(f"{where} names {preset!r}, which is not a preset"
+                                       f"{did_you_mean(preset, presets)} (presets: {', '.join(presets)})")
+        for preset in presets:
+            if preset not in table:
+                raise DeclarationError(f"{where} has no Tolerances for preset {preset!r}: a run at every preset is "
+                                       "judged against its own")
+        for preset, tolerances in table.items():
+            if not isinstance(tolerances, Tolerances):
+                raise DeclarationError(f"{where}[{preset!r}] is a {type(tolerances).__name__}, not a Tolerances "
+                                       "(its bounds, and why)")
+            for key in tolerances.bounds:
+                if not _bounds_a_check(key, declared):
+                    raise DeclarationError(f"{where}[{preset!r}] bounds {key!r}, which names no declared check"
+                                           f"{did_you_mean(key, declared)} (declared: {', '.join(declared)})")
+        for key in dict.fromkeys(key for tolerances in table.values() for key in tolerances.bounds):
+            bounded = [preset for preset, tolerances in table.items() if key in tolerances.bounds]
+            unbounded = [preset for preset in table if preset not in bounded]
+            if unbounded:
+                raise DeclarationError(f"{where}[{unbounded[0]!r}] has no bound for {key!r}, which "
+                                       f"{where}[{bounded[0]!r}] bounds: give it a bound at every preset")
 
 
 def check_evaluation(scenario: Scenario, evaluation: object) -> None:
@@ -65,7 +119,7 @@ def check_evaluation(scenario: Scenario, evaluation: object) -> None:
     if not names:
         raise DeclarationError("evaluate reported no check: a run must be judged on something (report the checks "
                                "checks= declares)")
-    declared = scenario.checks or scenario.bench_checks
+    declared = declared_checks(scenario)
     field = "checks=" if scenario.checks else "bench_checks= (checks= is empty)"
     for name in names:
         if name not in declared:
