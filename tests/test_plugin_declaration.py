@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import dataclasses
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -176,3 +177,21 @@ def test_a_gate_case_s_checks_as_one_string_still_work_with_a_warning() -> None:
                                                       r"\('restitution', 'stable'\)") as warned:
         old = GateCase.of("bouncing-ball", "fast", "restitution stable", drop_height=2.0)
     assert len(warned) == 1 and old == new and new.gated == ("restitution", "stable")
+
+
+def test_the_contract_tests_run_beside_a_broken_plugin(tmp_path: Path) -> None:
+    """With a broken plugin on the path, the contract tests collect: the broken plugin fails the one test that every
+    scenario loads, in the registry's line, and the built-in scenarios' tests run (here the ones that simulate
+    nothing)."""
+    old, new, said = MISTAKES["a misspelled setting in a preset"]
+    folder = _plant(tmp_path / "plugin", (old, new))
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(folder), os.environ.get("PYTHONPATH", "")]),
+           "PYTHONDONTWRITEBYTECODE": "1"}
+    run = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", "-rf",
+                          str(ROOT / "tests" / "test_scenario_contract.py"), "-k", "loads or tolerances_exist"],
+                         cwd=ROOT, env=env, capture_output=True, text=True, timeout=300)
+    out = run.stdout
+    assert run.returncode == 1 and "INTERNALERROR" not in out and "error" not in out.splitlines()[-1], out[-3000:]
+    failed = [line for line in out.splitlines() if line.startswith("FAILED")]
+    assert len(failed) == 1 and "test_every_registered_scenario_loads" in failed[0] and said in out, out[-3000:]
+    assert re.search(r"1 failed, (\d+) passed", out) and int(re.search(r"(\d+) passed", out)[1]) >= 12, out[-300:]

@@ -57,8 +57,8 @@ from mjpoincare.commands.validation import resolve_inputs
 from mjpoincare.core import settings as sim_settings
 from mjpoincare.core.params import ParameterError, Value, typed
 
-#: The loadable names: every scenario of the registry.
-ALL: tuple[str, ...] = tuple(scenarios.REGISTRY)
+#: The loadable names: every scenario of the registry whose module and declaration load.
+ALL: tuple[str, ...] = tuple(scenarios.loadable())
 #: Default episode length, s (``environment_kwargs={"time_limit": ...}`` overrides it).
 DEFAULT_TIME_LIMIT = 10.0
 #: Default control timestep, s, as in dm_control's suite (10-25 ms); rounded to whole physics steps
@@ -66,8 +66,7 @@ DEFAULT_TIME_LIMIT = 10.0
 DEFAULT_CONTROL_TIMESTEP = 0.01
 #: ``(domain, task)`` pairs for :func:`suite_load`, as ``dm_control.suite.ALL_TASKS``: each scenario with each of
 #: its presets.
-ALL_TASKS: tuple[tuple[str, str], ...] = tuple((name, preset) for name in scenarios.REGISTRY
-                                               for preset in scenarios.get(name).presets)
+ALL_TASKS: tuple[tuple[str, str], ...] = tuple((name, preset) for name in ALL for preset in scenarios.get(name).presets)
 _FULLPHYSICS = mujoco.mjtState.mjSTATE_FULLPHYSICS
 
 

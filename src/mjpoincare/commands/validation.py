@@ -80,7 +80,7 @@ def peer_of(scenario: scenarios.Scenario, name: str, params: Mapping[str, object
         if peer.name == name:
             peer.check_params(params)
             return peer
-    others = [s.name for s in scenarios.REGISTRY.values() if any(peer.name == name for peer in s.peers)]
+    others = [s for s in scenarios.loadable() if any(peer.name == name for peer in scenarios.REGISTRY[s].peers)]
     raise ParameterError(f"--peer {name} is for {', '.join(others) or 'no scenario'} only (got {scenario.name})")
 
 
