@@ -30,8 +30,8 @@ PRESETS = ("fast", "accurate")
 CHECKS = ("restitution", "eigenvalue", "flight_period", "stable")
 #: What each contract must collect and pass for the toy: test function -> the ids' parameter parts.
 CONTRACT = {f"test_{test}[{NAME}[{preset}]]" for preset in PRESETS for test in (
-    "defaults_pass_check_params_and_tolerances_exist", "model_compiles_and_probe_batches_fit_it", "one_render_frame",
-    "validation_json_round_trips")}
+    "defaults_accepted_and_tolerances_with_reasons", "model_compiles_and_validation_batches_fit_it", "one_render_frame",
+    "a_validation_reports_the_checks_its_scenario_declares_and_its_json_round_trips")}
 GATE = ({f"test_gated_check[{NAME}[{preset}]::{check}]" for preset in PRESETS for check in CHECKS}
         | {f"test_every_check_of_the_run_is_gated_watched_or_a_declared_miss[{NAME}[{preset}]]" for preset in PRESETS}
         | {f"test_every_preset_of_every_scenario_is_in_the_gate_on_its_defaults[{NAME}]"})

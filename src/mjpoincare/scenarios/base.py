@@ -406,8 +406,8 @@ class Scenario:
         presets: simulator-setting overrides per preset name (``fast``, ``accurate``).
         check_params: cross-parameter validation (raises :class:`ParameterError`).
         check_params_with_settings: ``(params, settings) -> None``: the parameters and the simulator settings checked
-            together
-            (raises :class:`ParameterError`, one line naming both), before any simulation; None: nothing couples them.
+            together (raises :class:`ParameterError`, one line naming both), before any simulation; None: nothing
+            couples them.
         default: part of the default validation (``mjpoincare validate`` with no scenario named, the main job).
         foot: what the ``foot_radius`` setting is in this scenario's model and the preset search's range for it
             (:class:`Foot`); None: the model has no foot spheres, and ``converge``'s foot axis, ``bench``'s foot row
@@ -417,8 +417,8 @@ class Scenario:
         bench_checks: the checks whose errors ``bench`` sets against wall time (the first: the Pareto axis), and
             whose simulated values ``stress`` watches for a run that left its cycle.
         validation_batches: ``(params, settings) -> (model, [(initial states, nstep), ...])``: the rollout batches
-            ``evaluate`` runs, stepped by nothing here: a run's steps counted before it starts (the cost check), and
-            ``mujoco.rollout`` timed alone on the same work.
+            ``evaluate`` runs, built and not stepped: a run's steps are counted from them before it starts (the cost
+            check), and ``mujoco.rollout`` is timed alone on the same work.
         exact_model_bench: ``(params, rtol) -> dict`` time and error of the exact-model (solve_ivp) reference run at
             tolerance ``rtol`` through the same fit (keys ``rtol``, ``wall_s``, ``<check>_error``), for ``bench``.
         video_states: ``(params, settings, model, nstep) -> states (nstep, nstate)``: one trajectory's full-physics
