@@ -23,6 +23,7 @@ import pytest
 
 from mjpoincare import scenarios
 from mjpoincare.cli import main
+from mjpoincare.commands import check_plugin as clause
 from mjpoincare.core.allowance import allowance
 from mjpoincare.gate import forms as gate
 from mjpoincare.gate.forms import MARGIN, case, cases, margin_rows, outside_ensemble
@@ -118,16 +119,12 @@ def test_declared_miss_measures_what_it_declares(case: GateCase, miss: Miss) -> 
 @pytest.mark.parametrize("case", [pytest.param(c, id=c.label) for c in cases()])
 def test_every_check_of_the_run_is_gated_watched_or_a_declared_miss(case: GateCase) -> None:
     """Each case names every check its run has, once: gated, watched, or a declared miss."""
-    declared = [*case.gated, *(m.check for m in case.misses), *(w.check for w in case.watched)]
-    assert len(declared) == len(set(declared)), f"{case.label}: a check is declared twice"
-    assert set(declared) == {c.name for c in gate.run_case(case).checks}, case.label
+    clause.gate_case_names_every_check(case, gate.run_case(case))
 
 
-@pytest.mark.parametrize("name", list(scenarios.REGISTRY))
+@pytest.mark.parametrize("name", scenarios.loadable())
 def test_every_preset_of_every_scenario_is_in_the_gate_on_its_defaults(name: str) -> None:
-    for preset in scenarios.get(name).presets:
-        assert any(c.scenario == name and c.preset == preset and not c.values for c in cases()), (
-            f"{name} --preset {preset} is not in the gate")
+    clause.gate_covers_every_preset(name)
 
 
 def test_margin_rows_measure_the_spread() -> None:

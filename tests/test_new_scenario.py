@@ -54,8 +54,8 @@ def test_a_broken_clause_is_one_failing_line(plugin: Path) -> None:
     fails in one line naming the check, the others hold, exit 1."""
     module = plugin / "toy_drop" / "__init__.py"
     text = module.read_text()
-    module.write_text(text.replace('GateCase.of("toy-drop", "accurate", "fall_time stable")',
-                                   'GateCase.of("toy-drop", "accurate", "stable")'))
+    module.write_text(text.replace('GateCase.of("toy-drop", "accurate", ("fall_time", "stable"))',
+                                   'GateCase.of("toy-drop", "accurate", ("stable",))'))
     run = _mjpoincare(plugin, "check-plugin", NAME)
     failed = [line for line in run.stdout.splitlines() if line.startswith("FAIL")]
     assert run.returncode == 1 and failed == [

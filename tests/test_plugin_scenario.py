@@ -30,8 +30,8 @@ PRESETS = ("fast", "accurate")
 CHECKS = ("restitution", "eigenvalue", "flight_period", "stable")
 #: What each contract must collect and pass for the toy: test function -> the ids' parameter parts.
 CONTRACT = {f"test_{test}[{NAME}[{preset}]]" for preset in PRESETS for test in (
-    "defaults_pass_check_params_and_tolerances_exist", "model_compiles_and_probe_batches_fit_it", "one_render_frame",
-    "validation_json_round_trips")}
+    "defaults_accepted_and_tolerances_with_reasons", "model_compiles_and_validation_batches_fit_it", "one_render_frame",
+    "a_validation_reports_the_checks_its_scenario_declares_and_its_json_round_trips")}
 GATE = ({f"test_gated_check[{NAME}[{preset}]::{check}]" for preset in PRESETS for check in CHECKS}
         | {f"test_every_check_of_the_run_is_gated_watched_or_a_declared_miss[{NAME}[{preset}]]" for preset in PRESETS}
         | {f"test_every_preset_of_every_scenario_is_in_the_gate_on_its_defaults[{NAME}]"})
@@ -176,8 +176,9 @@ def test_sweep_on_the_plugin_shows_its_analytic_eigenvalue() -> None:
 
 
 def test_a_parameter_against_a_setting_is_refused_before_any_simulation(tmp_path: Path) -> None:
-    """The toy's ``check_inputs`` sees the parameters and the settings together: a radius under twice the ball's
-    deepest penetration at that contact softness is refused in one line, exit 2, before any rollout, nothing written."""
+    """The toy's ``check_params_with_settings`` sees the parameters and the settings together: a radius under twice
+    the ball's deepest penetration at that contact softness is refused in one line, exit 2, before any rollout,
+    nothing written."""
     code = ("import sys\n"
             "from mjpoincare.engines.backends import mujoco_c\n"
             "def refuse(*a, **k):\n"

@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+import os
 import re
+import shutil
+from pathlib import Path
 
 import pytest
 from conftest import all_gated
@@ -107,6 +110,28 @@ def test_a_crash_fails_the_scenarios_items_and_the_run_goes_on(pytester: pytest.
     result.stdout.fnmatch_lines(["FAILED mjpoincare::rimless-wheel::stable - RuntimeError: simulated crash*"])
     assert (pytester.path / "runs.txt").read_text().split() == ["rimless-wheel"]  # run once for all its items
     assert "runtest" not in result.stdout.str()  # the run's own traceback, not pytest's runner frames
+
+
+@pytest.mark.mujoco
+def test_a_broken_plugin_is_one_failing_item_and_the_rest_run(pytester: pytest.Pytester,
+                                                             monkeypatch: pytest.MonkeyPatch) -> None:
+    """A plugin whose declaration does not load, named in the ini beside a built-in scenario: its one item fails with
+    the registry's one line, and the built-in scenario's checks and the project's test run and pass."""
+    plugin = pytester.path / "plugin"
+    shutil.copytree(Path(__file__).parent / "plugin_example", plugin, ignore=shutil.ignore_patterns("__pycache__"))
+    source = plugin / "toy_ball.py"
+    source.write_text(source.read_text().replace('"fast": {"timestep": 1e-4,', '"fast": {"timestpe": 1e-4,'))
+    monkeypatch.setenv("PYTHONPATH", os.pathsep.join([str(plugin), os.environ.get("PYTHONPATH", "")]))
+    pytester.makeini("[pytest]\nmjpoincare = bouncing-ball rimless-wheel\nmjpoincare_preset = fast\n")
+    pytester.makepyfile(test_project="def test_project():\n    assert True\n")
+    result = run(pytester, "-v", "-p", "no:cacheprovider")
+    declared = resolve_values("rimless-wheel", {}, "fast")[0].checks
+    assert result.ret == pytest.ExitCode.TESTS_FAILED and "INTERNALERROR" not in result.stdout.str()
+    assert result.parseoutcomes() == {"failed": 1, "passed": len(declared) + 2}, result.stdout.str()
+    result.stdout.fnmatch_lines(["mjpoincare::bouncing-ball::declaration FAILED*"])
+    assert "\nplugin toy-ball (toy_ball:BOUNCING_BALL): presets['fast'] sets 'timestpe'" in result.stdout.str()
+    assert sorted(nodes("rimless-wheel").findall(result.stdout.str())) == sorted(
+        (check, "PASSED") for check in (*declared, "stable"))
 
 
 def test_without_option_the_plugin_adds_nothing(pytester: pytest.Pytester) -> None:

@@ -169,15 +169,15 @@ def test_start_quaternions_are_mujocos() -> None:
 
 
 def test_reference_bench_integrates_at_the_given_tolerance() -> None:
-    """reference_bench passes rtol to the exact reference: a loose tolerance changes its errors, the default
+    """exact_model_bench passes rtol to the exact reference: a loose tolerance changes its errors, the default
     tolerance of later calls is untouched."""
     _, _, params, _ = resolve_inputs("rimless-wheel-3d", {"impact": "ideal"}, None)
-    loose = rw3_runs.reference_bench(params, 1e-3)
+    loose = rw3_runs.exact_model_bench(params, 1e-3)
     assert loose["rtol"] == 1e-3
     w = theory.RimlessWheel3D(16, 0.125, 0.5, math.pi / 10)
     x0 = rw3.hybrid.midstance_fixed_point(w) + 1e-3
     assert not np.array_equal(rw3.hybrid.midstance_map(w, x0, rtol=1e-3, atol=1e-3)[0],
                               rw3.hybrid.midstance_map(w, x0)[0])
-    tight = rw3_runs.reference_bench(params, rw3.hybrid.RTOL)
+    tight = rw3_runs.exact_model_bench(params, rw3.hybrid.RTOL)
     assert loose["pitch_rate_error"] != tight["pitch_rate_error"]
     assert tight["lambda2_error"] < 1e-4

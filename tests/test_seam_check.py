@@ -165,7 +165,7 @@ def test_a_planted_break_refuses_the_scenario_that_uses_it(planted: str, monkeyp
     method, broken, key, run = PLANTED[planted]
     monkeypatch.setattr(MujocoBatch, method, broken)
     assert seam_check.failure(key) is not None  # seen before a validation that would simulate with it
-    assert key in REGISTRY[run[0]].mechanisms
+    assert key in REGISTRY[run[0]].seam_mechanisms
     seam_check.failure.cache_clear()
     assert cli.main(["validate", *run]) == cli.EXIT_BAD_INPUT
     out, err = capsys.readouterr()
@@ -188,9 +188,9 @@ def test_a_contact_field_read_at_another_row_refuses_the_run(monkeypatch: pytest
 def test_scenarios_without_the_broken_mechanism_still_run_its_self_test_only_when_declared(
         monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(MujocoBatch, "set_contact", lambda self, index, geom, on: None)
-    seam_check.require(REGISTRY["rimless-wheel"].mechanisms)  # the planar wheel releases no contact
+    seam_check.require(REGISTRY["rimless-wheel"].seam_mechanisms)  # the planar wheel releases no contact
     with pytest.raises(seam_check.MechanismFailed, match="contact release"):
-        seam_check.require(REGISTRY["compass-biped"].mechanisms)
+        seam_check.require(REGISTRY["compass-biped"].seam_mechanisms)
 
 
 def _scenario_modules(module: ModuleType) -> list[ModuleType]:
@@ -222,8 +222,8 @@ def _calls(module: ModuleType) -> set[str]:
 @pytest.mark.parametrize("name", list(REGISTRY))
 def test_every_scenario_declares_the_mechanisms_it_calls(name: str) -> None:
     scenario = REGISTRY[name]
-    assert set(scenario.mechanisms) <= set(seam_check.MECHANISMS), scenario.mechanisms
-    assert "rollout" in scenario.mechanisms
+    assert set(scenario.seam_mechanisms) <= set(seam_check.MECHANISMS), scenario.seam_mechanisms
+    assert "rollout" in scenario.seam_mechanisms
     module = importlib.import_module(scenario.evaluate.__module__)
     used = {CALLS[call] for m in _scenario_modules(module) for call in _calls(m) if call in CALLS}
-    assert used <= set(scenario.mechanisms), f"{name} calls {sorted(used)}, declares {scenario.mechanisms}"
+    assert used <= set(scenario.seam_mechanisms), f"{name} calls {sorted(used)}, declares {scenario.seam_mechanisms}"

@@ -11,6 +11,7 @@ import pytest
 
 from mjpoincare import scenarios
 from mjpoincare.cli import main
+from mjpoincare.commands.check_plugin import stress_cases_answered
 from mjpoincare.commands.stress import (
     LADDER,
     generic_cases,
@@ -40,6 +41,14 @@ def test_every_scenario_declares_edges_that_must_be_refused() -> None:
         cases = scenarios.get(name).stress_cases
         assert any(c.expect == "refused" for c in cases), name
         assert any(c.expect == "run" for c in cases), name
+
+
+def test_check_plugin_answers_each_stress_case_accepted_or_refused() -> None:
+    """``mjpoincare check-plugin``'s stress clause: every case of the 3-D wheel accepted or refused in one line, the
+    refused ones those it declares refused."""
+    cases = scenarios.get("rimless-wheel-3d").stress_cases
+    refused = sum(c.expect == "refused" for c in cases)
+    assert stress_cases_answered("rimless-wheel-3d") == f"{len(cases)} cases, {refused} refused in one line"
 
 
 def test_refused_case_is_reported_not_raised() -> None:

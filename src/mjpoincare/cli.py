@@ -279,7 +279,7 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
     if args.grid:
         facet = scenario.region_map
         if facet is None:
-            with_map = [s.name for s in scenarios.REGISTRY.values() if s.region_map]
+            with_map = [name for name in scenarios.loadable() if scenarios.REGISTRY[name].region_map]
             raise ParameterError(f"--grid: {scenario.name} has no region map (scenarios with one: "
                                  f"{', '.join(with_map)})")
         from mjpoincare.core.params import parse_grid

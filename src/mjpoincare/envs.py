@@ -9,10 +9,10 @@ parameters of its point, and ``**values`` set more on top. The simulator preset 
 Each registered scenario (:data:`ALL`) loads as a :class:`dm_control.rl.control.Environment`, in the manner of
 ``dm_control.suite``: a :class:`Physics` over the scenario's compiled model with the given physical parameters and
 simulator settings applied (``scenario.build``, through MjSpec, not the raw MJCF file), and a :class:`SystemTask`
-that starts each episode from a full-physics start state the validation itself starts from (``scenario.probe``'s
-first batch, around the analytic fixed point or gait of the paper in ``scenario.source``, kept as
-``task.source``): its first row by default, ``task_kwargs={"start": i}`` row ``i``, ``{"start": None}`` a random
-row per episode.
+that starts each episode from a full-physics start state the validation itself starts from
+(``scenario.validation_batches``'s first batch, around the analytic fixed point or gait of the paper in
+``scenario.source``, kept as ``task.source``): its first row by default, ``task_kwargs={"start": i}`` row ``i``,
+``{"start": None}`` a random row per episode.
 
 * Observations: ``position`` (qpos), ``velocity`` (qvel), ``com_velocity`` (world-frame velocity of the centre of
   mass of ``scenario.track_body``'s subtree: the whole wheel, walker or skate).
@@ -67,8 +67,8 @@ from mjpoincare.core import settings as sim_settings
 from mjpoincare.core.params import ParameterError, Value, did_you_mean, typed
 from mjpoincare.scenarios.base import CoveragePoint
 
-#: The loadable names: every scenario of the registry.
-ALL: tuple[str, ...] = tuple(scenarios.REGISTRY)
+#: The loadable names: every scenario of the registry whose module and declaration load.
+ALL: tuple[str, ...] = tuple(scenarios.loadable())
 #: Default episode length, s (``environment_kwargs={"time_limit": ...}`` overrides it).
 DEFAULT_TIME_LIMIT = 10.0
 #: Default control timestep, s, as in dm_control's suite (10-25 ms); rounded to whole physics steps
@@ -89,7 +89,7 @@ def tasks(domain_name: str) -> dict[str, CoveragePoint]:
 
 
 #: ``(domain, task)`` pairs, as ``dm_control.suite.ALL_TASKS``: each scenario with each of its coverage points.
-ALL_TASKS: tuple[tuple[str, str], ...] = tuple((name, task) for name in scenarios.REGISTRY for task in tasks(name))
+ALL_TASKS: tuple[tuple[str, str], ...] = tuple((name, task) for name in ALL for task in tasks(name))
 _FULLPHYSICS = mujoco.mjtState.mjSTATE_FULLPHYSICS
 
 
@@ -281,7 +281,7 @@ def load(domain_name: str, task_name: str | None = None, task_kwargs: Mapping[st
     typed([*scenario.params, *sim_settings.SETTINGS], values)
     point: dict[str, Value] = dict(known[task_name].assignments)  # --set text, as the coverage point declares it
     scenario, _, params, settings = resolve_inputs(domain_name, {**point, **values}, preset)
-    model, batches = scenario.probe(params, settings)
+    model, batches = scenario.validation_batches(params, settings)
     _unit_gains(model)
     _limit_controls(model)
     physics = Physics.from_model(wrapper.MjModel(model))

@@ -45,7 +45,9 @@ worker that gets one runs the scenario again (the header says so). (``--dist loa
 would not do: pytest-xdist 3.8 renames the node ids through an attribute pytest 9.2 no longer reads, so its groups
 are ignored.) A check the run reports but does not declare, and a baseline complaint about a check the run lacks,
 fail the ``stable`` item, naming it. A run that raises (a crash, not a failed check)
-fails each of its items with the traceback, so the other scenarios and the project's tests still run.
+fails each of its items with the traceback, so the other scenarios and the project's tests still run. A scenario
+whose module or declaration does not load (a plugin author's mistake) is one failing item,
+``mjpoincare::<scenario>::declaration``, with the registry's one line, and the other scenarios run.
 
 Settings in ``pytest.ini``, ``pyproject.toml`` (``[tool.pytest.ini_options]``) or ``tox.ini``, each used where its
 option is not given on the command line: ``mjpoincare`` (scenario names, comma- or space-separated),
@@ -192,6 +194,7 @@ def _parse_request(config: pytest.Config) -> Request | None:
 
     from mjpoincare.commands.validation import resolve_inputs
     from mjpoincare.core.params import ParameterError, parse_assignments
+    from mjpoincare.scenarios import DeclarationError
 
     creating = False
     if baseline:
@@ -212,6 +215,8 @@ def _parse_request(config: pytest.Config) -> Request | None:
     for name in names:
         try:
             resolve_inputs(name, assignments, preset)
+        except DeclarationError:
+            continue  # a plugin that does not load is its author's mistake, not the request's: one failing item
         except ParameterError as err:
             raise pytest.UsageError(f"--mjpoincare {name}: {err}") from None
     return Request(names, preset, 0 if seed is None else seed, assignments, baseline, update or creating,
@@ -243,7 +248,8 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
     if request is None or not request.selected:
         return
     keep = [i for i in items if not i.nodeid.startswith(f"{MARKER}::")
-            or any(i.nodeid == s or i.nodeid.startswith(f"{s}::") for s in request.selected)]
+            or any(i.nodeid == s or i.nodeid.startswith(f"{s}::") for s in request.selected)
+            or isinstance(i, BrokenScenarioItem)]  # what stands for every item of a scenario that did not load
     dropped = [i for i in items if i not in keep]
     if dropped:
         config.hook.pytest_deselected(items=dropped)
@@ -337,11 +343,16 @@ class ScenarioCollector(pytest.Collector):
     """One scenario: an item per check it declares at the requested inputs, and ``stable``; nothing is simulated."""
 
     def collect(self) -> list[pytest.Item]:
-        """A :class:`CheckItem` per declared check, then ``stable`` (the scenario runs when the first one does)."""
+        """A :class:`CheckItem` per declared check, then ``stable`` (the scenario runs when the first one does); a
+        scenario whose module or declaration does not load: one :class:`BrokenScenarioItem`."""
         from mjpoincare.commands.validation import resolve_values
+        from mjpoincare.scenarios import DeclarationError
 
         request = self.config.stash[_REQUEST]
-        scenario, _, params, settings = resolve_values(self.name, request.assignments, request.preset)
+        try:
+            scenario, _, params, settings = resolve_values(self.name, request.assignments, request.preset)
+        except DeclarationError as err:
+            return [BrokenScenarioItem.from_parent(self, name="declaration", error=str(err))]
         self.declared = tuple(dict.fromkeys([*scenario.checks_for(params, settings), "stable"]))
         return [CheckItem.from_parent(self, name=name) for name in self.declared]
 
@@ -362,6 +373,29 @@ class _MjpoincareItem(pytest.Item):
     def reportinfo(self) -> tuple[Any, int | None, str]:
         """Location shown in headers: ``mjpoincare <scenario>::<name>``."""
         return self.path, None, f"{MARKER} {self.scenario}::{self.name}"
+
+
+class BrokenDeclaration(Exception):
+    """A scenario's module or declaration does not load (the registry's one line naming the plugin and the fix)."""
+
+
+class BrokenScenarioItem(_MjpoincareItem):
+    """The one item of a scenario whose module or declaration does not load (a plugin author's mistake, in the
+    registry's one line): it fails, and the other scenarios' items and the project's tests run."""
+
+    def __init__(self, *, error: str, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.error = error
+
+    def runtest(self) -> None:
+        """Fail with the registry's line."""
+        raise BrokenDeclaration(self.error)
+
+    def repr_failure(self, excinfo: pytest.ExceptionInfo[BaseException], style: Any = None) -> Any:
+        """The registry's line, no traceback."""
+        if not isinstance(excinfo.value, BrokenDeclaration):
+            return super().repr_failure(excinfo, style)
+        return CheckFailureRepr((self.error,), _Crash(self.error))
 
 
 class ScenarioCrashed(Exception):

@@ -95,7 +95,7 @@ def restitution(zeta: float) -> float:
     return math.exp(-zeta * phase)
 
 
-def check_inputs(p: Values, s: Values) -> None:
+def check_params_with_settings(p: Values, s: Values) -> None:
     """The closed forms take the contact as a spring-damper in the penetration of a sphere: the deepest penetration,
     about v / omega (the fastest impact v = sqrt(2 g drop_height), MuJoCo's contact frequency omega = 1 / (timeconst
     dampratio)), must stay under half the radius; a parameter (the radius, the drop) against a setting (the contact's
@@ -181,13 +181,13 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
     return Evaluation(out, report, extras, analytic=analytic, fit=summary)
 
 
-def probe(p: Values, s: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
+def validation_batches(p: Values, s: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
     """The model and the one batch :func:`evaluate` runs."""
     model = build(p, s)
     return model, [batch(model, p, s)]
 
 
-def reference_bench(p: Values, rtol: float) -> dict[str, float]:
+def exact_model_bench(p: Values, rtol: float) -> dict[str, float]:
     """The closed form against the exact event-driven contact (solve_ivp at ``rtol``, released where the force
     vanishes) at each start's impact speed, at the fast preset's zeta and tau: time and errors."""
     zeta, tau = float(PRESETS["fast"]["solref_dampratio"]), float(PRESETS["fast"]["solref_timeconst"])
@@ -204,19 +204,19 @@ def reference_bench(p: Values, rtol: float) -> dict[str, float]:
             "eigenvalue_error": abs(rebound**2 - e * e), "flight_period_error": 0.0}
 
 
-def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
+def video_states(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
     """The highest start's drop."""
     return plain_clip(model, batch(model, p, s)[0][:1], nstep)
 
 
-_ALL = "restitution eigenvalue flight_period stable"
+_ALL = ("restitution", "eigenvalue", "flight_period", "stable")
 BOUNCING_BALL = Scenario(
     name="bouncing-ball", summary="toy plugin: a ball bouncing on a plane: MuJoCo's restitution, apex map, flights",
     source="MuJoCo docs, Computation 'Soft contact model' and Modeling 'Solver parameters' (solref, solimp)",
-    params=PARAMS, presets=PRESETS, check_params=lambda p: None, check_inputs=check_inputs,
-    build=build, evaluate=evaluate,
-    accuracy_checks=("restitution", "eigenvalue", "flight_period"), probe=probe, reference_bench=reference_bench,
-    clip=clip, track_body="ball", camera_distance=2.0, mechanisms=("rollout",), tolerances=TOLERANCES,
+    params=PARAMS, presets=PRESETS, check_params=lambda p: None, check_params_with_settings=check_params_with_settings,
+    build=build, evaluate=evaluate, bench_checks=("restitution", "eigenvalue", "flight_period"),
+    validation_batches=validation_batches, exact_model_bench=exact_model_bench, video_states=video_states,
+    track_body="ball", camera_distance=2.0, seam_mechanisms=("rollout",), tolerances=TOLERANCES,
     gate_cases=(GateCase.of("bouncing-ball", "fast", _ALL), GateCase.of("bouncing-ball", "accurate", _ALL)),
     coverage=(CoveragePoint("defaults", {}, "drop 1 m: impacts at 4.4 m/s down to 1.4 m/s"),
               CoveragePoint("low drop", {"drop_height": "0.25"}, "down to 0.7 m/s: the largest release-depth offset"),

@@ -1,7 +1,8 @@
 """``mjpoincare list --ranges``: each numeric parameter's range that a run accepts with the others at their defaults.
 
 A parameter's declared bounds (:class:`~mjpoincare.core.params.Param`) are what the value may be at all; a scenario's
-own checks (``check_params`` and ``check_inputs``: a gait must exist, be stable, keep its foot down, ...) refuse
+own checks (``check_params`` and ``check_params_with_settings``: a gait must exist, be stable, keep its foot
+down, ...) refuse
 more, and what they refuse depends on the other parameters. This finds, by bisection between the default (accepted)
 and each declared bound, where the refusal starts when only that parameter moves: the accepted interval around the
 default, each end to :data:`RELATIVE` of its magnitude. It assumes the accepted values around the default form an

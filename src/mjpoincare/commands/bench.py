@@ -72,7 +72,7 @@ def raw_rollout_rate(name: str, assignments: Mapping[str, str]) -> dict[str, flo
     checks) steps/s measured right after it in the same process: ``pipeline_fraction`` is their ratio.
     """
     scenario, _, params, settings = resolve_inputs(name, assignments, None)
-    model, batches = scenario.probe(params, settings)
+    model, batches = scenario.validation_batches(params, settings)
     threads = int(settings["threads"])
     datas = [mujoco.MjData(model) for _ in range(threads)]
     steps, wall = 0, 0.0
@@ -122,7 +122,7 @@ def run_bench(name: str, assignments: Mapping[str, str], output: str, json_path:
     steps = sum(run_steps(name, {**{k: str(v) for k, v in o.items()}, **assignments}, None) for _, o in configs)
     refuse_long(steps, f"bench {name} ({len(configs)} runs)", allow=False, remedy="raise timestep")
     rows: list[dict[str, Any]] = []
-    accuracy = scenario.accuracy_checks
+    accuracy = scenario.bench_checks
     with progress.bar(len(configs), f"bench {name}", unit="config") as bar:
         for label, overrides in configs:
             merged = {**{k: str(v) for k, v in overrides.items()}, **assignments}
@@ -140,7 +140,7 @@ def run_bench(name: str, assignments: Mapping[str, str], output: str, json_path:
         row["pareto"] = flag
     raw = raw_rollout_rate(name, assignments)
     _, _, params, _ = resolve_inputs(name, assignments, None)
-    reference = [scenario.reference_bench(params, rtol) for rtol in ([1e-3, 1e-7] if quick else REFERENCE_RTOLS)]
+    reference = [scenario.exact_model_bench(params, rtol) for rtol in ([1e-3, 1e-7] if quick else REFERENCE_RTOLS)]
     peer_text, peer = bench_block(scenario.peers, params)
     print(format_table(rows, accuracy, raw, reference) + peer_text)
     _plot(rows, reference, key, output.format(scenario=name), name, peer)
@@ -170,13 +170,13 @@ def run_skips(name: str, assignments: Mapping[str, str], json_path: str | None) 
              if (label == "contact disabled") == contact_off or "unskip" not in off]
     with progress.bar(len(skips), f"skips {name}", unit="skip") as bar:
         for label, what, on, off in skips:
-            with_skip = _timed(name, {**on, **assignments}, scenario.accuracy_checks)
-            without = _timed(name, {**off, **assignments}, scenario.accuracy_checks)
+            with_skip = _timed(name, {**on, **assignments}, scenario.bench_checks)
+            without = _timed(name, {**off, **assignments}, scenario.bench_checks)
             rows.append({"skip": label, "what": what, "with": with_skip, "without": without,
                          "speedup": without["wall_s"] / with_skip["wall_s"]})
             bar.set_postfix_str(f"{label}: x{rows[-1]['speedup']:.2f}")
             bar.update(1)
-    key = scenario.accuracy_checks[0]
+    key = scenario.bench_checks[0]
     print(f"{name}: what each skip buys (default preset, best of 2 validations; error = {key})")
     print(markdown_table(("skip", "what", "wall with / without (s)", "speedup", "error with", "error without"), [
         (r["skip"], r["what"], f"{r['with']['wall_s']:.2f} / {r['without']['wall_s']:.2f}", f"x{r['speedup']:.2f}",

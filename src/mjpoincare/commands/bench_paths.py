@@ -56,7 +56,7 @@ def measure_paths(name: str, assignments: Mapping[str, str]) -> dict[str, Any]:
     absolute error; the Richardson path also names the components without a clean order (their fast error is
     kept). Bad input raises before any run."""
     scenario = scenarios.get(name)
-    accuracy = scenario.accuracy_checks
+    accuracy = scenario.bench_checks
     grids = coarse_grids(name, assignments, "fast")
     steps = sum(run_steps(name, {**assignments, **grid}, "fast") for grid in ({}, *grids)) + run_steps(
         name, assignments, "accurate")

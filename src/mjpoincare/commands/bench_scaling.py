@@ -35,7 +35,7 @@ from mjpoincare.core.result import write_json
 def rollout_work(name: str, assignments: Mapping[str, str]) -> float:
     """Wall seconds of one validation's rollout batches in ``mujoco.rollout`` alone, on one thread."""
     scenario, _, params, settings = resolve_inputs(name, {**assignments, "threads": "1"}, None)
-    model, batches = scenario.probe(params, settings)
+    model, batches = scenario.validation_batches(params, settings)
     data = mujoco.MjData(model)
     start = time.perf_counter()
     for state0, nstep in batches:

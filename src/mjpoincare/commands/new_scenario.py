@@ -136,13 +136,13 @@ def evaluate(p: Values, s: Values, preset: str, seed: int) -> Evaluation:
                                 "time to fall drop_height from rest against sqrt(2 h / g); " + tol.why)], report)
 
 
-def probe(p: Values, s: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
+def validation_batches(p: Values, s: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
     """The batch ``evaluate`` runs, for timing ``mujoco.rollout`` alone on it."""
     model = build(p, s)
     return model, [_batch(model, p)]
 
 
-def reference_bench(p: Values, rtol: float) -> dict[str, float]:
+def exact_model_bench(p: Values, rtol: float) -> dict[str, float]:
     """The exact fall (solve_ivp at ``rtol``, a terminal event at the landing) against the closed form."""
     g, h = float(p["gravity"]), float(p["drop_height"])
     landed = lambda t, y: y[0]  # noqa: E731
@@ -155,7 +155,7 @@ def reference_bench(p: Values, rtol: float) -> dict[str, float]:
             "fall_time_error": abs(float(sol.t_events[0][0]) - fall_time(p)) / fall_time(p)}}
 
 
-def clip(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
+def video_states(p: Values, s: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
     """The drop, for a video."""
     return plain_clip(model, _batch(model, p)[0], nstep)
 
@@ -164,10 +164,11 @@ SCENARIO = Scenario(
     name="{name}", summary="{name}: a ball dropped from rest (replace with your system)",
     source="free fall, T = sqrt(2 h / g) (replace with your paper and equation)",
     params=PARAMS, presets=PRESETS, check_params=lambda p: None, build=build, evaluate=evaluate,
-    accuracy_checks=("fall_time",), probe=probe, reference_bench=reference_bench, clip=clip, track_body="ball",
+    bench_checks=("fall_time",), validation_batches=validation_batches, exact_model_bench=exact_model_bench,
+    video_states=video_states, track_body="ball",
     tolerances=TOLERANCES, checks=("fall_time",),
-    gate_cases=(GateCase.of("{name}", "fast", "fall_time stable"),
-                GateCase.of("{name}", "accurate", "fall_time stable")))
+    gate_cases=(GateCase.of("{name}", "fast", ("fall_time", "stable")),
+                GateCase.of("{name}", "accurate", ("fall_time", "stable"))))
 '''
 
 README = '''# {name}
@@ -186,7 +187,7 @@ What to replace (docs/adding-a-scenario.md in mjpoincare walks through each):
 - `fall_time`, `evaluate`: your analytic reference (the paper's equation, in the docstring) and the experiment
   that measures it in MuJoCo, returning an `Evaluation` of the checks `checks=` declares;
 - `TOLERANCES`: each check's bound per preset and why it is what it is (measured, with margin);
-- `reference_bench`: the exact model through the same measurement (for `mjpoincare bench`);
+- `exact_model_bench`: the exact model through the same measurement (for `mjpoincare bench`);
 - `gate_cases`: the runs the regression gate asserts (`mjpoincare margins` measures them).
 '''
 

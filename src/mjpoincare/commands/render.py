@@ -115,7 +115,7 @@ def render_frames(name: str, assignments: Mapping[str, str], preset: str | None,
     nframes = max(1, round(seconds * fps))
     check_chunk(1, nframes * frame_every, mujoco.mj_stateSize(model, mujoco.mjtState.mjSTATE_FULLPHYSICS))
     start = time.perf_counter()
-    clip = scenario.clip(params, settings, model, nframes * frame_every)
+    clip = scenario.video_states(params, settings, model, nframes * frame_every)
     states, mocap = clip if isinstance(clip, tuple) else (clip, None)
     sim_wall = time.perf_counter() - start
     tilt = float(params[scenario.frame_tilt]) if scenario.frame_tilt else 0.0

@@ -90,7 +90,7 @@ class ScenarioRunner:
 
 def declared() -> dict[str, tuple[str, PaperResult]]:
     """Every registered scenario's paper results by id: ``id -> (scenario, result)``, in registry order."""
-    pairs = [(name, r) for name in scenarios.REGISTRY for r in scenarios.get(name).paper_results]
+    pairs = [(name, r) for name in scenarios.loadable() for r in scenarios.get(name).paper_results]
     unique_ids([r for _, r in pairs])
     return {r.id: (name, r) for name, r in pairs}
 

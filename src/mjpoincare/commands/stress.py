@@ -89,9 +89,9 @@ def run_case(name: str, case: StressCase) -> dict[str, Any]:
                 "traceback": traceback.format_exc(limit=4), "wall_s": time.perf_counter() - start}
     scenario = scenarios.get(name)
     by_name = {c.name: c for c in result.checks}
-    first = by_name.get(scenario.accuracy_checks[0])
+    first = by_name.get(scenario.bench_checks[0])
     diag = result.diagnostics or {}
-    lost = [n for n in scenario.accuracy_checks if n in by_name and not np.all(np.isfinite(by_name[n].simulated))]
+    lost = [n for n in scenario.bench_checks if n in by_name and not np.all(np.isfinite(by_name[n].simulated))]
     if result.diverged:
         verdict = "diverged"
     elif result.warnings:

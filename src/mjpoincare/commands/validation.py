@@ -38,8 +38,8 @@ def resolve_values(name: str, assignments: Mapping[str, Value], preset: str | No
     key = (id(scenario), repr(sorted(params.items())), repr(sorted(settings.items())))
     if key not in _ACCEPTED:
         scenario.check_params(params)
-        if scenario.check_inputs is not None:
-            scenario.check_inputs(params, settings)
+        if scenario.check_params_with_settings is not None:
+            scenario.check_params_with_settings(params, settings)
         _ACCEPTED[key] = scenario
     return scenario, preset_name, params, settings
 
@@ -56,10 +56,10 @@ def typed_values(name: str, assignments: Mapping[str, Value]) -> dict[str, Value
 
 def run_steps(name: str, assignments: Mapping[str, Value], preset: str | None) -> float:
     """MuJoCo steps of one validation of ``name`` (every trajectory's steps of the scenario's rollout plan,
-    ``scenario.probe``, which builds the model and its starts and steps nothing); bad input raises
+    ``scenario.validation_batches``, which builds the model and its starts and steps nothing); bad input raises
     :class:`ParameterError`."""
     scenario, _, params, settings = resolve_values(name, assignments, preset)
-    _, batches = scenario.probe(params, settings)
+    _, batches = scenario.validation_batches(params, settings)
     return float(sum(states.shape[0] * nstep for states, nstep in batches))
 
 
@@ -69,7 +69,7 @@ def resolve_inputs(name: str, assignments: Mapping[str, Value], preset: str | No
     the loaded MuJoCo and backend raises :class:`~mjpoincare.simulation.seam_check.MechanismFailed` (both before any
     simulation of the scenario)."""
     scenario, preset_name, params, settings = resolve_values(name, assignments, preset)
-    seam_check.require(scenario.mechanisms_for(params), str(settings["backend"]), str(settings["precision"]))
+    seam_check.require(scenario.seam_mechanisms_for(params), str(settings["backend"]), str(settings["precision"]))
     return scenario, preset_name, params, settings
 
 
@@ -80,7 +80,7 @@ def peer_of(scenario: scenarios.Scenario, name: str, params: Mapping[str, object
         if peer.name == name:
             peer.check_params(params)
             return peer
-    others = [s.name for s in scenarios.REGISTRY.values() if any(peer.name == name for peer in s.peers)]
+    others = [s for s in scenarios.loadable() if any(peer.name == name for peer in scenarios.REGISTRY[s].peers)]
     raise ParameterError(f"--peer {name} is for {', '.join(others) or 'no scenario'} only (got {scenario.name})")
 
 

@@ -144,11 +144,18 @@ def resolve(
     return values
 
 
-def did_you_mean(word: str, known: Iterable[str]) -> str:
+def did_you_mean(word: str, known: Iterable[str], renamed: Mapping[str, str] | None = None) -> str:
     """``; did you mean 'x'?`` naming the closest of ``known`` to ``word`` (difflib's ratio at least 0.6), or
-    nothing: the hint every refusal of an unknown name carries."""
-    close = difflib.get_close_matches(word, list(known), n=1, cutoff=0.6)
-    return f"; did you mean {close[0]!r}?" if close else ""
+    nothing: the hint every refusal of an unknown name carries. ``renamed``: old names -> their new ones, among the
+    candidates too, a close old name suggesting its new one."""
+    renamed = renamed or {}
+    close = difflib.get_close_matches(word, [*known, *renamed], n=1, cutoff=0.6)
+    return f"; did you mean {renamed.get(close[0], close[0])!r}?" if close else ""
+
+
+class PluginDeprecationWarning(DeprecationWarning):
+    """A plugin's declaration uses an old form of the plugin API (a field's old name, a gate case's checks as one
+    string), which still works until the next release: the warning names the new form."""
 
 
 def unknown(names: Iterable[str], *declared: Sequence[Param]) -> None:

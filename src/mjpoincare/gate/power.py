@@ -90,7 +90,7 @@ def applies(scenario: str, change: str) -> bool:
 def plants(scenario: str | None = None) -> tuple[Plant, ...]:
     """The unplanted control, then every change planted in ``scenario`` (every scenario's when None): a scaled one at
     every size of :data:`SIZES` (a control at :data:`CONTROL_SIZE` only), a switch or the drop once."""
-    names = list(scenarios.REGISTRY) if scenario is None else [scenario]
+    names = scenarios.loadable() if scenario is None else [scenario]
     out: dict[Plant, None] = {Plant("none"): None}
     for change in (*SCALED, *SWITCHED):
         for name in names:
@@ -108,8 +108,9 @@ def plants(scenario: str | None = None) -> tuple[Plant, ...]:
 def default_cases() -> tuple[GateCase, ...]:
     """Every scenario's gate case on its defaults at its default preset."""
     out = []
-    for name, scenario in scenarios.REGISTRY.items():
-        out += [c for c in gate.cases() if c.scenario == name and c.preset == scenario.default_preset and not c.values]
+    for name in scenarios.loadable():
+        preset = scenarios.REGISTRY[name].default_preset
+        out += [c for c in gate.cases() if c.scenario == name and c.preset == preset and not c.values]
     return tuple(out)
 
 

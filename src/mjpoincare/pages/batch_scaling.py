@@ -1,9 +1,9 @@
 """Batch-size scaling of a backend: seconds per batched step at batch sizes B, the measurement a GPU estimate rests
 on (``python -m mjpoincare.pages.backend_findings scaling``).
 
-A scenario's model and its first rollout batch's starts (:meth:`mjpoincare.scenarios.base.Scenario.probe`), tiled to
-B trajectories, stepped in plain chunks (no events: the timing of the stepping alone): one chunk to compile and warm
-up, then one timed chunk. The line ``t(B) = latency + B * per_trajectory`` fitted to the times separates what a
+A scenario's model and its first rollout batch's starts (:attr:`mjpoincare.scenarios.base.Scenario.validation_batches`),
+tiled to B trajectories, stepped in plain chunks (no events: the timing of the stepping alone): one chunk to compile and
+warm up, then one timed chunk. The line ``t(B) = latency + B * per_trajectory`` fitted to the times separates what a
 batched step costs whatever its size (dispatch, kernel launches, the solver's sequential iterations) from what each
 trajectory adds; a device that runs the B trajectories in parallel (a GPU, up to its width) pays mostly the first.
 """
@@ -26,7 +26,7 @@ def measure(scenario: str, backend: str, precision: str, sizes: Sequence[int], s
     from mjpoincare.commands.validation import resolve_inputs
 
     spec, _, params, settings = resolve_inputs(scenario, {"backend": backend, "precision": precision}, None)
-    model, batches = spec.probe(params, settings)
+    model, batches = spec.validation_batches(params, settings)
     state0 = batches[0][0]
     rows = []
     for size in sizes:

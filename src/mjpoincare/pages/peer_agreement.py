@@ -22,7 +22,7 @@ def agreement_table() -> str:
     theory for the peer's model; then each peer's model shift at its scenario's defaults."""
     lines: list[str] = []
     rows = []
-    for scenario in scenarios.REGISTRY.values():
+    for scenario in map(scenarios.get, scenarios.loadable()):
         for peer in scenario.peers:
             if not lines:
                 lines = [f"{peer.name.capitalize()} {peer.version()}, {peer.scheme} at accuracy "
@@ -36,7 +36,7 @@ def agreement_table() -> str:
                           f"{difference(KINDS[name], value, reference):.1e} {KINDS[name][:3]}", f"{result.wall_s:.3f}"]
                          for name, (value, reference) in values.items()]
     lines.append(markdown_table(["scenario", "parameters", "check", "drake", "difference", "drake wall s"], rows))
-    for scenario in scenarios.REGISTRY.values():
+    for scenario in map(scenarios.get, scenarios.loadable()):
         for peer in scenario.peers:
             if peer.model_shift is not None:
                 p = resolve_inputs(scenario.name, {}, None)[2]

@@ -10,10 +10,12 @@ preset without tolerances is an error, never a fallback.
 
 from __future__ import annotations
 
+import functools
 import math
+import warnings
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
-from typing import Any, Protocol, TypeVar
+from typing import TYPE_CHECKING, Any, Protocol, TypeVar
 
 import mujoco
 import numpy as np
@@ -27,7 +29,7 @@ from mjpoincare.core.outputs import (
     ReturnMapPlot,
     SectionConvergence,
 )
-from mjpoincare.core.params import Param, ParameterError, Values, did_you_mean
+from mjpoincare.core.params import Param, ParameterError, PluginDeprecationWarning, Values, did_you_mean
 from mjpoincare.core.seam import RolloutReport
 from mjpoincare.core.settings import SEARCH_SPACE, Dimension
 from mjpoincare.engines.peers import Peer
@@ -349,6 +351,49 @@ class Foot:
     high: float = 2e-3
 
 
+#: Fields of :class:`Scenario` renamed, old name -> new name: a declaration (``Scenario(probe=...)``) or a read
+#: (``scenario.probe``) by the old name still works until the next release, with a :class:`PluginDeprecationWarning`.
+RENAMED_FIELDS: dict[str, str] = {
+    "probe": "validation_batches",
+    "clip": "video_states",
+    "reference_bench": "exact_model_bench",
+    "mechanisms": "seam_mechanisms",
+    "mechanisms_at": "seam_mechanisms_at",
+    "check_inputs": "check_params_with_settings",
+    "accuracy_checks": "bench_checks",
+}
+#: :data:`RENAMED_FIELDS` and the renamed methods: what a read by the old name reaches.
+RENAMED_ATTRIBUTES: dict[str, str] = {**RENAMED_FIELDS, "mechanisms_for": "seam_mechanisms_for"}
+
+
+def _renamed_fields(kwargs: dict[str, Any]) -> dict[str, Any]:
+    """``kwargs`` of a :class:`Scenario` with each old field name replaced by its new one, one
+    :class:`PluginDeprecationWarning` for each (attributed to the declaration); both names given is a
+    :class:`DeclarationError`."""
+    out = dict(kwargs)
+    for old, new in RENAMED_FIELDS.items():
+        if old in out:
+            if new in out:
+                raise DeclarationError(f"Scenario: {old}= is the old name of {new}=: give {new}= only")
+            warnings.warn(f"Scenario: {old}= is renamed {new}= (the old name works until the next release)",
+                          PluginDeprecationWarning, stacklevel=3)
+            out[new] = out.pop(old)
+    return out
+
+
+def _accept_renamed(cls: type[T]) -> type[T]:
+    """``cls`` (a dataclass) whose ``__init__`` takes the old names of :data:`RENAMED_FIELDS` as well."""
+    init = cls.__init__
+
+    @functools.wraps(init)
+    def __init__(self: T, *args: Any, **kwargs: Any) -> None:
+        init(self, *args, **_renamed_fields(kwargs))
+
+    cls.__init__ = __init__  # type: ignore[misc]
+    return cls
+
+
+@_accept_renamed
 @dataclass(frozen=True)
 class Scenario:
     """A validation scenario.
@@ -360,22 +405,25 @@ class Scenario:
         params: the physical parameters with defaults and bounds.
         presets: simulator-setting overrides per preset name (``fast``, ``accurate``).
         check_params: cross-parameter validation (raises :class:`ParameterError`).
-        check_inputs: ``(params, settings) -> None``: the parameters and the simulator settings checked together
-            (raises :class:`ParameterError`, one line naming both), before any simulation; None: nothing couples them.
+        check_params_with_settings: ``(params, settings) -> None``: the parameters and the simulator settings checked
+            together (raises :class:`ParameterError`, one line naming both), before any simulation; None: nothing
+            couples them.
         default: part of the default validation (``mjpoincare validate`` with no scenario named, the main job).
         foot: what the ``foot_radius`` setting is in this scenario's model and the preset search's range for it
             (:class:`Foot`); None: the model has no foot spheres, and ``converge``'s foot axis, ``bench``'s foot row
             and the search leave ``foot_radius`` out.
         build: ``(params, settings) -> MjModel``.
         evaluate: ``(params, settings, preset, seed) -> Evaluation``; ``preset`` picks the tolerances.
-        accuracy_checks: names of the checks whose errors the benchmark plots (first = Pareto axis).
-        probe: ``(params, settings) -> (model, [(initial states, nstep), ...])``: the rollout batches
-            ``evaluate`` runs, for timing ``mujoco.rollout`` alone on the same work.
-        reference_bench: ``(params, rtol) -> dict`` time and error of the exact solve_ivp reference
-            run at tolerance ``rtol`` through the same fit (keys ``rtol``, ``wall_s``, ``<check>_error``).
-        clip: ``(params, settings, model, nstep) -> states (nstep, nstate)`` full-physics states of a clip to
-            render (simulated with whatever controller the scenario needs), or ``(states, mocap_pos)`` with
-            the mocap positions (nstep, nmocap, 3) of each row.
+        bench_checks: the checks whose errors ``bench`` sets against wall time (the first: the Pareto axis), and
+            whose simulated values ``stress`` watches for a run that left its cycle.
+        validation_batches: ``(params, settings) -> (model, [(initial states, nstep), ...])``: the rollout batches
+            ``evaluate`` runs, built and not stepped: a run's steps are counted from them before it starts (the cost
+            check), and ``mujoco.rollout`` is timed alone on the same work.
+        exact_model_bench: ``(params, rtol) -> dict`` time and error of the exact-model (solve_ivp) reference run at
+            tolerance ``rtol`` through the same fit (keys ``rtol``, ``wall_s``, ``<check>_error``), for ``bench``.
+        video_states: ``(params, settings, model, nstep) -> states (nstep, nstate)``: one trajectory's full-physics
+            states to render (simulated with whatever controller the scenario needs), or ``(states, mocap_pos)``
+            with the mocap positions (nstep, nmocap, 3) of each row.
         track_body: body the render camera follows.
         frame_tilt: parameter whose value (rad) rotates rendered frames (a slope made by tilted gravity).
         camera_distance: render camera distance, m.
@@ -390,7 +438,7 @@ class Scenario:
             and ``--grid`` is refused).
         param_sweeps: the scenario's own sweeps by parameter name (:class:`ParamSweep`), run by ``sweep --param NAME``
             in place of the generic sweep; every other parameter or setting gets the generic sweep.
-        mechanisms: the seam mechanisms its event controllers and checks use (keys of
+        seam_mechanisms: the seam mechanisms its event controllers and checks use (keys of
             :data:`mjpoincare.simulation.seam_check.MECHANISMS`), each self-tested on the loaded MuJoCo before the
             scenario runs.
         coverage: the parameter points that span the scenario's range (:class:`CoveragePoint`; the defaults first):
@@ -402,8 +450,8 @@ class Scenario:
             and the bench's peer rows.
         tolerances: preset -> :class:`Tolerances` (or mode -> such a table): what ``evaluate`` judges each check
             against, and why.
-        mechanisms_at: ``(params) -> mechanisms`` when a run uses fewer than all of ``mechanisms`` (a mode of the
-            scenario that needs one the others do not): a backend that lacks it refuses only those runs.
+        seam_mechanisms_at: ``(params) -> mechanisms`` when a run uses fewer than all of ``seam_mechanisms`` (a mode
+            of the scenario that needs one the others do not): a backend that lacks it refuses only those runs.
         gate_cases: the runs the regression gate asserts (:class:`~mjpoincare.scenarios.gate_cases.GateCase`; the
             defaults at every preset at least), each check in its form: gated, watched or a declared miss.
         checks: every check ``evaluate`` reports at some inputs, by name and in its order (not ``stable``, which the
@@ -430,10 +478,10 @@ class Scenario:
     check_params: Callable[[Values], None]
     build: Callable[[Values, Values], mujoco.MjModel]
     evaluate: Callable[[Values, Values, str, int], Evaluation]
-    accuracy_checks: tuple[str, ...]
-    probe: Callable[[Values, Values], tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]]
-    reference_bench: Callable[[Values, float], dict[str, float]]
-    clip: Callable[[Values, Values, mujoco.MjModel, int], np.ndarray | tuple[np.ndarray, np.ndarray]]
+    bench_checks: tuple[str, ...]
+    validation_batches: Callable[[Values, Values], tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]]
+    exact_model_bench: Callable[[Values, float], dict[str, float]]
+    video_states: Callable[[Values, Values, mujoco.MjModel, int], np.ndarray | tuple[np.ndarray, np.ndarray]]
     track_body: str
     frame_tilt: str | None = None
     camera_distance: float = 3.0
@@ -443,24 +491,25 @@ class Scenario:
     soak: Callable[[Values, Values, int], Soak] | None = None
     region_map: RegionMap | None = None
     param_sweeps: Mapping[str, ParamSweep] = field(default_factory=dict)
-    mechanisms: tuple[str, ...] = ()
+    seam_mechanisms: tuple[str, ...] = ()
     coverage: tuple[CoveragePoint, ...] = (CoveragePoint("defaults", {}, "the scenario's default parameters"),)
     search_space: tuple[Dimension, ...] = SEARCH_SPACE
     peers: tuple[Peer, ...] = ()
     tolerances: ToleranceTable | Mapping[str, ToleranceTable] = field(default_factory=dict)
     gate_cases: tuple[GateCase, ...] = ()
-    mechanisms_at: Callable[[Values], tuple[str, ...]] | None = None
+    seam_mechanisms_at: Callable[[Values], tuple[str, ...]] | None = None
     checks: tuple[str, ...] = ()
     checks_at: Callable[[Values, Values], tuple[str, ...]] | None = None
     rivals: Mapping[str, Rival] = field(default_factory=dict)
-    check_inputs: Callable[[Values, Values], None] | None = None
+    check_params_with_settings: Callable[[Values, Values], None] | None = None
     default: bool = False
     foot: Foot | None = None
     paper_results: tuple[PaperResult, ...] = ()
 
-    def mechanisms_for(self, params: Values) -> tuple[str, ...]:
-        """The seam mechanisms a run at ``params`` uses: ``mechanisms_at(params)``, or all of ``mechanisms``."""
-        return self.mechanisms if self.mechanisms_at is None else self.mechanisms_at(params)
+    def seam_mechanisms_for(self, params: Values) -> tuple[str, ...]:
+        """The seam mechanisms a run at ``params`` uses: ``seam_mechanisms_at(params)``, or all of
+        ``seam_mechanisms``."""
+        return self.seam_mechanisms if self.seam_mechanisms_at is None else self.seam_mechanisms_at(params)
 
     def checks_for(self, params: Values, settings: Values) -> tuple[str, ...]:
         """The checks a run at ``params`` and ``settings`` reports (checked inputs): ``checks_at(params,
@@ -481,10 +530,27 @@ class Scenario:
         return tuple(out)
 
     @property
+    def tolerance_modes(self) -> dict[str, ToleranceTable]:
+        """The scenario's preset -> :class:`Tolerances` tables by mode (rimless-wheel-3d: one per impact mode); a
+        scenario without modes has its one table under ``""``."""
+        table: Mapping[str, Any] = self.tolerances
+        return {"": table} if set(table) & set(self.presets) else dict(table)
+
+    @property
     def tolerance_tables(self) -> list[ToleranceTable]:
         """The scenario's preset -> :class:`Tolerances` tables: its one, or one per mode (rimless-wheel-3d)."""
-        table: Mapping[str, Any] = self.tolerances
-        return [table] if set(table) & set(self.presets) else list(table.values())
+        return list(self.tolerance_modes.values())
+
+    if not TYPE_CHECKING:  # a type checker sees the new names only
+        def __getattr__(self, name: str) -> Any:
+            """A renamed field or method read by its old name (:data:`RENAMED_ATTRIBUTES`), with a
+            :class:`PluginDeprecationWarning`."""
+            new = RENAMED_ATTRIBUTES.get(name)
+            if new is None:
+                raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+            warnings.warn(f"Scenario.{name} is renamed Scenario.{new} (the old name works until the next release)",
+                          PluginDeprecationWarning, stacklevel=2)
+            return getattr(self, new)
 
     def preset(self, name: str | None) -> tuple[str, Values]:
         """The preset's name and setting overrides (the default preset when ``name`` is None)."""

@@ -4,11 +4,12 @@ declared miss (:class:`Miss`) with its measured error, spread and mechanism."""
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 from mjpoincare.core.allowance import allowance
-from mjpoincare.core.params import Value
+from mjpoincare.core.params import PluginDeprecationWarning, Value
 
 
 @dataclass(frozen=True)
@@ -105,11 +106,17 @@ class GateCase:
         return f"{self.scenario}[{','.join([self.preset, *(f'{k}={v}' for k, v in self.values)])}]"
 
     @classmethod
-    def of(cls, scenario: str, preset: str, gated: str, misses: Iterable[Miss] = (), watched: Iterable[Watch] = (),
-           **values: Value) -> GateCase:
-        """The case of ``scenario`` at ``preset`` with parameter ``values``; ``gated``: the gated checks' names,
-        space-separated."""
-        return cls(scenario=scenario, preset=preset, values=tuple(values.items()), gated=tuple(gated.split()),
+    def of(cls, scenario: str, preset: str, gated: tuple[str, ...] | str, misses: Iterable[Miss] = (),
+           watched: Iterable[Watch] = (), **values: Value) -> GateCase:
+        """The case of ``scenario`` at ``preset`` with parameter ``values``; ``gated``: the gated checks' names (a
+        space-separated string of them, the old form, still works until the next release, with a
+        :class:`~mjpoincare.core.params.PluginDeprecationWarning`)."""
+        if isinstance(gated, str):
+            warnings.warn(f"GateCase.of({scenario!r}, {preset!r}, {gated!r}): give the gated checks as a tuple of "
+                          f"names, {tuple(gated.split())!r} (a space-separated string works until the next release)",
+                          PluginDeprecationWarning, stacklevel=2)
+            gated = tuple(gated.split())
+        return cls(scenario=scenario, preset=preset, values=tuple(values.items()), gated=tuple(gated),
                    misses=tuple(misses), watched=tuple(watched))
 
 

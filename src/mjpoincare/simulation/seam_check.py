@@ -1,7 +1,7 @@
 """The harness checks itself: each mechanism of the rollout seam (:class:`mjpoincare.core.seam.Batch`) run on a tiny
 model, on the MuJoCo release and the backend actually loaded, before a scenario that uses it runs.
 
-A scenario declares the mechanisms its event controllers use (``Scenario.mechanisms``). :func:`require` runs their
+A scenario declares the mechanisms its event controllers use (``Scenario.seam_mechanisms``). :func:`require` runs their
 self-tests once per process, backend and precision; a mechanism that does not do what the seam promises raises
 :class:`MechanismFailed` (a :class:`~mjpoincare.core.params.ParameterError`, so the command line exits 2 with one line
 naming the mechanism and the release), and no physics is reported from a harness that did not work.

@@ -280,7 +280,7 @@ def _step_summary(bp: theory.CompassBiped, x_star: np.ndarray) -> dict[str, floa
 
 
 
-def probe(params: Values, settings: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
+def validation_batches(params: Values, settings: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
     """Model and initial states of the gait batch (contacts fixed: the raw-rate reference)."""
     bp = biped(params)
     model = build(params, settings)
@@ -290,7 +290,7 @@ def probe(params: Values, settings: Values) -> tuple[mujoco.MjModel, list[tuple[
     return model, [(starts, math.ceil((STEPS + 0.5) * period / model.opt.timestep))]
 
 
-def reference_bench(params: Values, rtol: float) -> dict[str, float]:
+def exact_model_bench(params: Values, rtol: float) -> dict[str, float]:
     """The exact reference (solve_ivp at ``rtol``) over the default preset's starts and steps, through the same
     fit: its error is the floor the experiment design sets."""
     bp = biped(params)
@@ -338,7 +338,7 @@ STRESS_CASES = (
 )
 
 
-def clip(params: Values, settings: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
+def video_states(params: Values, settings: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
     """States of a clip from the analytic post-impact fixed point, with the gait's contact switching."""
     bp = biped(params)
     start = post_impact_states(model, bp, theory.fixed_point(bp)[None, :], float(settings["foot_radius"]))
@@ -358,14 +358,14 @@ CHECKS = ("fixed_point", "eigenvalues", "step_period", "step_length", "trailing_
 #: defaults to a limit where a checked quantity vanishes: towards slope 0 the step length goes to 0 while the soft
 #: impact's displacement of the foot does not, so the step length's relative error grows without bound (a study with
 #: slope 0.01 as a coverage point found no setting within the accurate tolerances there).
-_BIPED = "fixed_point step_period step_length stable"
+_BIPED = ("fixed_point", "step_period", "step_length", "stable")
 #: The gate's runs of this scenario (:mod:`mjpoincare.gate.forms`), as measured by ``mjpoincare margins`` over its
 #: ensemble of environments (docs/results/gate/: MuJoCo 4.0.0, numpy 2.4.6, scipy 1.17.1; the OpenBLAS kernels Prescott
 #: to Zen, numpy at its baseline, and the perturbations): each spread is the measured one rounded up to 2 digits.
 GATE_CASES: tuple[GateCase, ...] = (
-    GateCase.of("compass-biped", "fast", "eigenvalues trailing_foot_release " + _BIPED),
-    GateCase.of("compass-biped", "fast", "eigenvalues trailing_foot_release " + _BIPED, tau_ankle=0.5, tau_hip=0.2),
-    GateCase.of("compass-biped", "accurate", "eigenvalues trailing_foot_release " + _BIPED),
+    GateCase.of("compass-biped", "fast", ("eigenvalues", "trailing_foot_release", *_BIPED)),
+    GateCase.of("compass-biped", "fast", ("eigenvalues", "trailing_foot_release", *_BIPED), tau_ankle=0.5, tau_hip=0.2),
+    GateCase.of("compass-biped", "accurate", ("eigenvalues", "trailing_foot_release", *_BIPED)),
 )
 
 
@@ -385,16 +385,16 @@ COMPASS_BIPED = Scenario(
     check_params=check_params,
     build=build,
     evaluate=evaluate,
-    accuracy_checks=("fixed_point", "eigenvalues", "step_period", "step_length"),
-    probe=probe,
-    reference_bench=reference_bench,
-    clip=clip,
+    bench_checks=("fixed_point", "eigenvalues", "step_period", "step_length"),
+    validation_batches=validation_batches,
+    exact_model_bench=exact_model_bench,
+    video_states=video_states,
     track_body="hip",
     frame_tilt="slope",
     camera_distance=3.0,
     stress_cases=STRESS_CASES,
     soak=soak,
-    mechanisms=("rollout", "contact", "actuator", "fractional_step"),
+    seam_mechanisms=("rollout", "contact", "actuator", "fractional_step"),
     checks=CHECKS,
     rivals=RIVALS,
     tolerances=TOLERANCES,

@@ -239,7 +239,7 @@ def evaluate(params: Values, settings: Values, preset: str, seed: int) -> Evalua
                       section_convergence=convergence, reported=reported)
 
 
-def probe(params: Values, settings: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
+def validation_batches(params: Values, settings: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
     """Model and initial states of the gait batch (contacts fixed: the raw-rate reference)."""
     g = gait(params)
     model = build(params, settings)
@@ -248,7 +248,7 @@ def probe(params: Values, settings: Values) -> tuple[mujoco.MjModel, list[tuple[
     return model, [(starts, horizon(g, design(g)[0], model.opt.timestep))]
 
 
-def reference_bench(params: Values, rtol: float) -> dict[str, float]:
+def exact_model_bench(params: Values, rtol: float) -> dict[str, float]:
     """The exact map (stance integration at relative tolerance ``rtol``) over the fast preset's starts and steps,
     through the same fit; the legs-parallel samples are read on the reference trajectory of each post-impact state."""
     g = gait(params)
@@ -269,7 +269,7 @@ def reference_bench(params: Values, rtol: float) -> dict[str, float]:
             "eigenvalues_error": eigenvalue_error(lam, fit.eigenvalues)}
 
 
-def clip(params: Values, settings: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
+def video_states(params: Values, settings: Values, model: mujoco.MjModel, nstep: int) -> np.ndarray:
     """States of a clip from the analytic fixed point, with the gait's contact switching and actuation."""
     g = gait(params)
     steps = math.ceil(nstep * model.opt.timestep / g.record.period)
@@ -309,14 +309,14 @@ COMPASS_BIPED_FRICTION = Scenario(
     check_params=check_params,
     build=build,
     evaluate=evaluate,
-    accuracy_checks=("eigenvalues", "fixed_point", "step_length"),
-    probe=probe,
-    reference_bench=reference_bench,
-    clip=clip,
+    bench_checks=("eigenvalues", "fixed_point", "step_length"),
+    validation_batches=validation_batches,
+    exact_model_bench=exact_model_bench,
+    video_states=video_states,
     track_body="hip",
     camera_distance=3.5,
     stress_cases=STRESS_CASES,
-    mechanisms=("rollout", "contact", "actuator", "control", "fractional_step"),
+    seam_mechanisms=("rollout", "contact", "actuator", "control", "fractional_step"),
     checks=CHECKS,
     checks_at=checks_at,
     rivals=RIVALS,

@@ -1,6 +1,6 @@
 """The friction biped's model and walk (002 Secs. 4-5): the compass-biped MJCF with 002's parameters and torques, and
 the event rollout that walks it with the gait controller (contact switching, constant torques, Gait III's PD servos).
-The scenario's validation, clip and probe and its paper runs use them."""
+The scenario's validation, its video states and validation batches and its paper runs use them."""
 
 from __future__ import annotations
 

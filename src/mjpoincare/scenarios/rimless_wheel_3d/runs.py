@@ -212,7 +212,7 @@ def reference_sequences(w: theory.RimlessWheel3D, size: float, rtol: float) -> l
     return sequences
 
 
-def reference_bench(params: Values, rtol: float) -> dict[str, float]:
+def exact_model_bench(params: Values, rtol: float) -> dict[str, float]:
     """The exact hybrid reference (solve_ivp DOP853 at relative and absolute tolerance ``rtol``) from the same starts
     through the same fit: its error is the floor the experiment design (perturbation size, quadratic fit) sets."""
     w = wheel(params)

@@ -288,7 +288,7 @@ def _final_state_checks(params: Values, settings: Values, sk: theory.SlottedSkat
     ], report
 
 
-def probe(params: Values, settings: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
+def validation_batches(params: Values, settings: Values) -> tuple[mujoco.MjModel, list[tuple[np.ndarray, int]]]:
     """Model and initial states of the batches: the map's starts and, where the map's rotation decays, the user's start
     run to its final state (each its whole duration without pegs switched)."""
     model = build(params, settings)
@@ -300,7 +300,7 @@ def probe(params: Values, settings: Values) -> tuple[mujoco.MjModel, list[tuple[
     return model, batches
 
 
-def reference_bench(params: Values, rtol: float) -> dict[str, float]:
+def exact_model_bench(params: Values, rtol: float) -> dict[str, float]:
     """The exact stance integration (solve_ivp at ``rtol``) over the same batch: time and sigma_4 error."""
     import time
 
@@ -317,7 +317,7 @@ def reference_bench(params: Values, rtol: float) -> dict[str, float]:
     return {"rtol": rtol, "wall_s": time.perf_counter() - start, "sigma4_forward_error": worst}
 
 
-def clip(params: Values, settings: Values, model: mujoco.MjModel, nstep: int
+def video_states(params: Values, settings: Values, model: mujoco.MjModel, nstep: int
          ) -> tuple[np.ndarray, np.ndarray]:
     """States of a clip of the first trajectory (peg-chart coordinates) and the peg's position for each row,
     to be put in ``mocap_pos`` so that the rendered skate moves across the plane."""
@@ -363,7 +363,7 @@ def checks_at(params: Values, settings: Values) -> tuple[str, ...]:
 #: Where a preset must hold (mjpoincare tune): the defaults, the other stability region (slot behind the mass centre),
 #: the regression gate's two other points (a long slot behind the mass centre; the mirrored defaults) and a fast slide
 #: (20x the slot speed: few steps per stance, the hardest impacts on the pegs).
-_SKATE = " ".join((*CHECKS, "stable"))
+_SKATE = (*CHECKS, "stable")
 #: The gate's runs of this scenario (:mod:`mjpoincare.gate.forms`), as measured by ``mjpoincare margins`` (MuJoCo 4.0.0,
 #: numpy 2.4.6, scipy 1.17.1, this repository's CPU): each spread is the measured one rounded up to 2 digits. A
 #: declared miss's range spans this measurement and the one an earlier margins run declared (machines and builds
@@ -394,17 +394,17 @@ SLOTTED_SKATE = Scenario(
     check_params=check_params,
     build=build,
     evaluate=evaluate,
-    accuracy_checks=("sigma4_forward", "energy_loss", "heading"),
-    probe=probe,
-    reference_bench=reference_bench,
-    clip=clip,
+    bench_checks=("sigma4_forward", "energy_loss", "heading"),
+    validation_batches=validation_batches,
+    exact_model_bench=exact_model_bench,
+    video_states=video_states,
     track_body="skate",
     frame_tilt=None,
     camera_distance=4.0,
     camera_elevation=-89.0,
     stress_cases=STRESS_CASES,
     region_map=REGION_MAP,
-    mechanisms=("rollout", "fractional_step"),
+    seam_mechanisms=("rollout", "fractional_step"),
     checks=CHECKS,
     checks_at=checks_at,
     rivals=RIVALS,
