@@ -20,7 +20,7 @@ pytestmark = pytest.mark.mujoco
 STEPS = 50
 
 
-@pytest.mark.parametrize("name", scenarios.REGISTRY)
+@pytest.mark.parametrize("name", envs.ALL)
 def test_environment_contract(name: str) -> None:
     """Like dm_control's domains_test: reset, specs match, 50 spec-valid steps stay finite and advance time."""
     env = envs.load(name, preset=scenarios.get(name).default_preset)
@@ -75,7 +75,7 @@ def test_dm_control_suite_shape_tasks_are_the_validated_behaviours() -> None:
     """``load(domain, task, task_kwargs, environment_kwargs, visualize_reward)`` as dm_control's ``suite.load``:
     the tasks are each scenario's coverage points (every pair in ``ALL_TASKS``), each setting its parameters; the
     preset is a keyword; an unknown domain or task is one line with the closest known name."""
-    assert {domain for domain, _ in envs.ALL_TASKS} == set(scenarios.REGISTRY)
+    assert {domain for domain, _ in envs.ALL_TASKS} == set(envs.ALL)
     assert [t for d, t in envs.ALL_TASKS if d == "compass-biped-friction"] == [
         "gait_a", "gait_b", "gait_c", "gait_i", "gait_ii", "gait_iii"]
     assert ("rimless-wheel-friction", "type_d_plus") in envs.ALL_TASKS
@@ -193,7 +193,7 @@ RANDOM_STEPS = 3000
 SHORT_EPISODE = 0.05  # s
 
 
-@pytest.mark.parametrize("name", scenarios.REGISTRY)
+@pytest.mark.parametrize("name", envs.ALL)
 def test_random_actions_within_the_spec_keep_the_dm_env_contract(name: str) -> None:
     """Thousands of steps under random actions inside ``action_spec()`` raise nothing, stay finite, and each episode
     runs FIRST (no reward, no discount), MID (reward, discount 1), ..., LAST at its time limit, then restarts."""
@@ -240,6 +240,6 @@ def _conformance_case(name: str) -> type:
                 {"make_object_under_test": lambda self: envs.load(name)})
 
 
-for _name in scenarios.REGISTRY:
+for _name in envs.ALL:
     _case = _conformance_case(_name)
     globals()[_case.__name__] = _case

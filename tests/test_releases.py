@@ -76,15 +76,23 @@ def test_committed_page_reproduces_from_its_json_and_covers_the_history() -> Non
         assert payload["environment"]["mujoco"] == payload["mujoco"]
 
 
-def test_a_release_session_frees_every_package_that_follows_mujoco(tmp_path: Path,
+@pytest.fixture(scope="module")
+def noxfile() -> Any:
+    """``noxfile.py`` as a module, loaded once (nox refuses a session registered twice)."""
+    spec = importlib.util.spec_from_file_location("noxfile", ROOT / "noxfile.py")
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    with pytest.MonkeyPatch.context() as patch:
+        patch.chdir(ROOT)
+        spec.loader.exec_module(module)
+    return module
+
+
+def test_a_release_session_frees_every_package_that_follows_mujoco(tmp_path: Path, noxfile: Any,
                                                                    monkeypatch: pytest.MonkeyPatch) -> None:
     """mujoco 4 pins mujoco-core and mujoco-studio at its own version: a constraint left from the lock would make
     every other release uninstallable."""
-    monkeypatch.chdir(ROOT)
-    spec = importlib.util.spec_from_file_location("noxfile", ROOT / "noxfile.py")
-    assert spec is not None and spec.loader is not None
-    noxfile = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(noxfile)
+    monkeypatch.chdir(ROOT)  # the session reads requirements/lock.txt from the working directory, as nox runs it
     installed: list[tuple[str, ...]] = []
 
     class Session:
@@ -102,15 +110,11 @@ def test_a_release_session_frees_every_package_that_follows_mujoco(tmp_path: Pat
 
 
 def test_the_history_and_the_oldest_job_run_every_built_in_scenario(monkeypatch: pytest.MonkeyPatch,
-                                                                    tmp_path: Path) -> None:
+                                                                    tmp_path: Path, noxfile: Any) -> None:
     """Not only the default validation's scenarios: the registry's, the biped with friction among them."""
     built_in = releases.history_scenarios()
     assert set(scenarios.default_scenarios()) | {"compass-biped-friction"} <= set(built_in)
     monkeypatch.chdir(ROOT)
-    spec = importlib.util.spec_from_file_location("noxfile", ROOT / "noxfile.py")
-    assert spec is not None and spec.loader is not None
-    noxfile = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(noxfile)
 
     class Session:
         def __init__(self) -> None:
