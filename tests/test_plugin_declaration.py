@@ -150,6 +150,16 @@ def test_an_old_style_declaration_loads_and_warns_once_per_renamed_field(tmp_pat
         assert len(said) == 1 and "toy_ball.py:" in said[0], (old, warned)
 
 
+def test_the_command_line_shows_an_old_name_once(tmp_path: Path) -> None:
+    """Python hides a DeprecationWarning outside ``__main__``; ``mjpoincare`` shows a plugin's old names, each once,
+    and still lists the scenario."""
+    folder = _plant(tmp_path / "plugin", *OLD_STYLE.items())
+    run = _mjpoincare(folder, "list")
+    assert run.returncode == 0 and f"{NAME}:" in run.stdout, run.stderr[-2000:]
+    warned = [line for line in run.stderr.splitlines() if "PluginDeprecationWarning" in line]
+    assert len(warned) == len(OLD_STYLE), run.stderr
+
+
 def test_a_renamed_field_by_either_name() -> None:
     """Each old name works in a declaration and in a read, one warning naming the new name each time; giving both
     names is refused in one line."""

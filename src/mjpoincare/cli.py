@@ -7,13 +7,14 @@ import argparse
 import importlib.util
 import math
 import sys
+import warnings
 from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, NoReturn
 
 from mjpoincare.core import progress
 from mjpoincare.core.parallel import machine_cores
-from mjpoincare.core.params import ParameterError, Value, grid_syntax, parse_assignments
+from mjpoincare.core.params import ParameterError, PluginDeprecationWarning, Value, grid_syntax, parse_assignments
 
 if TYPE_CHECKING:
     from mjpoincare.core.result import Result
@@ -762,8 +763,16 @@ def _cmd_new_scenario(args: argparse.Namespace) -> int:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Entry point: exit 0 when all checks pass, 1 when one fails, 2 on bad input."""
+    """Entry point: exit 0 when all checks pass, 1 when one fails, 2 on bad input. A plugin's use of an old name of
+    the plugin API is shown once per place (Python hides a DeprecationWarning outside ``__main__``), within this call
+    only."""
     args = build_parser().parse_args(argv)
+    with warnings.catch_warnings():
+        warnings.simplefilter("default", PluginDeprecationWarning)
+        return _run(args)
+
+
+def _run(args: argparse.Namespace) -> int:
     try:
         return int(args.func(args))
     except KeyboardInterrupt:  # Ctrl-C: one line, no traceback; a results file is written whole or not at all

@@ -120,9 +120,9 @@ STEP_REGRESSION_DEGREE = 2  # per-step quantities regressed on the section state
 #: The largest hip-to-leg mass ratio m_h / m_l the model is run at. MuJoCo sizes a contact's softness by the
 #: contact's own effective inverse mass (R = (1 - d) / d times the diagonal of A, "Solver parameters" of MuJoCo's
 #: computation chapter); at a heel strike that is the light swing leg's, while the momentum the contact must stop
-#: is the hip's, so the heel-strike contact is softer for the hip by about m_h / m_l and the hip sinks through the
-#: impact. Measured at the default impedance (docs/scenarios/compass-biped.md, "Findings"): the fixed point's error
-#: grows about tenfold per decade of the ratio past 1e2, and past 1e4 the simulated biped falls.
+#: is the hip's, so the lighter the leg, the softer the heel strike is for the hip. Measured at the presets'
+#: impedance (docs/scenarios/compass-biped.md, "Findings"; docs/scripts/cb_mass_ratio.py): the fixed point's error
+#: grows about tenfold per decade of the ratio past 1e3, and past 1e4 the fast preset's biped falls.
 MAX_MASS_RATIO = 1e4
 
 
