@@ -102,6 +102,8 @@ def test_report_table_matches_json(tmp_path: Path) -> None:
     rows = re.findall(r"<tr class=(pass|fail)><td>([^<]+)</td>", page)
     assert [(("pass" if c["passed"] else "fail"), c["name"]) for c in result["checks"]] == rows
     assert page.count("data:image/png;base64,") >= 3
+    index = (tmp_path / "report" / "index.html").read_text()  # one scenario gets its index page too
+    assert f"<a href='rimless-wheel.html'>rimless-wheel</a></td><td>{'PASS' if result['passed'] else 'FAIL'}" in index
 
 
 def test_plots_leave_the_callers_matplotlib_alone(tmp_path: Path) -> None:

@@ -167,8 +167,7 @@ def _cmd_validate(args: argparse.Namespace) -> int:
         pages = [r.to_dict() for r in results]
         paths = [write_report(page, args.report, no_gl or _report_still(page["scenario"], assignments, args.preset))
                  for page in pages]
-        if len(pages) > 1:
-            paths.insert(0, write_index(pages, args.report))
+        paths.insert(0, write_index(pages, args.report))
         if args.json != "-":
             print("\n".join(f"report: {path}" for path in paths))
     return EXIT_PASS if all(r.passed for r in results) and not changed else EXIT_FAIL

@@ -5,7 +5,8 @@ data), the empirical return map (x_k+1 against x_k, analytic map drawn over it) 
 form, each section coordinate's distance to the analytic fixed point against the step, the fitted eigenvalues in the
 complex plane with their bootstrap clouds, the unit circle and the analytic values, the basin map over the analytic
 regions, and the convergence (time against error) plot when a bench result ``renders/bench-<scenario>.json``
-exists. A run of several scenarios also gets ``DIR/index.html``: each scenario's verdict and its checks' verdicts.
+exists. Every report also gets ``DIR/index.html`` (one scenario or several): each scenario's verdict and its checks'
+verdicts.
 Plots use matplotlib's object API (no pyplot: the caller's backend is left alone).
 """
 
