@@ -14,8 +14,10 @@ from pathlib import Path
 import mujoco
 import pytest
 
+from mjpoincare import scenarios
 from mjpoincare.cli import main
 from mjpoincare.commands.validation import resolve_values
+from mjpoincare.core import settings as sim_settings
 from mjpoincare.core.mjcf_loader import compile_spec, load_spec, planted
 from mjpoincare.gate import effects, power
 from mjpoincare.pages import gate_power_page
@@ -100,6 +102,16 @@ def test_a_change_the_theory_cannot_see_is_a_control_run_once_and_never_blind(sc
            "tolerance": [], "baseline": []}
     assert power.is_control(row) and power.blind([row]) == [] and power.holds([row])
     assert not power.holds([{**row, "baseline": ["x"]}])
+
+
+def test_friction_is_a_control_only_where_the_gate_cases_cone_is_elliptic() -> None:
+    """A sticking foot's mu is invisible to MuJoCo's elliptic cone, not to its pyramidal one (the friction biped's
+    fast preset), whose rows mix the normal with mu times the tangent."""
+    for scenario, controls in effects.CONTROLS.items():
+        cone = {**sim_settings.DEFAULTS, **scenarios.get(scenario).presets["fast"]}["cone"]
+        contact = "no contact" not in controls.get("friction", "")
+        assert ("friction" in controls) <= (cone == "elliptic" or not contact), scenario
+    assert effects.kind("compass-biped-friction", "friction") == "simulator"
 
 
 def test_the_friction_wheels_friction_is_a_parameter_of_its_theory_not_a_control() -> None:

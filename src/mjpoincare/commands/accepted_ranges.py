@@ -35,8 +35,8 @@ class AcceptedRange:
     why_high: str
 
     def text(self, param: Param) -> str:
-        """``accepted at the defaults: [0.0682, 0.2621]`` with the refusals' reasons, or empty when the declared
-        bounds are the range."""
+        """``accepted at the defaults: [0.0682, 0.2621]`` (an end the checks set in square brackets), or empty when
+        the declared bounds are the range."""
         if not (self.why_low or self.why_high):
             return ""
         low = "[" + _number(self.low) if self.why_low else ("(" if param.low_open else "[") + _number(self.low)
