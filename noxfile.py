@@ -24,13 +24,11 @@ nox.options.default_venv_backend = "uv"
 nox.options.reuse_existing_virtualenvs = True
 nox.options.sessions = ["oldest"]
 
-#: Packages the lock pins that follow the MuJoCo release under test: MuJoCo's own (mujoco, and every mujoco-* package:
-#: mujoco-core and mujoco-studio, which mujoco 4 pins at its own version, mujoco-mjx, mujoco-warp) and dm-control.
-FOLLOW_MUJOCO = ("dm-control",)
-
-
 def _follows_mujoco(package: str) -> bool:
-    return package == "mujoco" or package.startswith("mujoco-") or package in FOLLOW_MUJOCO
+    """Whether the lock's pin of ``package`` follows the MuJoCo release under test: MuJoCo's own packages (mujoco, and
+    every mujoco-* one: mujoco-core and mujoco-studio, which mujoco 4 pins at its own version, mujoco-mjx,
+    mujoco-warp) and dm-control."""
+    return package in ("mujoco", "dm-control") or package.startswith("mujoco-")
 
 
 def _install(session: nox.Session, mujoco: str, *, editable: bool = True) -> None:

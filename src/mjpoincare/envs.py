@@ -157,7 +157,7 @@ class SystemTask(base.Task):
             raise ParameterError(f"start must be None or an integer in [0, {len(starts)}) (got {start!r})")
         self.track_body, self.starts, self.start, self.source = track_body, starts, start, source
         self._reward_scale = 1.0
-        self._colours: np.ndarray | None = None
+        self._shown: tuple[np.ndarray, np.ndarray] | None = None  # the tracked geoms and their own colours
         super().__init__(random=random)
 
     def initialize_episode(self, physics: Physics) -> None:
@@ -174,11 +174,12 @@ class SystemTask(base.Task):
         if not self.visualize_reward:
             return
         model = physics.model.ptr
-        geoms = _subtree_geoms(model, model.body(self.track_body).id)
-        if self._colours is None:
-            self._colours = model.geom_rgba[geoms].copy()
+        if self._shown is None:  # found once: the control loop then only blends
+            geoms = _subtree_geoms(model, model.body(self.track_body).id)
+            self._shown = geoms, model.geom_rgba[geoms].copy()
+        geoms, colours = self._shown
         blend = float(np.clip(self.get_reward(physics) / self._reward_scale, 0.0, 1.0))
-        model.geom_rgba[geoms] = (1.0 - blend) * self._colours + blend * np.asarray(REWARD_HIGHLIGHT)
+        model.geom_rgba[geoms] = (1.0 - blend) * colours + blend * np.asarray(REWARD_HIGHLIGHT)
 
     def get_observation(self, physics: Physics) -> collections.OrderedDict[str, np.ndarray]:
         """``position`` (qpos), ``velocity`` (qvel), ``com_velocity`` (tracked subtree's centre of mass, world)."""
